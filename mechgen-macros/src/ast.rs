@@ -1,0 +1,291 @@
+//! The declaration as written: `syn` parsing, no meaning attached yet.
+//!
+//! ```text
+//! mechanism! {
+//!     /// docs
+//!     pub struct FourBar {
+//!         params: l1, l2, l3, l4, gamma: angle;
+//!         input: theta2: angle;
+//!         unknowns: theta3: angle, theta4: angle;
+//!         loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
+//!         point coupler = l2 @ theta2 + a @ (theta3 + gamma);
+//!         generate: position, velocity, acceleration;
+//!     }
+//! }
+//! ```
+
+use proc_macro2::Span;
+use syn::parse::{Parse, ParseStream};
+use syn::punctuated::Punctuated;
+use syn::{Attribute, Ident, Token, Visibility, braced};
+
+/// The whole macro input.
+pub struct Declaration {
+    pub attrs: Vec<Attribute>,
+    pub vis: Visibility,
+    pub name: Ident,
+    pub sections: Vec<Section>,
+}
+
+/// One `keyword: ...;` statement inside the braces.
+pub enum Section {
+    Params(Ident, Vec<SymbolDecl>),
+    Input(Ident, Vec<SymbolDecl>),
+    Unknowns(Ident, Vec<SymbolDecl>),
+    Loop(VectorSum),
+    Point(Ident, VectorSum),
+    Generate(Ident, Vec<Ident>),
+}
+
+/// `name` or `name: kind`, with doc attributes.
+pub struct SymbolDecl {
+    pub attrs: Vec<Attribute>,
+    pub name: Ident,
+    pub kind: Option<Ident>,
+}
+
+/// `± magnitude @ angle ± ...`
+pub struct VectorSum {
+    pub terms: Vec<VectorTerm>,
+}
+
+/// `± magnitude @ angle`: the polar vector `magnitude·e^{i·angle}`, possibly negated.
+pub struct VectorTerm {
+    pub negated: bool,
+    pub magnitude: Scalar,
+    pub angle: Scalar,
+}
+
+/// A scalar expression over declared names and numbers.
+pub enum Scalar {
+    Name(Ident),
+    Number(f64, Span),
+    Neg(Span, Box<Scalar>),
+    Binary(BinaryOp, Span, Box<Scalar>, Box<Scalar>),
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum BinaryOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+impl Scalar {
+    /// The span covering the expression, for diagnostics.
+    pub fn span(&self) -> Span {
+        match self {
+            Scalar::Name(name) => name.span(),
+            Scalar::Number(_, span) => *span,
+            Scalar::Neg(span, inner) => span.join(inner.span()).unwrap_or(*span),
+            Scalar::Binary(_, _, left, right) => {
+                left.span().join(right.span()).unwrap_or_else(|| left.span())
+            }
+        }
+    }
+}
+
+const SECTIONS: &str = "`params`, `input`, `unknowns`, `loop`, `point` or `generate`";
+
+impl Parse for Declaration {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let attrs = input.call(Attribute::parse_outer)?;
+        let vis = input.parse()?;
+        input.parse::<Token![struct]>()?;
+        let name = input.parse()?;
+        let body;
+        braced!(body in input);
+        let mut sections = Vec::new();
+        while !body.is_empty() {
+            sections.push(body.parse()?);
+        }
+        Ok(Declaration {
+            attrs,
+            vis,
+            name,
+            sections,
+        })
+    }
+}
+
+impl Parse for Section {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        if input.peek(Token![loop]) {
+            input.parse::<Token![loop]>()?;
+            input.parse::<Token![:]>()?;
+            let sum = input.parse()?;
+            input.parse::<Token![;]>()?;
+            return Ok(Section::Loop(sum));
+        }
+        let keyword: Ident = input
+            .parse()
+            .map_err(|e| syn::Error::new(e.span(), format!("expected {SECTIONS}")))?;
+        let section = match keyword.to_string().as_str() {
+            "params" => Section::Params(keyword, parse_symbol_list(input)?),
+            "input" => Section::Input(keyword, parse_symbol_list(input)?),
+            "unknowns" => Section::Unknowns(keyword, parse_symbol_list(input)?),
+            "point" => {
+                let name = input.parse()?;
+                input.parse::<Token![=]>()?;
+                Section::Point(name, input.parse()?)
+            }
+            "generate" => {
+                input.parse::<Token![:]>()?;
+                let outputs = Punctuated::<Ident, Token![,]>::parse_separated_nonempty(input)?;
+                Section::Generate(keyword, outputs.into_iter().collect())
+            }
+            _ => {
+                return Err(syn::Error::new(
+                    keyword.span(),
+                    format!("unknown section `{keyword}`: expected {SECTIONS}"),
+                ));
+            }
+        };
+        input.parse::<Token![;]>()?;
+        Ok(section)
+    }
+}
+
+fn parse_symbol_list(input: ParseStream) -> syn::Result<Vec<SymbolDecl>> {
+    input.parse::<Token![:]>()?;
+    let list = Punctuated::<SymbolDecl, Token![,]>::parse_separated_nonempty(input)?;
+    Ok(list.into_iter().collect())
+}
+
+impl Parse for SymbolDecl {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let attrs = input.call(Attribute::parse_outer)?;
+        let name = input.parse()?;
+        let kind = if input.peek(Token![:]) {
+            input.parse::<Token![:]>()?;
+            Some(input.parse()?)
+        } else {
+            None
+        };
+        Ok(SymbolDecl { attrs, name, kind })
+    }
+}
+
+impl Parse for VectorSum {
+    fn parse(input: ParseStream) -> syn::Result<Self> {
+        let mut terms = Vec::new();
+        let mut negated = parse_sign(input)?.unwrap_or(false);
+        loop {
+            let magnitude = parse_product(input)?;
+            if !input.peek(Token![@]) {
+                return Err(syn::Error::new(
+                    magnitude.span(),
+                    "expected `@` after this magnitude: each term is `length @ angle`; \
+                     write a sum of angles in parentheses, as in `r @ (theta4 + gamma)`",
+                ));
+            }
+            input.parse::<Token![@]>()?;
+            let angle = parse_product(input)?;
+            terms.push(VectorTerm {
+                negated,
+                magnitude,
+                angle,
+            });
+            match parse_sign(input)? {
+                Some(sign) => negated = sign,
+                None => break,
+            }
+        }
+        Ok(VectorSum { terms })
+    }
+}
+
+/// `+` gives `Some(false)`, `-` gives `Some(true)`, anything else `None` (nothing consumed).
+fn parse_sign(input: ParseStream) -> syn::Result<Option<bool>> {
+    if input.peek(Token![+]) {
+        input.parse::<Token![+]>()?;
+        Ok(Some(false))
+    } else if input.peek(Token![-]) {
+        input.parse::<Token![-]>()?;
+        Ok(Some(true))
+    } else {
+        Ok(None)
+    }
+}
+
+/// `product (('+' | '-') product)*`, used inside parentheses.
+fn parse_sum(input: ParseStream) -> syn::Result<Scalar> {
+    let mut left = parse_product(input)?;
+    loop {
+        let op = if input.peek(Token![+]) {
+            BinaryOp::Add
+        } else if input.peek(Token![-]) {
+            BinaryOp::Sub
+        } else {
+            return Ok(left);
+        };
+        let span = input.span();
+        input.parse::<proc_macro2::Punct>()?;
+        let right = parse_product(input)?;
+        left = Scalar::Binary(op, span, Box::new(left), Box::new(right));
+    }
+}
+
+/// `unary (('*' | '/') unary)*`: a vector's magnitude or angle outside parentheses, so
+/// `c @ pi / 2` needs none.
+fn parse_product(input: ParseStream) -> syn::Result<Scalar> {
+    let mut left = parse_unary(input)?;
+    loop {
+        let op = if input.peek(Token![*]) {
+            BinaryOp::Mul
+        } else if input.peek(Token![/]) {
+            BinaryOp::Div
+        } else {
+            return Ok(left);
+        };
+        let span = input.span();
+        input.parse::<proc_macro2::Punct>()?;
+        let right = parse_unary(input)?;
+        left = Scalar::Binary(op, span, Box::new(left), Box::new(right));
+    }
+}
+
+fn parse_unary(input: ParseStream) -> syn::Result<Scalar> {
+    if input.peek(Token![-]) {
+        let minus: Token![-] = input.parse()?;
+        return Ok(Scalar::Neg(minus.span, Box::new(parse_unary(input)?)));
+    }
+    parse_atom(input)
+}
+
+fn parse_atom(input: ParseStream) -> syn::Result<Scalar> {
+    let lookahead = input.lookahead1();
+    if lookahead.peek(syn::token::Paren) {
+        let inner;
+        syn::parenthesized!(inner in input);
+        let scalar = parse_sum(&inner)?;
+        if !inner.is_empty() {
+            return Err(inner.error("expected `+`, `-`, `*`, `/` or `)`"));
+        }
+        Ok(scalar)
+    } else if lookahead.peek(Ident) {
+        Ok(Scalar::Name(input.parse()?))
+    } else if lookahead.peek(syn::LitInt) {
+        let literal: syn::LitInt = input.parse()?;
+        reject_suffix(literal.suffix(), literal.span())?;
+        Ok(Scalar::Number(literal.base10_parse()?, literal.span()))
+    } else if lookahead.peek(syn::LitFloat) {
+        let literal: syn::LitFloat = input.parse()?;
+        reject_suffix(literal.suffix(), literal.span())?;
+        Ok(Scalar::Number(literal.base10_parse()?, literal.span()))
+    } else {
+        Err(lookahead.error())
+    }
+}
+
+fn reject_suffix(suffix: &str, span: Span) -> syn::Result<()> {
+    if suffix.is_empty() {
+        Ok(())
+    } else {
+        Err(syn::Error::new(
+            span,
+            "write numbers without a type suffix: the generated code picks the float type",
+        ))
+    }
+}

@@ -1,0 +1,274 @@
+//! Turns a set of output expressions into straight-line Rust with shared work done once.
+//!
+//! Scheduling is deterministic: nodes are visited in arena order (a topological order), a
+//! node gets a `let` only when it is used more than once, temporaries are named `t0, t1, …`
+//! in that order, and each angle gets one `sin_cos` (or a lone `sin`/`cos`). Negation is free
+//! in the output, so it is never bound and its uses count as uses of its operand.
+
+use std::collections::BTreeSet;
+
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::quote;
+
+use crate::symbolic::{ExprId, Graph, Node, Var};
+
+/// The statements that compute some outputs, and the expression for each output.
+pub struct Block {
+    pub statements: Vec<TokenStream>,
+    pub outputs: Vec<TokenStream>,
+    /// The variables the block reads, so the caller binds only those.
+    pub used: BTreeSet<Var>,
+}
+
+/// Operator precedence, low to high, for minimal parentheses.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Precedence {
+    Sum,
+    Product,
+    Unary,
+    Atom,
+}
+
+/// A generated local: hygienic, so it never clashes with the user's names.
+pub fn local(name: &str) -> Ident {
+    Ident::new(name, Span::mixed_site())
+}
+
+pub fn emit(graph: &Graph, outputs: &[ExprId], var_name: &dyn Fn(Var) -> Ident) -> Block {
+    let mut emitter = Emitter {
+        graph,
+        var_name,
+        names: vec![None; graph.len()],
+        used: BTreeSet::new(),
+    };
+    let statements = emitter.schedule(outputs);
+    let outputs = outputs.iter().map(|&o| emitter.expr(o).0).collect();
+    Block {
+        statements,
+        outputs,
+        used: emitter.used,
+    }
+}
+
+struct Emitter<'a> {
+    graph: &'a Graph,
+    var_name: &'a dyn Fn(Var) -> Ident,
+    /// The local holding a node's value, once it has one.
+    names: Vec<Option<Ident>>,
+    used: BTreeSet<Var>,
+}
+
+impl Emitter<'_> {
+    fn schedule(&mut self, outputs: &[ExprId]) -> Vec<TokenStream> {
+        let graph = self.graph;
+        let n = graph.len();
+        let mut reachable = vec![false; n];
+        let mut stack: Vec<ExprId> = outputs.to_vec();
+        while let Some(id) = stack.pop() {
+            if std::mem::replace(&mut reachable[id.index()], true) {
+                continue;
+            }
+            stack.extend(children(graph.node(id)));
+        }
+
+        // Angles whose sine and cosine are both needed get one `sin_cos`.
+        let mut has_sin = vec![false; n];
+        let mut has_cos = vec![false; n];
+        for (i, _) in reachable.iter().enumerate().filter(|(_, r)| **r) {
+            match graph.node(id_at(i)) {
+                Node::Sin(a) => has_sin[a.index()] = true,
+                Node::Cos(a) => has_cos[a.index()] = true,
+                _ => {}
+            }
+        }
+
+        // Parents come after children in the arena, so a reverse sweep sees every use of a
+        // node before the node itself.
+        let mut uses = vec![0usize; n];
+        for output in outputs {
+            uses[output.index()] += 1;
+        }
+        for i in (0..n).rev().filter(|&i| reachable[i]) {
+            match graph.node(id_at(i)) {
+                Node::Neg(a) => uses[a.index()] += uses[i],
+                Node::Sin(a) if has_cos[a.index()] => {}
+                node => children(node).for_each(|c| uses[c.index()] += 1),
+            }
+        }
+
+        let mut statements = Vec::new();
+        let mut temporaries = 0;
+        let mut angles = 0;
+        for i in (0..n).filter(|&i| reachable[i]) {
+            let id = id_at(i);
+            match graph.node(id) {
+                Node::Sin(a) | Node::Cos(a) if self.names[i].is_none() => {
+                    let stem = match graph.node(a) {
+                        Node::Var(var) => (self.var_name)(var).to_string(),
+                        _ => {
+                            angles += 1;
+                            (angles - 1).to_string()
+                        }
+                    };
+                    statements.push(self.trig(a, &stem, has_sin[a.index()], has_cos[a.index()]));
+                }
+                Node::Add(..) | Node::Mul(..) if uses[i] > 1 => {
+                    let value = self.expr(id).0;
+                    let name = local(&format!("t{temporaries}"));
+                    temporaries += 1;
+                    statements.push(quote!(let #name = #value;));
+                    self.names[i] = Some(name);
+                }
+                _ => {}
+            }
+        }
+        statements
+    }
+
+    /// `let (sin_x, cos_x) = x.sin_cos();`, or the one of them that is needed.
+    fn trig(&mut self, angle: ExprId, stem: &str, sin: bool, cos: bool) -> TokenStream {
+        let argument = self.operand(angle, Precedence::Atom);
+        let sin_name = local(&format!("sin_{stem}"));
+        let cos_name = local(&format!("cos_{stem}"));
+        let mut assign = |node: Node, name: &Ident| {
+            if let Some(index) = self.find(node) {
+                self.names[index] = Some(name.clone());
+            }
+        };
+        assign(Node::Sin(angle), &sin_name);
+        assign(Node::Cos(angle), &cos_name);
+        match (sin, cos) {
+            (true, true) => quote!(let (#sin_name, #cos_name) = #argument.sin_cos();),
+            (true, false) => quote!(let #sin_name = #argument.sin();),
+            _ => quote!(let #cos_name = #argument.cos();),
+        }
+    }
+
+    fn find(&self, node: Node) -> Option<usize> {
+        self.graph.lookup(node).map(ExprId::index)
+    }
+
+    /// `id`'s expression, parenthesised if its precedence is below `required`.
+    fn operand(&mut self, id: ExprId, required: Precedence) -> TokenStream {
+        let (tokens, precedence) = self.expr(id);
+        if precedence < required {
+            quote!((#tokens))
+        } else {
+            tokens
+        }
+    }
+
+    /// If `id` is a negation or a negative constant, what it negates.
+    fn negated(&self, id: ExprId) -> Option<Negated> {
+        if self.names[id.index()].is_some() {
+            return None;
+        }
+        match self.graph.node(id) {
+            Node::Neg(x) => Some(Negated::Expr(x)),
+            Node::Const(bits) if f64::from_bits(bits) < 0.0 => {
+                Some(Negated::Constant(-f64::from_bits(bits)))
+            }
+            _ => None,
+        }
+    }
+
+    fn operand_or_constant(&mut self, negated: Negated, required: Precedence) -> TokenStream {
+        match negated {
+            Negated::Expr(id) => self.operand(id, required),
+            Negated::Constant(value) => constant(value),
+        }
+    }
+
+    fn expr(&mut self, id: ExprId) -> (TokenStream, Precedence) {
+        if let Some(name) = &self.names[id.index()] {
+            return (quote!(#name), Precedence::Atom);
+        }
+        match self.graph.node(id) {
+            Node::Const(bits) => {
+                let value = f64::from_bits(bits);
+                if value < 0.0 {
+                    let magnitude = constant(-value);
+                    (quote!(-#magnitude), Precedence::Unary)
+                } else {
+                    (constant(value), Precedence::Atom)
+                }
+            }
+            Node::Var(var) => {
+                self.used.insert(var);
+                let name = (self.var_name)(var);
+                (quote!(#name), Precedence::Atom)
+            }
+            Node::Neg(a) => {
+                let a = self.operand(a, Precedence::Unary);
+                (quote!(-#a), Precedence::Unary)
+            }
+            Node::Add(a, b) => {
+                // `a + (-y)` reads `a - y`; `(-x) + b` reads `b - x`.
+                let tokens = match (self.negated(a), self.negated(b)) {
+                    (_, Some(subtrahend)) => {
+                        let left = self.operand(a, Precedence::Sum);
+                        let right = self.operand_or_constant(subtrahend, Precedence::Product);
+                        quote!(#left - #right)
+                    }
+                    (Some(subtrahend), None) => {
+                        let left = self.operand(b, Precedence::Sum);
+                        let right = self.operand_or_constant(subtrahend, Precedence::Product);
+                        quote!(#left - #right)
+                    }
+                    (None, None) => {
+                        let left = self.operand(a, Precedence::Sum);
+                        let right = self.operand(b, Precedence::Product);
+                        quote!(#left + #right)
+                    }
+                };
+                (tokens, Precedence::Sum)
+            }
+            Node::Mul(a, b) => {
+                let left = self.operand(a, Precedence::Product);
+                let right = self.operand(b, Precedence::Unary);
+                (quote!(#left * #right), Precedence::Product)
+            }
+            // Scheduled before use, so named by now; this is the fallback for a lone call.
+            Node::Sin(a) => {
+                let a = self.operand(a, Precedence::Atom);
+                (quote!(#a.sin()), Precedence::Atom)
+            }
+            Node::Cos(a) => {
+                let a = self.operand(a, Precedence::Atom);
+                (quote!(#a.cos()), Precedence::Atom)
+            }
+        }
+    }
+}
+
+#[derive(Clone, Copy)]
+enum Negated {
+    Expr(ExprId),
+    Constant(f64),
+}
+
+fn id_at(index: usize) -> ExprId {
+    // The arena never exceeds u32 (see Graph::intern), so this round-trips.
+    ExprId::from_index(index)
+}
+
+fn children(node: Node) -> impl Iterator<Item = ExprId> {
+    let (a, b) = match node {
+        Node::Const(_) | Node::Var(_) => (None, None),
+        Node::Neg(a) | Node::Sin(a) | Node::Cos(a) => (Some(a), None),
+        Node::Add(a, b) | Node::Mul(a, b) => (Some(a), Some(b)),
+    };
+    a.into_iter().chain(b)
+}
+
+/// A constant of the generic float type `T`.
+pub fn constant(value: f64) -> TokenStream {
+    if value == 0.0 {
+        quote!(T::zero())
+    } else if value == 1.0 {
+        quote!(T::one())
+    } else {
+        let literal = Literal::f64_unsuffixed(value);
+        quote!(T::constant(#literal))
+    }
+}

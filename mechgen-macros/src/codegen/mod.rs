@@ -1,0 +1,621 @@
+//! Emits the generated items: the mechanism struct, its unknowns and points types, and the
+//! solver functions the declaration asked for.
+
+mod emit;
+
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
+
+use crate::model::{Kind, Model, Symbol, SymbolRef};
+use crate::symbolic::{Equations, ExprId, Var};
+use emit::{Block, emit, local};
+
+pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
+    let generator = Generator::new(model, equations);
+    let mechanism = generator.mechanism_struct();
+    let unknowns = generator.unknowns_struct();
+    let points = generator.points_struct();
+    let functions = generator.functions();
+    let name = &model.name;
+    quote! {
+        #mechanism
+        #unknowns
+        #points
+        #[allow(clippy::too_many_arguments, clippy::neg_multiply, clippy::double_neg)]
+        impl<T: ::mechgen::Real> #name<T> {
+            #functions
+        }
+    }
+}
+
+struct Generator<'a> {
+    model: &'a Model,
+    equations: &'a Equations,
+    unknowns_type: Ident,
+    points_type: Ident,
+    /// Rate and acceleration names of the input and each unknown (`theta2_dot`, ...).
+    input_dot: Ident,
+    input_ddot: Ident,
+    unknown_dots: Vec<Ident>,
+    unknown_ddots: Vec<Ident>,
+}
+
+/// Names of the generated functions' own arguments.
+fn arg(name: &str) -> Ident {
+    local(name)
+}
+
+impl<'a> Generator<'a> {
+    fn new(model: &'a Model, equations: &'a Equations) -> Self {
+        let derived = |symbol: &Symbol, suffix: &str| local(&format!("{}_{suffix}", symbol.name));
+        Generator {
+            model,
+            equations,
+            unknowns_type: format_ident!("{}Unknowns", model.name),
+            points_type: format_ident!("{}Points", model.name),
+            input_dot: derived(&model.input, "dot"),
+            input_ddot: derived(&model.input, "ddot"),
+            unknown_dots: model.unknowns.iter().map(|u| derived(u, "dot")).collect(),
+            unknown_ddots: model.unknowns.iter().map(|u| derived(u, "ddot")).collect(),
+        }
+    }
+
+    fn var_name(&self, var: Var) -> Ident {
+        match var {
+            Var::Value(symbol) => self.model.symbol(symbol).name.clone(),
+            Var::Rate(SymbolRef::Input) => self.input_dot.clone(),
+            Var::Rate(SymbolRef::Unknown(i)) => self.unknown_dots[i].clone(),
+            Var::Accel(SymbolRef::Input) => self.input_ddot.clone(),
+            Var::Accel(SymbolRef::Unknown(i)) => self.unknown_ddots[i].clone(),
+            // Parameters are constant: the graph never holds their rates.
+            Var::Rate(SymbolRef::Param(i)) | Var::Accel(SymbolRef::Param(i)) => {
+                self.model.params[i].name.clone()
+            }
+        }
+    }
+
+    /// Emits `outputs` with the `let`s that bind the parameters and unknowns they read.
+    /// Some outputs do not depend on the input (a Jacobian often does not); then the
+    /// prologue marks the input argument as deliberately unused.
+    fn block(&self, outputs: &[ExprId]) -> (TokenStream, Vec<TokenStream>) {
+        let Block {
+            statements,
+            outputs,
+            used,
+        } = emit(&self.equations.graph, outputs, &|var| self.var_name(var));
+        let position = arg("position");
+        let velocity = arg("velocity");
+        let acceleration = arg("acceleration");
+        let bindings = used.iter().filter_map(|&var| {
+            let name = self.var_name(var);
+            let (source, field) = match var {
+                Var::Value(SymbolRef::Param(i)) => {
+                    let field = &self.model.params[i].name;
+                    return Some(quote!(let #name = self.#field;));
+                }
+                Var::Value(SymbolRef::Unknown(i)) => (&position, i),
+                Var::Rate(SymbolRef::Unknown(i)) => (&velocity, i),
+                Var::Accel(SymbolRef::Unknown(i)) => (&acceleration, i),
+                // The input and its derivatives are function arguments.
+                _ => return None,
+            };
+            let field = &self.model.unknowns[field].name;
+            Some(quote!(let #name = #source.#field;))
+        });
+        let input = &self.model.input.name;
+        let unused_input =
+            (!used.contains(&Var::Value(SymbolRef::Input))).then(|| quote!(let _ = #input;));
+        let prologue = quote! {
+            #unused_input
+            #(#bindings)*
+            #(#statements)*
+        };
+        (prologue, outputs)
+    }
+
+    fn mechanism_struct(&self) -> TokenStream {
+        let Model {
+            attrs, vis, name, ..
+        } = self.model;
+        let fields = self.model.params.iter().map(|param| {
+            let field = &param.name;
+            let docs = docs_or(&param.docs, &format!("Parameter `{field}`: {}.", unit(param.kind)));
+            quote!(#docs pub #field: T,)
+        });
+        quote! {
+            #(#attrs)*
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            #vis struct #name<T> {
+                #(#fields)*
+            }
+        }
+    }
+
+    fn unknowns_struct(&self) -> TokenStream {
+        let Model {
+            vis, name, unknowns, ..
+        } = self.model;
+        let ty = &self.unknowns_type;
+        let count = Literal::usize_unsuffixed(unknowns.len());
+        let names: Vec<&Ident> = unknowns.iter().map(|u| &u.name).collect();
+        let name_strings = names.iter().map(|n| n.to_string());
+        let fields = unknowns.iter().map(|unknown| {
+            let field = &unknown.name;
+            let docs = docs_or(&unknown.docs, &format!("Unknown `{field}`: {}.", unit(unknown.kind)));
+            quote!(#docs pub #field: T,)
+        });
+        let text = format!(
+            "Values of [`{name}`]'s unknowns, in declaration order: a position, or the \
+             unknowns' rates (per unit time), or their accelerations."
+        );
+        let values = arg("values");
+        let doc = doc(&text);
+        quote! {
+            #doc
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            #vis struct #ty<T> {
+                #(#fields)*
+            }
+
+            impl<T: Copy> #ty<T> {
+                /// The unknowns' names, in declaration (and array) order.
+                pub const NAMES: [&'static str; #count] = [#(#name_strings),*];
+
+                /// From values in declaration order.
+                pub const fn from_array(#values: [T; #count]) -> Self {
+                    let [#(#names),*] = #values;
+                    Self { #(#names),* }
+                }
+
+                /// The values in declaration order.
+                pub const fn to_array(&self) -> [T; #count] {
+                    [#(self.#names),*]
+                }
+            }
+        }
+    }
+
+    fn points_struct(&self) -> TokenStream {
+        let Model {
+            vis, name, points, ..
+        } = self.model;
+        if points.is_empty() {
+            return TokenStream::new();
+        }
+        let ty = &self.points_type;
+        let fields = points.iter().map(|point| {
+            let field = &point.name;
+            let doc = doc(&format!("Point `{field}` = `{}`.", point.position.source));
+            quote!(#doc pub #field: ::mechgen::Vec2<T>,)
+        });
+        let text = format!(
+            "[`{name}`]'s tracked points: their positions, velocities or accelerations, in \
+             the frame of the loops."
+        );
+        let doc = doc(&text);
+        quote! {
+            #doc
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            #vis struct #ty<T> {
+                #(#fields)*
+            }
+        }
+    }
+
+    fn functions(&self) -> TokenStream {
+        let mut functions = vec![
+            self.check_finite(),
+            self.residual(),
+            self.jacobian(),
+            self.linearise(),
+            self.position(),
+        ];
+        let outputs = self.model.outputs;
+        if outputs.velocity {
+            functions.extend([self.input_jacobian(), self.velocity()]);
+        }
+        if outputs.acceleration {
+            functions.push(self.acceleration());
+        }
+        if !self.model.points.is_empty() {
+            functions.push(self.points());
+            if outputs.velocity {
+                functions.push(self.point_velocities());
+            }
+            if outputs.acceleration {
+                functions.push(self.point_accelerations());
+            }
+        }
+        quote!(#(#functions)*)
+    }
+
+    /// `(self.l1, "parameter `l1`"), ...`: every parameter, then the listed extras.
+    fn check_finite(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let checks = self.model.params.iter().map(|param| {
+            let field = &param.name;
+            let label = format!("parameter `{field}`");
+            quote!((self.#field, #label),)
+        });
+        let input_label = format!("input `{input}`");
+        quote! {
+            /// Checks that the parameters and the input are finite.
+            #[inline]
+            fn mechgen_check_finite(&self, #input: T) -> ::core::result::Result<(), ::mechgen::Error<T>> {
+                ::mechgen::__private::check_finite(&[#(#checks)* (#input, #input_label)])
+            }
+        }
+    }
+
+    fn loops_doc(&self) -> String {
+        let mut doc = String::new();
+        for (k, l) in self.model.loops.iter().enumerate() {
+            doc.push_str(&format!(
+                "\n- rows {} and {} (x and y of loop {}): `{} = 0`",
+                2 * k,
+                2 * k + 1,
+                k + 1,
+                l.source
+            ));
+        }
+        doc
+    }
+
+    /// The unknowns struct type, the array type of a residual, and the unknowns' count as
+    /// an unsuffixed literal.
+    fn signature_types(&self) -> (TokenStream, TokenStream, Literal) {
+        let ty = &self.unknowns_type;
+        let count = Literal::usize_unsuffixed(self.model.unknowns.len());
+        (quote!(#ty<T>), quote!([T; #count]), count)
+    }
+
+    fn residual(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, array, _) = self.signature_types();
+        let (prologue, outputs) = self.block(&self.equations.residual);
+        let doc = doc(&format!(
+            "The loop-closure residual at `{input}` and `{position}`: zero when the loops \
+             close.\n{}",
+            self.loops_doc()
+        ));
+        quote! {
+            #doc
+            pub fn residual(&self, #input: T, #position: &#unknowns) -> #array {
+                #prologue
+                [#(#outputs),*]
+            }
+        }
+    }
+
+    fn jacobian(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, _, count) = self.signature_types();
+        let entries: Vec<ExprId> = self.equations.jacobian.iter().flatten().copied().collect();
+        let (prologue, outputs) = self.block(&entries);
+        let rows = matrix(&outputs, self.model.unknowns.len());
+        quote! {
+            /// The Jacobian of [`Self::residual`] with respect to the unknowns: row `i`,
+            /// column `j` is `∂residual[i]/∂unknown[j]`.
+            pub fn jacobian(&self, #input: T, #position: &#unknowns) -> [[T; #count]; #count] {
+                #prologue
+                #rows
+            }
+        }
+    }
+
+    /// The residual, Jacobian and rounding scale in one pass, for Newton-Raphson.
+    fn linearise(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, _, count) = self.signature_types();
+        let n = self.model.unknowns.len();
+        let eq = self.equations;
+        let entries: Vec<ExprId> = eq
+            .residual
+            .iter()
+            .chain(eq.jacobian.iter().flatten())
+            .chain(&eq.magnitudes)
+            .copied()
+            .collect();
+        let (prologue, outputs) = self.block(&entries);
+        let (residual, rest) = outputs.split_at(n);
+        let (jacobian, magnitudes) = rest.split_at(n * n);
+        let jacobian = matrix(jacobian, n);
+        let scale = magnitudes.iter().map(|m| quote!(#m.abs()));
+        quote! {
+            #[inline]
+            fn mechgen_linearise(
+                &self,
+                #input: T,
+                #position: &#unknowns,
+            ) -> ::mechgen::__private::Linearisation<T, #count> {
+                #prologue
+                ::mechgen::__private::Linearisation {
+                    residual: [#(#residual),*],
+                    jacobian: #jacobian,
+                    scale: #(#scale)+*,
+                }
+            }
+        }
+    }
+
+    fn solver(&self) -> TokenStream {
+        match self.model.unknowns.len() {
+            2 => quote!(::mechgen::__private::solve2),
+            3 => quote!(::mechgen::__private::solve3),
+            _ => quote!(::mechgen::__private::solve_lu),
+        }
+    }
+
+    fn position(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let (guess, options, x) = (arg("guess"), arg("options"), arg("x"));
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let solver = self.solver();
+        let doc = doc(&format!(
+            "Solves the loops for the unknowns at `{input}` by Newton-Raphson from `guess`."
+        ));
+        quote! {
+            #doc
+            ///
+            /// The solution is the one Newton's iteration reaches from the guess: start near the
+            /// assembly branch you want. Errors: a non-finite parameter, input or guess; a
+            /// singular Jacobian on the way (a toggle); no convergence within
+            /// `options.max_iterations`.
+            pub fn position(
+                &self,
+                #input: T,
+                #guess: &#unknowns,
+                #options: &::mechgen::NewtonOptions<T>,
+            ) -> ::core::result::Result<::mechgen::Solved<#unknowns, T>, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                let solved = ::mechgen::__private::newton(
+                    #guess.to_array(),
+                    #options,
+                    |#x| self.mechgen_linearise(#input, &#ty::from_array(*#x)),
+                    #solver,
+                )?;
+                ::core::result::Result::Ok(solved.map(#ty::from_array))
+            }
+        }
+    }
+
+    fn input_jacobian(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, array, _) = self.signature_types();
+        let (prologue, outputs) = self.block(&self.equations.input_jacobian);
+        quote! {
+            /// The derivative of [`Self::residual`] with respect to the input.
+            pub fn input_jacobian(&self, #input: T, #position: &#unknowns) -> #array {
+                #prologue
+                [#(#outputs),*]
+            }
+        }
+    }
+
+    /// A function that solves `J·x = rhs` for the unknowns' rates or accelerations.
+    fn linear_solve(&self, rhs: &[ExprId], quantity: &str) -> TokenStream {
+        let count = self.model.unknowns.len();
+        let entries: Vec<ExprId> = self
+            .equations
+            .jacobian
+            .iter()
+            .flatten()
+            .chain(rhs)
+            .copied()
+            .collect();
+        let (prologue, outputs) = self.block(&entries);
+        let (jacobian, rhs) = outputs.split_at(count * count);
+        let jacobian = matrix(jacobian, count);
+        let solver = self.solver();
+        let ty = &self.unknowns_type;
+        let (jacobian_name, rhs_name, solution) = (arg("jacobian"), arg("rhs"), arg("solution"));
+        quote! {
+            #prologue
+            let #jacobian_name = #jacobian;
+            let #rhs_name = [#(#rhs),*];
+            let #solution = #solver(#jacobian_name, #rhs_name)?;
+            ::mechgen::__private::finite(#solution, #quantity).map(#ty::from_array)
+        }
+    }
+
+    fn velocity(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let input_dot = &self.input_dot;
+        let position = arg("position");
+        let (unknowns, _, _) = self.signature_types();
+        let body = self.linear_solve(&self.equations.velocity_rhs, "velocity");
+        let input_dot_label = format!("input rate `{input_dot}`");
+        let doc = doc(&format!(
+            "The unknowns' rates at a solved `position`, for the input moving at \
+             `{input_dot}`:\nsolves `J·q̇ = -(∂f/∂{input})·{input_dot}`."
+        ));
+        quote! {
+            #doc
+            ///
+            /// Errors: a non-finite argument; a singular Jacobian (a toggle, where the rates
+            /// are unbounded).
+            pub fn velocity(
+                &self,
+                #input: T,
+                #position: &#unknowns,
+                #input_dot: T,
+            ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                ::mechgen::__private::check_finite(&[(#input_dot, #input_dot_label)])?;
+                ::mechgen::__private::finite(#position.to_array(), "position")?;
+                #body
+            }
+        }
+    }
+
+    fn acceleration(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (position, velocity) = (arg("position"), arg("velocity"));
+        let (unknowns, _, _) = self.signature_types();
+        let body = self.linear_solve(&self.equations.acceleration_rhs, "acceleration");
+        let labels = [
+            format!("input rate `{input_dot}`"),
+            format!("input acceleration `{input_ddot}`"),
+        ];
+        let [dot_label, ddot_label] = &labels;
+        quote! {
+            /// The unknowns' accelerations at a solved `position` and `velocity`, for the
+            /// input's rate and acceleration. The right-hand side is the second time
+            /// derivative of the loops, so centripetal, Coriolis and sliding terms are all in it.
+            ///
+            /// Errors: a non-finite argument; a singular Jacobian.
+            pub fn acceleration(
+                &self,
+                #input: T,
+                #position: &#unknowns,
+                #input_dot: T,
+                #velocity: &#unknowns,
+                #input_ddot: T,
+            ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                ::mechgen::__private::finite(#position.to_array(), "position")?;
+                ::mechgen::__private::finite(#velocity.to_array(), "velocity")?;
+                #body
+            }
+        }
+    }
+
+    /// The body of a points function: every point's `which` expressions as a points struct.
+    fn points_body(&self, which: impl Fn(&crate::symbolic::PointExprs) -> [ExprId; 2], quantity: &str) -> TokenStream {
+        let entries: Vec<ExprId> = self.equations.points.iter().flat_map(&which).collect();
+        let (prologue, outputs) = self.block(&entries);
+        let ty = &self.points_type;
+        let names: Vec<&Ident> = self.model.points.iter().map(|p| &p.name).collect();
+        let components: Vec<(Ident, Ident)> = names
+            .iter()
+            .map(|name| (local(&format!("{name}_x")), local(&format!("{name}_y"))))
+            .collect();
+        let pattern = components.iter().map(|(x, y)| quote!(#x, #y));
+        let fields = names.iter().zip(&components).map(|(name, (x, y))| {
+            quote!(#name: ::mechgen::Vec2 { x: #x, y: #y })
+        });
+        quote! {
+            #prologue
+            let [#(#pattern),*] = ::mechgen::__private::finite([#(#outputs),*], #quantity)?;
+            ::core::result::Result::Ok(#ty { #(#fields),* })
+        }
+    }
+
+    fn points(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.points_type;
+        let body = self.points_body(|p| p.position, "point position");
+        quote! {
+            /// The tracked points' positions at a solved `position`.
+            pub fn points(
+                &self,
+                #input: T,
+                #position: &#unknowns,
+            ) -> ::core::result::Result<#ty<T>, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                ::mechgen::__private::finite(#position.to_array(), "position")?;
+                #body
+            }
+        }
+    }
+
+    fn point_velocities(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let input_dot = &self.input_dot;
+        let (position, velocity) = (arg("position"), arg("velocity"));
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.points_type;
+        let body = self.points_body(|p| p.velocity, "point velocity");
+        let label = format!("input rate `{input_dot}`");
+        quote! {
+            /// The tracked points' velocities at a solved `position` and `velocity`.
+            pub fn point_velocities(
+                &self,
+                #input: T,
+                #position: &#unknowns,
+                #input_dot: T,
+                #velocity: &#unknowns,
+            ) -> ::core::result::Result<#ty<T>, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                ::mechgen::__private::check_finite(&[(#input_dot, #label)])?;
+                ::mechgen::__private::finite(#position.to_array(), "position")?;
+                ::mechgen::__private::finite(#velocity.to_array(), "velocity")?;
+                #body
+            }
+        }
+    }
+
+    fn point_accelerations(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (position, velocity, acceleration) =
+            (arg("position"), arg("velocity"), arg("acceleration"));
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.points_type;
+        let body = self.points_body(|p| p.acceleration, "point acceleration");
+        let labels = [
+            format!("input rate `{input_dot}`"),
+            format!("input acceleration `{input_ddot}`"),
+        ];
+        let [dot_label, ddot_label] = &labels;
+        quote! {
+            /// The tracked points' accelerations at a solved `position`, `velocity` and
+            /// `acceleration`.
+            pub fn point_accelerations(
+                &self,
+                #input: T,
+                #position: &#unknowns,
+                #input_dot: T,
+                #velocity: &#unknowns,
+                #input_ddot: T,
+                #acceleration: &#unknowns,
+            ) -> ::core::result::Result<#ty<T>, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                ::mechgen::__private::finite(#position.to_array(), "position")?;
+                ::mechgen::__private::finite(#velocity.to_array(), "velocity")?;
+                ::mechgen::__private::finite(#acceleration.to_array(), "acceleration")?;
+                #body
+            }
+        }
+    }
+}
+
+/// `#[doc]` attributes for `text`, one per line, each with the space `///` would give.
+fn doc(text: &str) -> TokenStream {
+    let lines = text.lines().map(|line| {
+        let line = format!(" {line}");
+        quote!(#[doc = #line])
+    });
+    quote!(#(#lines)*)
+}
+
+fn matrix(entries: &[TokenStream], count: usize) -> TokenStream {
+    let rows = entries.chunks(count).map(|row| quote!([#(#row),*]));
+    quote!([#(#rows),*])
+}
+
+fn unit(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Length => "a length",
+        Kind::Angle => "an angle, in radians",
+    }
+}
+
+/// The user's doc comments, or `fallback` when there are none.
+fn docs_or(docs: &[syn::Attribute], fallback: &str) -> TokenStream {
+    if docs.is_empty() {
+        quote!(#[doc = #fallback])
+    } else {
+        quote!(#(#docs)*)
+    }
+}

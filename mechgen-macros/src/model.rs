@@ -1,0 +1,550 @@
+//! The declaration with its names resolved and its rules checked: what the mechanism is,
+//! independent of how it was written.
+//!
+//! Every rule below reports on the tokens that break it, and all broken rules are reported
+//! together.
+
+use std::collections::BTreeMap;
+use std::fmt;
+
+use proc_macro2::Span;
+use syn::{Attribute, Ident, Visibility};
+
+use crate::ast::{self, BinaryOp, Declaration, Scalar, Section, SymbolDecl};
+use crate::errors::Errors;
+
+/// Whether a symbol is a length or an angle. Magnitudes must be lengths, angles angles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Length,
+    Angle,
+}
+
+impl fmt::Display for Kind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Kind::Length => "length",
+            Kind::Angle => "angle",
+        })
+    }
+}
+
+/// A declared name: which list it is in and its index there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum SymbolRef {
+    Param(usize),
+    Input,
+    Unknown(usize),
+}
+
+pub struct Symbol {
+    pub name: Ident,
+    pub kind: Kind,
+    pub docs: Vec<Attribute>,
+}
+
+/// `Σ coefficient·symbol + constant`: every scalar in a loop is linear in the declared names.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Linear {
+    pub coefficients: BTreeMap<SymbolRef, f64>,
+    pub constant: f64,
+}
+
+impl Linear {
+    fn constant(value: f64) -> Self {
+        Linear {
+            coefficients: BTreeMap::new(),
+            constant: value,
+        }
+    }
+
+    fn symbol(symbol: SymbolRef) -> Self {
+        Linear {
+            coefficients: BTreeMap::from([(symbol, 1.0)]),
+            constant: 0.0,
+        }
+    }
+
+    fn scaled(mut self, factor: f64) -> Self {
+        self.coefficients.values_mut().for_each(|c| *c *= factor);
+        self.constant *= factor;
+        self
+    }
+
+    fn plus(mut self, other: Linear) -> Self {
+        for (symbol, coefficient) in other.coefficients {
+            *self.coefficients.entry(symbol).or_insert(0.0) += coefficient;
+        }
+        self.coefficients.retain(|_, c| *c != 0.0);
+        self.constant += other.constant;
+        self
+    }
+
+    fn as_constant(&self) -> Option<f64> {
+        self.coefficients.is_empty().then_some(self.constant)
+    }
+}
+
+/// `± magnitude·e^{i·angle}`.
+pub struct Term {
+    pub negated: bool,
+    pub magnitude: Linear,
+    pub angle: Linear,
+}
+
+/// A vector sum: a loop that must close, or a point's position from the origin.
+pub struct VectorSum {
+    pub terms: Vec<Term>,
+    /// The sum as the user wrote it, for generated docs.
+    pub source: String,
+}
+
+pub struct Point {
+    pub name: Ident,
+    pub position: VectorSum,
+}
+
+/// Which functions to generate. Position is always generated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Outputs {
+    pub velocity: bool,
+    pub acceleration: bool,
+}
+
+pub struct Model {
+    pub attrs: Vec<Attribute>,
+    pub vis: Visibility,
+    pub name: Ident,
+    pub params: Vec<Symbol>,
+    pub input: Symbol,
+    pub unknowns: Vec<Symbol>,
+    pub loops: Vec<VectorSum>,
+    pub points: Vec<Point>,
+    pub outputs: Outputs,
+}
+
+impl Model {
+    pub fn symbol(&self, symbol: SymbolRef) -> &Symbol {
+        match symbol {
+            SymbolRef::Param(i) => &self.params[i],
+            SymbolRef::Input => &self.input,
+            SymbolRef::Unknown(i) => &self.unknowns[i],
+        }
+    }
+}
+
+/// Resolves and checks a parsed declaration.
+pub fn build(declaration: Declaration) -> syn::Result<Model> {
+    let mut errors = Errors::default();
+    let Declaration {
+        attrs,
+        vis,
+        name,
+        sections,
+    } = declaration;
+
+    let mut params = None;
+    let mut input = None;
+    let mut unknowns = None;
+    let mut loops = Vec::new();
+    let mut points = Vec::new();
+    let mut generate = None;
+    for section in sections {
+        match section {
+            Section::Params(keyword, decls) => set_once(&mut params, keyword, decls, &mut errors),
+            Section::Input(keyword, decls) => set_once(&mut input, keyword, decls, &mut errors),
+            Section::Unknowns(keyword, decls) => {
+                set_once(&mut unknowns, keyword, decls, &mut errors)
+            }
+            Section::Loop(sum) => loops.push(sum),
+            Section::Point(name, sum) => points.push((name, sum)),
+            Section::Generate(keyword, outputs) => {
+                set_once(&mut generate, keyword, outputs, &mut errors)
+            }
+        }
+    }
+
+    let required = |what: &str, example: &str, errors: &mut Errors| {
+        errors.error_at(
+            &name,
+            format!("`{name}` has no {what}: add `{example};` to its declaration"),
+        );
+    };
+    if input.is_none() {
+        required("driven input", "input: theta2: angle", &mut errors);
+    }
+    if unknowns.is_none() {
+        required("unknowns", "unknowns: theta3: angle, theta4: angle", &mut errors);
+    }
+    if loops.is_empty() {
+        required(
+            "loop",
+            "loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0",
+            &mut errors,
+        );
+    }
+
+    let params = params
+        .map(|(_, decls)| symbols(decls, Some(Kind::Length), &mut errors))
+        .unwrap_or_default();
+    let input = input
+        .map(|(_, decls)| symbols(decls, None, &mut errors))
+        .unwrap_or_default();
+    let (unknowns_span, unknowns) = match unknowns {
+        Some((keyword, decls)) => (keyword.span(), symbols(decls, None, &mut errors)),
+        None => (name.span(), Vec::new()),
+    };
+    if let Some(extra) = input.get(1) {
+        errors.error_at(
+            &extra.name,
+            "a mechanism has one driven input: declare the others as unknowns or parameters",
+        );
+    }
+
+    let scope = Scope::new(&params, input.first(), &unknowns, &mut errors);
+    let loops: Vec<VectorSum> = loops
+        .iter()
+        .map(|sum| scope.vector_sum(sum, &mut errors))
+        .collect();
+    let mut point_names: Vec<&Ident> = Vec::new();
+    let points: Vec<Point> = points
+        .iter()
+        .map(|(point_name, sum)| {
+            if point_names.contains(&point_name) {
+                errors.error_at(point_name, format!("point `{point_name}` is declared twice"));
+            }
+            point_names.push(point_name);
+            Point {
+                name: point_name.clone(),
+                position: scope.vector_sum(sum, &mut errors),
+            }
+        })
+        .collect();
+
+    check_counts(&loops, &unknowns, unknowns_span, &mut errors);
+    check_every_symbol_in_a_loop(&loops, input.first(), &unknowns, &mut errors);
+    let outputs = outputs(generate, &mut errors);
+
+    let input = match input.into_iter().next() {
+        Some(input) => input,
+        // Reported above as a missing input; a placeholder keeps the other checks going.
+        None => Symbol {
+            name: Ident::new("input", name.span()),
+            kind: Kind::Angle,
+            docs: Vec::new(),
+        },
+    };
+    errors.finish(Model {
+        attrs,
+        vis,
+        name,
+        params,
+        input,
+        unknowns,
+        loops,
+        points,
+        outputs,
+    })
+}
+
+fn set_once<T>(slot: &mut Option<(Ident, T)>, keyword: Ident, value: T, errors: &mut Errors) {
+    if slot.is_some() {
+        errors.error_at(
+            &keyword,
+            format!("`{keyword}` is given twice: list everything in one `{keyword}:` section"),
+        );
+    } else {
+        *slot = Some((keyword, value));
+    }
+}
+
+/// Resolves kinds. `default` is the kind of an undeclared one; `None` makes the kind required.
+fn symbols(decls: Vec<SymbolDecl>, default: Option<Kind>, errors: &mut Errors) -> Vec<Symbol> {
+    decls
+        .into_iter()
+        .map(|SymbolDecl { attrs, name, kind }| {
+            let kind = match (kind, default) {
+                (Some(kind), _) => match kind.to_string().as_str() {
+                    "angle" => Kind::Angle,
+                    "length" => Kind::Length,
+                    _ => {
+                        errors.error_at(&kind, "expected `angle` or `length`");
+                        Kind::Length
+                    }
+                },
+                (None, Some(default)) => default,
+                (None, None) => {
+                    errors.error_at(
+                        &name,
+                        format!(
+                            "say whether `{name}` is an angle or a length: \
+                             `{name}: angle` or `{name}: length`"
+                        ),
+                    );
+                    Kind::Length
+                }
+            };
+            Symbol {
+                name,
+                kind,
+                docs: attrs,
+            }
+        })
+        .collect()
+}
+
+/// Declared names, for resolving the loops.
+struct Scope {
+    names: BTreeMap<String, (SymbolRef, Kind)>,
+}
+
+impl Scope {
+    fn new(
+        params: &[Symbol],
+        input: Option<&Symbol>,
+        unknowns: &[Symbol],
+        errors: &mut Errors,
+    ) -> Self {
+        let declared = params
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (SymbolRef::Param(i), s))
+            .chain(input.map(|s| (SymbolRef::Input, s)))
+            .chain(
+                unknowns
+                    .iter()
+                    .enumerate()
+                    .map(|(i, s)| (SymbolRef::Unknown(i), s)),
+            );
+        let mut names = BTreeMap::new();
+        for (symbol, Symbol { name, kind, .. }) in declared {
+            let text = name.to_string();
+            if text == "pi" {
+                errors.error_at(name, "`pi` is reserved for the constant π; pick another name");
+            } else if names.contains_key(&text) {
+                errors.error_at(name, format!("`{name}` is declared twice"));
+            } else {
+                names.insert(text, (symbol, *kind));
+            }
+        }
+        Scope { names }
+    }
+
+    fn vector_sum(&self, sum: &ast::VectorSum, errors: &mut Errors) -> VectorSum {
+        let terms = sum
+            .terms
+            .iter()
+            .map(|term| Term {
+                negated: term.negated,
+                magnitude: self.linear(&term.magnitude, Kind::Length, errors),
+                angle: self.linear(&term.angle, Kind::Angle, errors),
+            })
+            .collect();
+        VectorSum {
+            terms,
+            source: sum.to_string(),
+        }
+    }
+
+    /// Resolves `scalar`, which must be of kind `expected` and linear in the declared names.
+    /// Errors are recorded and the faulty part replaced by zero so checking goes on.
+    fn linear(&self, scalar: &Scalar, expected: Kind, errors: &mut Errors) -> Linear {
+        match scalar {
+            Scalar::Number(value, _) => Linear::constant(*value),
+            Scalar::Name(name) => match self.names.get(&name.to_string()) {
+                Some((symbol, kind)) if *kind == expected => Linear::symbol(*symbol),
+                Some((_, kind)) => {
+                    let place = match expected {
+                        Kind::Length => "a vector's magnitude must be a length",
+                        Kind::Angle => "a vector's angle must be an angle",
+                    };
+                    errors.error_at(name, format!("`{name}` is {} {kind}: {place}", article(*kind)));
+                    Linear::default()
+                }
+                None if name == "pi" => Linear::constant(std::f64::consts::PI),
+                None => {
+                    errors.error_at(
+                        name,
+                        format!(
+                            "cannot find `{name}` in this mechanism: \
+                             declare it in `params`, `input` or `unknowns`"
+                        ),
+                    );
+                    Linear::default()
+                }
+            },
+            Scalar::Neg(_, inner) => self.linear(inner, expected, errors).scaled(-1.0),
+            Scalar::Binary(op, op_span, left, right) => {
+                let l = self.linear(left, expected, errors);
+                let r = self.linear(right, expected, errors);
+                match op {
+                    BinaryOp::Add => l.plus(r),
+                    BinaryOp::Sub => l.plus(r.scaled(-1.0)),
+                    BinaryOp::Mul => match (l.as_constant(), r.as_constant()) {
+                        (Some(c), _) => r.scaled(c),
+                        (_, Some(c)) => l.scaled(c),
+                        (None, None) => {
+                            errors.error_at_span(
+                                *op_span,
+                                "loop terms are linear in the declared names: \
+                                 multiply by numbers only",
+                            );
+                            Linear::default()
+                        }
+                    },
+                    BinaryOp::Div => match r.as_constant() {
+                        Some(c) if c != 0.0 => l.scaled(1.0 / c),
+                        Some(_) => {
+                            errors.error_at_span(right.span(), "division by zero");
+                            Linear::default()
+                        }
+                        None => {
+                            errors.error_at_span(
+                                right.span(),
+                                "loop terms are linear in the declared names: \
+                                 divide by numbers only",
+                            );
+                            Linear::default()
+                        }
+                    },
+                }
+            }
+        }
+    }
+}
+
+fn article(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Length => "a",
+        Kind::Angle => "an",
+    }
+}
+
+/// Rule: each loop closes in x and in y, so there must be exactly two unknowns per loop.
+fn check_counts(loops: &[VectorSum], unknowns: &[Symbol], span: Span, errors: &mut Errors) {
+    let equations = 2 * loops.len();
+    if !loops.is_empty() && unknowns.len() != equations {
+        let loop_count = match loops.len() {
+            1 => "1 loop".to_string(),
+            n => format!("{n} loops"),
+        };
+        errors.error_at_span(
+            span,
+            format!(
+                "{} unknowns but {loop_count}: each loop closes in x and y, giving 2 \
+                 equations, so {loop_count} must have exactly {equations} unknowns",
+                unknowns.len()
+            ),
+        );
+    }
+}
+
+/// Rule: the input drives the loops and the loops determine the unknowns, so each of them
+/// must appear in at least one loop.
+fn check_every_symbol_in_a_loop(
+    loops: &[VectorSum],
+    input: Option<&Symbol>,
+    unknowns: &[Symbol],
+    errors: &mut Errors,
+) {
+    let appears = |symbol: SymbolRef| {
+        loops.iter().flat_map(|l| &l.terms).any(|term| {
+            term.magnitude.coefficients.contains_key(&symbol)
+                || term.angle.coefficients.contains_key(&symbol)
+        })
+    };
+    if let Some(input) = input
+        && !appears(SymbolRef::Input)
+    {
+        errors.error_at(
+            &input.name,
+            format!("input `{}` appears in no loop, so it drives nothing", input.name),
+        );
+    }
+    for (i, unknown) in unknowns.iter().enumerate() {
+        if !appears(SymbolRef::Unknown(i)) {
+            errors.error_at(
+                &unknown.name,
+                format!(
+                    "unknown `{}` appears in no loop, so no equation determines it",
+                    unknown.name
+                ),
+            );
+        }
+    }
+}
+
+const OUTPUTS: [&str; 3] = ["position", "velocity", "acceleration"];
+
+/// Rule: outputs are `position`, `velocity`, `acceleration`, each needing the one before.
+/// Without a `generate` section, all three are generated.
+fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Outputs {
+    let Some((_, names)) = generate else {
+        return Outputs {
+            velocity: true,
+            acceleration: true,
+        };
+    };
+    let mut seen = [None::<&Ident>; 3];
+    for name in &names {
+        match OUTPUTS.iter().position(|o| name == o) {
+            Some(i) if seen[i].is_some() => {
+                errors.error_at(name, format!("`{name}` is listed twice"))
+            }
+            Some(i) => seen[i] = Some(name),
+            None => errors.error_at(
+                name,
+                format!("unknown output `{name}`: expected `position`, `velocity` or `acceleration`"),
+            ),
+        }
+    }
+    for i in 1..OUTPUTS.len() {
+        if let (Some(name), None) = (seen[i], seen[i - 1]) {
+            errors.error_at(
+                name,
+                format!("`{}` needs `{}`: add it to `generate`", OUTPUTS[i], OUTPUTS[i - 1]),
+            );
+        }
+    }
+    Outputs {
+        velocity: seen[1].is_some(),
+        acceleration: seen[2].is_some(),
+    }
+}
+
+impl fmt::Display for ast::VectorSum {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (i, term) in self.terms.iter().enumerate() {
+            match (i, term.negated) {
+                (0, true) => f.write_str("-")?,
+                (0, false) => {}
+                (_, true) => f.write_str(" - ")?,
+                (_, false) => f.write_str(" + ")?,
+            }
+            write!(f, "{} @ {}", term.magnitude, term.angle)?;
+        }
+        Ok(())
+    }
+}
+
+impl fmt::Display for Scalar {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Scalar::Name(name) => write!(f, "{name}"),
+            Scalar::Number(value, _) => write!(f, "{value}"),
+            Scalar::Neg(_, inner) => write!(f, "-{inner}"),
+            Scalar::Binary(op, _, left, right) => {
+                let op = match op {
+                    BinaryOp::Add => "+",
+                    BinaryOp::Sub => "-",
+                    BinaryOp::Mul => "*",
+                    BinaryOp::Div => "/",
+                };
+                match op {
+                    "+" | "-" => write!(f, "({left} {op} {right})"),
+                    _ => write!(f, "{left} {op} {right}"),
+                }
+            }
+        }
+    }
+}

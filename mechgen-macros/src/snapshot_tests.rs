@@ -1,0 +1,47 @@
+//! Snapshots of the expansion of every mechanism we ship, formatted by prettyplease.
+//!
+//! The declarations are read from the `mechanisms` crate's source, so the snapshots always
+//! show the code users of those mechanisms compile. Snapshots live in
+//! `tests/snapshots/expansion/` with the workspace's other snapshots.
+
+use quote::ToTokens;
+
+fn shipped_declarations() -> Vec<(String, proc_macro2::TokenStream)> {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../mechanisms/src/lib.rs");
+    let source = std::fs::read_to_string(path).expect("mechanisms/src/lib.rs is readable");
+    let file = syn::parse_file(&source).expect("mechanisms/src/lib.rs parses");
+    file.items
+        .into_iter()
+        .filter_map(|item| match item {
+            syn::Item::Macro(item) if item.mac.path.is_ident("mechanism") => {
+                let tokens = item.mac.tokens;
+                let declaration: crate::ast::Declaration =
+                    syn::parse2(tokens.clone()).expect("shipped declaration parses");
+                Some((declaration.name.to_string(), tokens))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+fn pretty(tokens: proc_macro2::TokenStream) -> String {
+    let file: syn::File = syn::parse2(tokens).expect("expansion is valid Rust");
+    prettyplease::unparse(&file)
+}
+
+#[test]
+fn shipped_mechanism_expansions() {
+    let declarations = shipped_declarations();
+    let names: Vec<&str> = declarations.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["FourBar", "SliderCrank", "InvertedSliderCrank"]);
+    for (name, tokens) in declarations {
+        let expansion = pretty(crate::expand::expand(tokens.into_token_stream()));
+        insta::with_settings!({
+            snapshot_path => "../../tests/snapshots/expansion",
+            prepend_module_to_snapshot => false,
+            omit_expression => true,
+        }, {
+            insta::assert_snapshot!(name, expansion);
+        });
+    }
+}

@@ -1,0 +1,110 @@
+//! Rule: the loop equations must be able to determine the unknowns.
+//!
+//! Structurally, that means a matching between scalar equations and unknowns in which each
+//! unknown is paired with an equation that depends on it (the Jacobian's sparsity pattern has
+//! a perfect matching). When there is none, some set of unknowns appears in fewer equations
+//! than there are of them, and no value of the lengths can make the Jacobian invertible.
+//! This runs on the derived Jacobian rather than on which names a loop mentions, so a slider
+//! along a fixed direction (`d @ 0`, which enters only the x equation) is seen for what it is.
+
+use crate::errors::Errors;
+use crate::model::Model;
+use crate::symbolic::Equations;
+
+pub fn check(model: &Model, equations: &Equations) -> syn::Result<()> {
+    let mut errors = Errors::default();
+    let rows = equations.jacobian.len();
+    let columns = model.unknowns.len();
+    if rows != columns {
+        // Already reported by the count rule.
+        return Ok(());
+    }
+    let depends: Vec<Vec<bool>> = equations
+        .jacobian
+        .iter()
+        .map(|row| row.iter().map(|&d| !equations.graph.is_zero(d)).collect())
+        .collect();
+
+    let mut row_of_column: Vec<Option<usize>> = vec![None; columns];
+    let mut column_of_row: Vec<Option<usize>> = vec![None; rows];
+    for column in 0..columns {
+        let mut visited = vec![false; rows];
+        augment(column, &depends, &mut visited, &mut row_of_column, &mut column_of_row);
+    }
+
+    for column in (0..columns).filter(|&c| row_of_column[c].is_none()) {
+        // Columns reachable from the unmatched one by alternating paths, and their rows:
+        // a set with more unknowns than equations (Hall's condition fails on it).
+        let mut stuck_columns = vec![column];
+        let mut stuck_rows: Vec<usize> = Vec::new();
+        let mut next = 0;
+        while next < stuck_columns.len() {
+            let c = stuck_columns[next];
+            next += 1;
+            for row in (0..rows).filter(|&r| depends[r][c]) {
+                if !stuck_rows.contains(&row) {
+                    stuck_rows.push(row);
+                    if let Some(matched) = column_of_row[row]
+                        && !stuck_columns.contains(&matched)
+                    {
+                        stuck_columns.push(matched);
+                    }
+                }
+            }
+        }
+        stuck_columns.sort_unstable();
+        stuck_rows.sort_unstable();
+        let names: Vec<String> = stuck_columns
+            .iter()
+            .map(|&c| format!("`{}`", model.unknowns[c].name))
+            .collect();
+        let equations_text = match stuck_rows.len() {
+            0 => "no equation".to_string(),
+            1 => format!("only 1 scalar equation ({})", describe_rows(&stuck_rows)),
+            n => format!("only {n} scalar equations ({})", describe_rows(&stuck_rows)),
+        };
+        errors.error_at(
+            &model.unknowns[column].name,
+            format!(
+                "the loops cannot determine `{}`: the unknowns {} enter {equations_text}, \
+                 fewer than there are unknowns (the system is structurally singular)",
+                model.unknowns[column].name,
+                names.join(", "),
+            ),
+        );
+    }
+    errors.finish(())
+}
+
+/// Kuhn's augmenting path step: tries to match `column`, re-matching others as needed.
+fn augment(
+    column: usize,
+    depends: &[Vec<bool>],
+    visited: &mut [bool],
+    row_of_column: &mut [Option<usize>],
+    column_of_row: &mut [Option<usize>],
+) -> bool {
+    for row in 0..depends.len() {
+        if !depends[row][column] || visited[row] {
+            continue;
+        }
+        visited[row] = true;
+        let free = match column_of_row[row] {
+            None => true,
+            Some(other) => augment(other, depends, visited, row_of_column, column_of_row),
+        };
+        if free {
+            row_of_column[column] = Some(row);
+            column_of_row[row] = Some(column);
+            return true;
+        }
+    }
+    false
+}
+
+fn describe_rows(rows: &[usize]) -> String {
+    rows.iter()
+        .map(|r| format!("loop {} {}", r / 2 + 1, if r % 2 == 0 { "x" } else { "y" }))
+        .collect::<Vec<_>>()
+        .join(", ")
+}

@@ -1,0 +1,150 @@
+//! Builds every expression the generated code evaluates from the model's vector sums.
+//!
+//! Velocity and acceleration come from differentiating the loop equations in time, so the
+//! centripetal, Coriolis and sliding terms fall out of the chain rule and no mechanism
+//! needs them written by hand. With `f(q, u) = 0` (unknowns `q`, input `u`):
+//! - velocity: `J·q̇ = -∂f/∂u·u̇`;
+//! - acceleration: `J·q̈ = -(d/dt(J·q̇ + ∂f/∂u·u̇) with q̈ = 0)`.
+
+use crate::model::{Linear, Model, SymbolRef, VectorSum};
+
+use super::graph::{ExprId, Graph, Var};
+
+/// A tracked point's position, velocity and acceleration as `(x, y)` expressions.
+pub struct PointExprs {
+    pub position: [ExprId; 2],
+    pub velocity: [ExprId; 2],
+    pub acceleration: [ExprId; 2],
+}
+
+pub struct Equations {
+    pub graph: Graph,
+    /// Loop residuals: loop k gives rows 2k (x) and 2k+1 (y).
+    pub residual: Vec<ExprId>,
+    /// `∂residual/∂unknowns`, row-major.
+    pub jacobian: Vec<Vec<ExprId>>,
+    /// `∂residual/∂input`.
+    pub input_jacobian: Vec<ExprId>,
+    /// `-∂f/∂u·u̇`: the velocity solve's right-hand side.
+    pub velocity_rhs: Vec<ExprId>,
+    /// The acceleration solve's right-hand side.
+    pub acceleration_rhs: Vec<ExprId>,
+    /// The magnitude of every loop term, whose absolute sum scales the residual's rounding.
+    pub magnitudes: Vec<ExprId>,
+    pub points: Vec<PointExprs>,
+}
+
+impl Equations {
+    pub fn derive(model: &Model) -> Self {
+        let mut graph = Graph::default();
+        let mut magnitudes = Vec::new();
+        let mut residual = Vec::new();
+        for loop_sum in &model.loops {
+            let [x, y] = vector_sum(&mut graph, loop_sum, &mut magnitudes);
+            residual.extend([x, y]);
+        }
+
+        let unknowns: Vec<Var> = (0..model.unknowns.len())
+            .map(|i| Var::Value(SymbolRef::Unknown(i)))
+            .collect();
+        let input = Var::Value(SymbolRef::Input);
+        let jacobian: Vec<Vec<ExprId>> = residual
+            .iter()
+            .map(|&f| unknowns.iter().map(|&q| graph.partial(f, q)).collect())
+            .collect();
+        let input_jacobian: Vec<ExprId> =
+            residual.iter().map(|&f| graph.partial(f, input)).collect();
+
+        let input_rate = graph.var(Var::Rate(SymbolRef::Input));
+        let velocity_rhs = input_jacobian
+            .iter()
+            .map(|&fu| {
+                let product = graph.mul(fu, input_rate);
+                graph.neg(product)
+            })
+            .collect();
+
+        // Every variable a loop can depend on, in a fixed order so expansions are stable.
+        let position_vars: Vec<Var> = std::iter::once(input).chain(unknowns.iter().copied()).collect();
+        let rate_vars: Vec<Var> = position_vars
+            .iter()
+            .filter_map(|v| v.time_derivative())
+            .collect();
+        let all_vars: Vec<Var> = position_vars.iter().chain(&rate_vars).copied().collect();
+        let unknown_accel = |v: Var| matches!(v, Var::Accel(SymbolRef::Unknown(_)));
+
+        let acceleration_rhs = residual
+            .iter()
+            .map(|&f| {
+                // d/dt f = J·q̇ + ∂f/∂u·u̇; differentiate once more with q̈ left out.
+                let velocity_residual = graph.time_derivative(f, &position_vars, |_| true);
+                let derivative =
+                    graph.time_derivative(velocity_residual, &all_vars, |v| !unknown_accel(v));
+                graph.neg(derivative)
+            })
+            .collect();
+
+        let mut point_magnitudes = Vec::new();
+        let points = model
+            .points
+            .iter()
+            .map(|point| {
+                let position = vector_sum(&mut graph, &point.position, &mut point_magnitudes);
+                let velocity =
+                    position.map(|p| graph.time_derivative(p, &position_vars, |_| true));
+                let acceleration =
+                    velocity.map(|v| graph.time_derivative(v, &all_vars, |_| true));
+                PointExprs {
+                    position,
+                    velocity,
+                    acceleration,
+                }
+            })
+            .collect();
+
+        Equations {
+            graph,
+            residual,
+            jacobian,
+            input_jacobian,
+            velocity_rhs,
+            acceleration_rhs,
+            magnitudes,
+            points,
+        }
+    }
+}
+
+/// `Σ ± r·(cos θ, sin θ)`, recording each magnitude `r`.
+fn vector_sum(graph: &mut Graph, sum: &VectorSum, magnitudes: &mut Vec<ExprId>) -> [ExprId; 2] {
+    let zero = graph.constant(0.0);
+    let mut components = [zero, zero];
+    for term in &sum.terms {
+        let magnitude = linear(graph, &term.magnitude);
+        let angle = linear(graph, &term.angle);
+        magnitudes.push(magnitude);
+        let cosine = graph.cos(angle);
+        let sine = graph.sin(angle);
+        for (component, unit) in components.iter_mut().zip([cosine, sine]) {
+            let part = graph.mul(magnitude, unit);
+            *component = if term.negated {
+                graph.sub(*component, part)
+            } else {
+                graph.add(*component, part)
+            };
+        }
+    }
+    components
+}
+
+fn linear(graph: &mut Graph, linear: &Linear) -> ExprId {
+    let mut sum = graph.constant(0.0);
+    for (&symbol, &coefficient) in &linear.coefficients {
+        let var = graph.var(Var::Value(symbol));
+        let factor = graph.constant(coefficient);
+        let term = graph.mul(factor, var);
+        sum = graph.add(sum, term);
+    }
+    let constant = graph.constant(linear.constant);
+    graph.add(sum, constant)
+}

@@ -1,0 +1,341 @@
+//! A hash-consed expression graph with folding constructors and memoised derivatives.
+//!
+//! Nodes live in one arena and are deduplicated through a map, so an expression built twice
+//! is one node and is emitted once. Children always precede their parents in the arena, so
+//! arena order is a topological order. There is no general `simplify`: the constructors do
+//! the cheap, always-right rewrites (constant folding, `x+0`, `x·1`, `x·0`, `-(-x)`,
+//! negation pulled out of products) and nothing else, which keeps construction linear.
+
+use std::collections::HashMap;
+
+use crate::model::SymbolRef;
+
+/// A variable of the generated code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Var {
+    /// A parameter, the input or an unknown.
+    Value(SymbolRef),
+    /// First time derivative of the input or an unknown.
+    Rate(SymbolRef),
+    /// Second time derivative of the input or an unknown.
+    Accel(SymbolRef),
+}
+
+impl Var {
+    /// The variable's time derivative; `None` for a constant parameter (derivative zero) and
+    /// for an acceleration (the graph never needs a third derivative).
+    pub fn time_derivative(self) -> Option<Var> {
+        match self {
+            Var::Value(SymbolRef::Param(_)) => None,
+            Var::Value(symbol) => Some(Var::Rate(symbol)),
+            Var::Rate(symbol) => Some(Var::Accel(symbol)),
+            Var::Accel(_) => None,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct ExprId(u32);
+
+impl ExprId {
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+
+    /// The id of the node at `index` in the arena.
+    pub fn from_index(index: usize) -> Self {
+        ExprId(u32::try_from(index).expect("expression graph overflow"))
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Node {
+    /// A constant, stored as its bits so nodes can be hashed; never `-0.0` or NaN.
+    Const(u64),
+    Var(Var),
+    Add(ExprId, ExprId),
+    Mul(ExprId, ExprId),
+    Neg(ExprId),
+    Sin(ExprId),
+    Cos(ExprId),
+}
+
+#[derive(Default)]
+pub struct Graph {
+    nodes: Vec<Node>,
+    index: HashMap<Node, ExprId>,
+    partials: HashMap<(ExprId, Var), ExprId>,
+}
+
+/// Values within this of 0 or ±1 after folding `sin`/`cos` of a constant are snapped, so that
+/// `cos(π/2)` is exactly 0 and a fixed vertical vector has no spurious x component.
+const TRIG_SNAP: f64 = 1e-15;
+
+impl Graph {
+    pub fn node(&self, id: ExprId) -> Node {
+        self.nodes[id.index()]
+    }
+
+    /// The node's id, if the graph holds it.
+    pub fn lookup(&self, node: Node) -> Option<ExprId> {
+        self.index.get(&node).copied()
+    }
+
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    pub fn constant_value(&self, id: ExprId) -> Option<f64> {
+        match self.node(id) {
+            Node::Const(bits) => Some(f64::from_bits(bits)),
+            _ => None,
+        }
+    }
+
+    pub fn is_zero(&self, id: ExprId) -> bool {
+        self.constant_value(id) == Some(0.0)
+    }
+
+    fn intern(&mut self, node: Node) -> ExprId {
+        if let Some(&id) = self.index.get(&node) {
+            return id;
+        }
+        let id = ExprId::from_index(self.nodes.len());
+        self.nodes.push(node);
+        self.index.insert(node, id);
+        id
+    }
+
+    pub fn constant(&mut self, value: f64) -> ExprId {
+        // Folding never produces NaN from finite declarations; +0.0 stands for both zeros.
+        let value = if value == 0.0 { 0.0 } else { value };
+        self.intern(Node::Const(value.to_bits()))
+    }
+
+    pub fn var(&mut self, var: Var) -> ExprId {
+        self.intern(Node::Var(var))
+    }
+
+    pub fn neg(&mut self, a: ExprId) -> ExprId {
+        match self.node(a) {
+            Node::Const(_) => {
+                let value = self.constant_value(a).unwrap_or_default();
+                self.constant(-value)
+            }
+            Node::Neg(inner) => inner,
+            _ => self.intern(Node::Neg(a)),
+        }
+    }
+
+    pub fn add(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.node(a), self.node(b)) {
+            (Node::Const(_), Node::Const(_)) => {
+                let sum = self.constant_value(a).unwrap_or_default()
+                    + self.constant_value(b).unwrap_or_default();
+                self.constant(sum)
+            }
+            _ if self.is_zero(a) => b,
+            _ if self.is_zero(b) => a,
+            (Node::Neg(x), _) if x == b => self.constant(0.0),
+            (_, Node::Neg(y)) if y == a => self.constant(0.0),
+            // -x + -y = -(x + y): one negation instead of two.
+            (Node::Neg(x), Node::Neg(y)) => {
+                let sum = self.add(x, y);
+                self.neg(sum)
+            }
+            _ => self.intern(Node::Add(a, b)),
+        }
+    }
+
+    pub fn sub(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        let negated = self.neg(b);
+        self.add(a, negated)
+    }
+
+    pub fn mul(&mut self, a: ExprId, b: ExprId) -> ExprId {
+        match (self.constant_value(a), self.constant_value(b)) {
+            (Some(x), Some(y)) => return self.constant(x * y),
+            (Some(0.0), _) | (_, Some(0.0)) => return self.constant(0.0),
+            (Some(1.0), _) => return b,
+            (_, Some(1.0)) => return a,
+            (Some(-1.0), _) => return self.neg(b),
+            (_, Some(-1.0)) => return self.neg(a),
+            // Constants go first, and the rest in arena order, so `x·y` and `y·x` are one node.
+            (None, Some(_)) => return self.mul(b, a),
+            (None, None) if b < a => return self.mul(b, a),
+            _ => {}
+        }
+        match (self.node(a), self.node(b)) {
+            (Node::Neg(x), _) => {
+                let product = self.mul(x, b);
+                self.neg(product)
+            }
+            (_, Node::Neg(y)) => {
+                let product = self.mul(a, y);
+                self.neg(product)
+            }
+            // c1·(c2·x) = (c1·c2)·x
+            (Node::Const(_), Node::Mul(c, x)) if self.constant_value(c).is_some() => {
+                let factor = self.mul(a, c);
+                self.mul(factor, x)
+            }
+            _ => self.intern(Node::Mul(a, b)),
+        }
+    }
+
+    pub fn sin(&mut self, a: ExprId) -> ExprId {
+        match self.node(a) {
+            Node::Const(_) => {
+                let value = snap(self.constant_value(a).unwrap_or_default().sin());
+                self.constant(value)
+            }
+            Node::Neg(x) => {
+                let sine = self.sin(x);
+                self.neg(sine)
+            }
+            _ => self.intern(Node::Sin(a)),
+        }
+    }
+
+    pub fn cos(&mut self, a: ExprId) -> ExprId {
+        match self.node(a) {
+            Node::Const(_) => {
+                let value = snap(self.constant_value(a).unwrap_or_default().cos());
+                self.constant(value)
+            }
+            Node::Neg(x) => self.cos(x),
+            _ => self.intern(Node::Cos(a)),
+        }
+    }
+
+    /// `∂e/∂var`, memoised per (node, variable) so shared subgraphs are differentiated once.
+    pub fn partial(&mut self, e: ExprId, var: Var) -> ExprId {
+        if let Some(&d) = self.partials.get(&(e, var)) {
+            return d;
+        }
+        let d = match self.node(e) {
+            Node::Const(_) => self.constant(0.0),
+            Node::Var(v) => self.constant(if v == var { 1.0 } else { 0.0 }),
+            Node::Add(a, b) => {
+                let (da, db) = (self.partial(a, var), self.partial(b, var));
+                self.add(da, db)
+            }
+            Node::Mul(a, b) => {
+                let (da, db) = (self.partial(a, var), self.partial(b, var));
+                let left = self.mul(da, b);
+                let right = self.mul(a, db);
+                self.add(left, right)
+            }
+            Node::Neg(a) => {
+                let da = self.partial(a, var);
+                self.neg(da)
+            }
+            Node::Sin(a) => {
+                let da = self.partial(a, var);
+                let cosine = self.cos(a);
+                self.mul(cosine, da)
+            }
+            Node::Cos(a) => {
+                let da = self.partial(a, var);
+                let sine = self.sin(a);
+                let product = self.mul(sine, da);
+                self.neg(product)
+            }
+        };
+        self.partials.insert((e, var), d);
+        d
+    }
+
+    /// `de/dt = Σ ∂e/∂v · dv/dt` over `vars` whose time derivatives `keep` accepts; the others
+    /// are taken as zero (constant parameters, or accelerations the caller solves for).
+    pub fn time_derivative(&mut self, e: ExprId, vars: &[Var], keep: impl Fn(Var) -> bool) -> ExprId {
+        let mut sum = self.constant(0.0);
+        for &var in vars {
+            let Some(rate) = var.time_derivative().filter(|&rate| keep(rate)) else {
+                continue;
+            };
+            let partial = self.partial(e, var);
+            if self.is_zero(partial) {
+                continue;
+            }
+            let rate = self.var(rate);
+            let term = self.mul(partial, rate);
+            sum = self.add(sum, term);
+        }
+        sum
+    }
+}
+
+fn snap(value: f64) -> f64 {
+    for target in [0.0, 1.0, -1.0] {
+        if (value - target).abs() < TRIG_SNAP {
+            return target;
+        }
+    }
+    value
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn x(graph: &mut Graph) -> ExprId {
+        graph.var(Var::Value(SymbolRef::Unknown(0)))
+    }
+
+    #[test]
+    fn constructors_fold_identities() {
+        let mut g = Graph::default();
+        let x = x(&mut g);
+        let zero = g.constant(0.0);
+        let one = g.constant(1.0);
+        assert_eq!(g.add(x, zero), x);
+        assert_eq!(g.mul(one, x), x);
+        assert_eq!(g.mul(x, zero), zero);
+        let minus_x = g.neg(x);
+        assert_eq!(g.neg(minus_x), x);
+        assert_eq!(g.add(x, minus_x), zero);
+        let two = g.constant(2.0);
+        let three = g.constant(3.0);
+        let five = g.add(two, three);
+        assert_eq!(g.constant_value(five), Some(5.0));
+    }
+
+    #[test]
+    fn equal_expressions_are_one_node() {
+        let mut g = Graph::default();
+        let x = x(&mut g);
+        let y = g.var(Var::Value(SymbolRef::Unknown(1)));
+        assert_eq!(g.mul(x, y), g.mul(y, x));
+        let before = g.len();
+        let s1 = g.sin(x);
+        let s2 = g.sin(x);
+        assert_eq!(s1, s2);
+        assert_eq!(g.len(), before + 1);
+    }
+
+    #[test]
+    fn trig_of_constant_multiples_of_half_pi_is_exact() {
+        let mut g = Graph::default();
+        let half_pi = g.constant(std::f64::consts::FRAC_PI_2);
+        let c = g.cos(half_pi);
+        let s = g.sin(half_pi);
+        assert_eq!(g.constant_value(c), Some(0.0));
+        assert_eq!(g.constant_value(s), Some(1.0));
+    }
+
+    #[test]
+    fn derivative_of_polar_component_is_exact() {
+        // d/dx (r·cos x) = -(r·sin x)
+        let mut g = Graph::default();
+        let x = x(&mut g);
+        let r = g.var(Var::Value(SymbolRef::Param(0)));
+        let c = g.cos(x);
+        let f = g.mul(r, c);
+        let d = g.partial(f, Var::Value(SymbolRef::Unknown(0)));
+        let s = g.sin(x);
+        let rs = g.mul(r, s);
+        let expected = g.neg(rs);
+        assert_eq!(d, expected);
+    }
+}

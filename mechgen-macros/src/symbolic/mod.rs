@@ -1,0 +1,8 @@
+//! The mechanism's equations as expressions: loop residuals, their derivatives, and the
+//! right-hand sides of the velocity and acceleration solves.
+
+mod equations;
+mod graph;
+
+pub use equations::{Equations, PointExprs};
+pub use graph::{ExprId, Graph, Node, Var};

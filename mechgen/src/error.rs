@@ -1,0 +1,62 @@
+//! What can go wrong when a mechanism is solved, as values rather than panics.
+
+use core::fmt;
+
+/// Why a position, velocity or acceleration could not be computed.
+///
+/// Every generated solver returns this instead of panicking or handing back NaN.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Error<T> {
+    /// An argument, a parameter or a result is NaN or infinite.
+    NonFinite {
+        /// Which quantity: `"parameter l3"`, `"input theta2"`, `"velocity"`, ...
+        quantity: &'static str,
+    },
+    /// The Jacobian of the loop equations with respect to the unknowns is singular at this
+    /// configuration (a toggle or change point), so the unknowns are not determined by the
+    /// input there and their rates are unbounded.
+    Singular {
+        /// The determinant of the Jacobian.
+        determinant: T,
+        /// The determinant divided by the product of the Jacobian's row norms (Hadamard's
+        /// bound): 1 for orthogonal rows, 0 for a singular matrix. A cheap inverse condition
+        /// estimate, independent of the mechanism's scale.
+        relative_determinant: T,
+    },
+    /// Newton-Raphson did not bring the residual below the tolerance within the
+    /// iteration cap.
+    NoConvergence {
+        /// Newton updates made.
+        iterations: u32,
+        /// Largest absolute loop residual at the last iterate, in length units.
+        residual_norm: T,
+    },
+}
+
+impl<T: fmt::Display> fmt::Display for Error<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::NonFinite { quantity } => write!(f, "{quantity} is not finite"),
+            Error::Singular {
+                determinant,
+                relative_determinant,
+            } => write!(
+                f,
+                "the loop Jacobian is singular (determinant {determinant}, relative \
+                 determinant {relative_determinant}): the mechanism is at a toggle or \
+                 change point"
+            ),
+            Error::NoConvergence {
+                iterations,
+                residual_norm,
+            } => write!(
+                f,
+                "Newton-Raphson did not converge in {iterations} iterations \
+                 (residual norm {residual_norm})"
+            ),
+        }
+    }
+}
+
+impl<T: fmt::Debug + fmt::Display> core::error::Error for Error<T> {}

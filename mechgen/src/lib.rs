@@ -1,0 +1,27 @@
+#![doc = include_str!("../../README.md")]
+#![no_std]
+#![forbid(unsafe_code)]
+
+mod error;
+mod linear;
+mod newton;
+mod real;
+mod vec2;
+
+pub use error::Error;
+pub use newton::{NewtonOptions, Solved};
+pub use real::Real;
+pub use vec2::Vec2;
+
+/// Declares a planar mechanism by its vector loops and generates its kinematics.
+///
+/// See the [crate documentation](crate) for the declaration language and what is generated.
+pub use mechgen_macros::mechanism;
+
+/// Items the generated code names. Not public API: they may change in any release.
+#[doc(hidden)]
+pub mod __private {
+    pub use crate::linear::{solve_lu, solve2, solve3};
+    pub use crate::newton::{Linearisation, all_finite, check_finite, finite, newton};
+    pub use core::result::Result::{Err, Ok};
+}
