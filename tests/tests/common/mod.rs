@@ -56,3 +56,178 @@ pub fn assert_close(what: &str, a: f64, b: f64, tolerance: f64) {
         "{what}: {a} vs {b} (tolerance {tolerance})"
     );
 }
+
+/// The three shipped single-loop mechanisms behind one interface, so sweeps and checks are
+/// written once. Unknowns as arrays in declaration order.
+pub trait Linkage<T: mechgen::Real> {
+    fn solve(&self, input: T, guess: [T; 2]) -> Result<[T; 2], mechgen::Error<T>>;
+    fn rates(&self, input: T, q: [T; 2], input_dot: T) -> Result<[T; 2], mechgen::Error<T>>;
+    fn accelerations(
+        &self,
+        input: T,
+        q: [T; 2],
+        input_dot: T,
+        q_dot: [T; 2],
+        input_ddot: T,
+    ) -> Result<[T; 2], mechgen::Error<T>>;
+    /// Every tracked point's (x, y), flattened.
+    fn point_positions(&self, input: T, q: [T; 2]) -> Vec<T>;
+    fn point_velocities(&self, input: T, q: [T; 2], input_dot: T, q_dot: [T; 2]) -> Vec<T>;
+    #[allow(clippy::too_many_arguments)]
+    fn point_accelerations(
+        &self,
+        input: T,
+        q: [T; 2],
+        input_dot: T,
+        q_dot: [T; 2],
+        input_ddot: T,
+        q_ddot: [T; 2],
+    ) -> Vec<T>;
+}
+
+macro_rules! impl_linkage {
+    ($mechanism:ident, $unknowns:ident, $points:ident) => {
+        fn flatten<T: Copy>(p: mechanisms::$points<T>) -> Vec<T> {
+            impl_linkage!(@points p, $points)
+        }
+        impl<T: mechgen::Real> Linkage<T> for mechanisms::$mechanism<T> {
+            fn solve(&self, input: T, guess: [T; 2]) -> Result<[T; 2], mechgen::Error<T>> {
+                let guess = mechanisms::$unknowns::from_array(guess);
+                self.position(input, &guess, &mechgen::NewtonOptions::default())
+                    .map(|s| s.value.to_array())
+            }
+            fn rates(&self, input: T, q: [T; 2], input_dot: T) -> Result<[T; 2], mechgen::Error<T>> {
+                let q = mechanisms::$unknowns::from_array(q);
+                self.velocity(input, &q, input_dot).map(|v| v.to_array())
+            }
+            fn accelerations(
+                &self,
+                input: T,
+                q: [T; 2],
+                input_dot: T,
+                q_dot: [T; 2],
+                input_ddot: T,
+            ) -> Result<[T; 2], mechgen::Error<T>> {
+                let q = mechanisms::$unknowns::from_array(q);
+                let q_dot = mechanisms::$unknowns::from_array(q_dot);
+                self.acceleration(input, &q, input_dot, &q_dot, input_ddot)
+                    .map(|a| a.to_array())
+            }
+            fn point_positions(&self, input: T, q: [T; 2]) -> Vec<T> {
+                flatten(self.points(input, &mechanisms::$unknowns::from_array(q)).unwrap())
+            }
+            fn point_velocities(&self, input: T, q: [T; 2], input_dot: T, q_dot: [T; 2]) -> Vec<T> {
+                let (q, q_dot) = (
+                    mechanisms::$unknowns::from_array(q),
+                    mechanisms::$unknowns::from_array(q_dot),
+                );
+                flatten(mechanisms::$mechanism::point_velocities(self, input, &q, input_dot, &q_dot).unwrap())
+            }
+            fn point_accelerations(
+                &self,
+                input: T,
+                q: [T; 2],
+                input_dot: T,
+                q_dot: [T; 2],
+                input_ddot: T,
+                q_ddot: [T; 2],
+            ) -> Vec<T> {
+                let (q, q_dot, q_ddot) = (
+                    mechanisms::$unknowns::from_array(q),
+                    mechanisms::$unknowns::from_array(q_dot),
+                    mechanisms::$unknowns::from_array(q_ddot),
+                );
+                flatten(
+                    mechanisms::$mechanism::point_accelerations(
+                        self, input, &q, input_dot, &q_dot, input_ddot, &q_ddot,
+                    )
+                    .unwrap(),
+                )
+            }
+        }
+    };
+    (@points $p:ident, FourBarPoints) => {
+        [$p.crank_pin, $p.rocker_pin, $p.coupler].iter().flat_map(|v| [v.x, v.y]).collect()
+    };
+    (@points $p:ident, SliderCrankPoints) => {
+        [$p.crank_pin, $p.slider_pin].iter().flat_map(|v| [v.x, v.y]).collect()
+    };
+    (@points $p:ident, InvertedSliderCrankPoints) => {
+        [$p.crank_pin].iter().flat_map(|v| [v.x, v.y]).collect()
+    };
+}
+
+mod four_bar_impl {
+    use super::Linkage;
+    impl_linkage!(FourBar, FourBarUnknowns, FourBarPoints);
+}
+mod slider_crank_impl {
+    use super::Linkage;
+    impl_linkage!(SliderCrank, SliderCrankUnknowns, SliderCrankPoints);
+}
+mod inverted_slider_crank_impl {
+    use super::Linkage;
+    impl_linkage!(InvertedSliderCrank, InvertedSliderCrankUnknowns, InvertedSliderCrankPoints);
+}
+
+/// The shipped mechanisms with the dimensions the tests and tables use, and a guess on the
+/// open branch at input 0.
+pub fn slider_crank<T: mechgen::Real>() -> mechanisms::SliderCrank<T> {
+    let c = |v| T::constant(v);
+    mechanisms::SliderCrank {
+        l2: c(50.0),
+        l3: c(150.0),
+        c: c(20.0),
+    }
+}
+
+pub fn inverted_slider_crank<T: mechgen::Real>() -> mechanisms::InvertedSliderCrank<T> {
+    let c = |v| T::constant(v);
+    mechanisms::InvertedSliderCrank {
+        l1: c(150.0),
+        l2: c(60.0),
+        c: c(20.0),
+        gamma: c(0.3),
+    }
+}
+
+pub fn example_1<T: mechgen::Real>() -> mechanisms::FourBar<T> {
+    let c = |v| T::constant(v);
+    mechanisms::FourBar {
+        l1: c(180.0),
+        l2: c(80.0),
+        l3: c(200.0),
+        l4: c(150.0),
+        a: c(100.0),
+        delta: c(0.5),
+    }
+}
+
+/// One sample of a sweep: input and unknowns (values and their derivatives with respect to
+/// the input, i.e. rates at unit input rate).
+#[derive(Clone, Copy, Debug)]
+pub struct Sample<T> {
+    pub input: T,
+    pub q: [T; 2],
+}
+
+/// Solves at every `step_deg` degrees over a full turn starting from `guess` at 0, staying
+/// on the branch by walking in 1° steps with a velocity predictor.
+pub fn sweep<T: mechgen::Real, L: Linkage<T>>(linkage: &L, guess: [T; 2], step_deg: u32) -> Vec<Sample<T>> {
+    let one_degree = T::constant(1f64.to_radians());
+    let mut q = linkage.solve(T::zero(), guess).expect("assembles at input 0");
+    let mut samples = Vec::new();
+    for degree in 0..360u32 {
+        let input = T::constant(f64::from(degree).to_radians());
+        if degree > 0 {
+            let previous = input - one_degree;
+            let slope = linkage.rates(previous, q, T::one()).expect("not at a toggle");
+            let predicted = [q[0] + slope[0] * one_degree, q[1] + slope[1] * one_degree];
+            q = linkage.solve(input, predicted).expect("assembles over the sweep");
+        }
+        if degree % step_deg == 0 {
+            samples.push(Sample { input, q });
+        }
+    }
+    samples
+}
