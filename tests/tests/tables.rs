@@ -1,0 +1,103 @@
+//! Numeric snapshots: a full crank turn, every 10°, for each shipped declaration, with the
+//! unknowns, their rates and accelerations and the tracked points, to 10 significant digits.
+//!
+//! Values below 1e-9 of their column's largest magnitude are printed as 0: they are rounding
+//! noise around an exact zero, and would differ between machines.
+
+mod common;
+
+use common::*;
+use mechgen::Real;
+use std::fmt::Write;
+
+const OMEGA2: f64 = 10.0;
+const ALPHA2: f64 = 2.0;
+
+fn table<L: Linkage<f64>>(linkage: &L, guess: [f64; 2], unknowns: [&str; 2], points: &[&str]) -> String {
+    let mut header = vec!["theta2_deg".to_string()];
+    for suffix in ["", "_dot", "_ddot"] {
+        header.extend(unknowns.iter().map(|u| format!("{u}{suffix}")));
+    }
+    for suffix in ["", "_dot", "_ddot"] {
+        for p in points {
+            header.extend([format!("{p}{suffix}.x"), format!("{p}{suffix}.y")]);
+        }
+    }
+    let rows: Vec<Vec<f64>> = sweep(linkage, guess, 10)
+        .into_iter()
+        .map(|Sample { input, q }| {
+            let q_dot = linkage.rates(input, q, OMEGA2).unwrap();
+            let q_ddot = linkage.accelerations(input, q, OMEGA2, q_dot, ALPHA2).unwrap();
+            let mut row = vec![input.to_degrees()];
+            row.extend(q);
+            row.extend(q_dot);
+            row.extend(q_ddot);
+            row.extend(linkage.point_positions(input, q));
+            row.extend(linkage.point_velocities(input, q, OMEGA2, q_dot));
+            row.extend(linkage.point_accelerations(input, q, OMEGA2, q_dot, ALPHA2, q_ddot));
+            row
+        })
+        .collect();
+    let column_max: Vec<f64> = (0..header.len())
+        .map(|c| rows.iter().fold(0.0f64, |m, r| m.max(r[c].abs())))
+        .collect();
+    let mut out = format!("# omega2 = {OMEGA2} rad/s, alpha2 = {ALPHA2} rad/s^2; angles in rad\n");
+    writeln!(out, "{}", header.join(", ")).unwrap();
+    for row in rows {
+        let degrees = format!("{:.0}", row[0]);
+        let cells: Vec<String> = std::iter::once(degrees)
+            .chain(row.iter().zip(&column_max).skip(1).map(|(v, max)| significant(*v, *max)))
+            .collect();
+        writeln!(out, "{}", cells.join(", ")).unwrap();
+    }
+    out
+}
+
+/// Snapshots live beside the expansion snapshots, in `tests/snapshots/`.
+fn assert_table(name: &str, table: String) {
+    insta::with_settings!({
+        snapshot_path => "../snapshots/numeric",
+        prepend_module_to_snapshot => false,
+        omit_expression => true,
+    }, {
+        insta::assert_snapshot!(name, table);
+    });
+}
+
+/// `value` to 10 significant digits, or 0 if it is below 1e-9 of `column_max`.
+fn significant(value: f64, column_max: f64) -> String {
+    if value.abs() <= 1e-9 * column_max {
+        "0".to_string()
+    } else {
+        format!("{value:.9e}")
+    }
+}
+
+#[test]
+fn four_bar_full_turn() {
+    let linkage = example_1::<f64>();
+    let points = ["crank_pin", "rocker_pin", "coupler"];
+    assert_table("four_bar_full_turn", table(&linkage, [0.3, 1.2], ["theta3", "theta4"], &points));
+}
+
+#[test]
+fn slider_crank_full_turn() {
+    let linkage = slider_crank::<f64>();
+    let points = ["crank_pin", "slider_pin"];
+    assert_table("slider_crank_full_turn", table(&linkage, [0.0, 190.0], ["theta3", "d"], &points));
+}
+
+#[test]
+fn inverted_slider_crank_full_turn() {
+    let linkage = inverted_slider_crank::<f64>();
+    let table = table(&linkage, [3.0, 60.0], ["theta4", "b"], &["crank_pin"]);
+    assert_table("inverted_slider_crank_full_turn", table);
+}
+
+#[test]
+fn significant_digits_and_noise_flushing() {
+    assert_eq!(significant(1.0 / 3.0, 1.0), "3.333333333e-1");
+    assert_eq!(significant(-123456.789012345, 1e6), "-1.234567890e5");
+    assert_eq!(significant(3e-14, 200.0), "0");
+    assert_eq!(f64::constant(0.5), 0.5);
+}
