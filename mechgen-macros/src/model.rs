@@ -4,7 +4,7 @@
 //! Every rule below reports on the tokens that break it, and all broken rules are reported
 //! together.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 
 use proc_macro2::Span;
@@ -184,14 +184,18 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         );
     }
 
+    let mut undetermined = BTreeSet::new();
     let params = params
-        .map(|(_, decls)| symbols(decls, Some(Kind::Length), &mut errors))
+        .map(|(_, decls)| symbols(decls, Some(Kind::Length), &mut undetermined, &mut errors))
         .unwrap_or_default();
     let input = input
-        .map(|(_, decls)| symbols(decls, None, &mut errors))
+        .map(|(_, decls)| symbols(decls, None, &mut undetermined, &mut errors))
         .unwrap_or_default();
     let (unknowns_span, unknowns) = match unknowns {
-        Some((keyword, decls)) => (keyword.span(), symbols(decls, None, &mut errors)),
+        Some((keyword, decls)) => (
+            keyword.span(),
+            symbols(decls, None, &mut undetermined, &mut errors),
+        ),
         None => (name.span(), Vec::new()),
     };
     if let Some(extra) = input.get(1) {
@@ -201,11 +205,12 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         );
     }
 
-    let scope = Scope::new(&params, input.first(), &unknowns, &mut errors);
+    let mut scope = Scope::new(&params, input.first(), &unknowns, &undetermined, &mut errors);
     let loops: Vec<VectorSum> = loops
         .iter()
         .map(|sum| scope.vector_sum(sum, &mut errors))
         .collect();
+    let in_loops = std::mem::take(&mut scope.mentioned);
     let mut point_names: Vec<&Ident> = Vec::new();
     let points: Vec<Point> = points
         .iter()
@@ -222,7 +227,7 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         .collect();
 
     check_counts(&loops, &unknowns, unknowns_span, &mut errors);
-    check_every_symbol_in_a_loop(&loops, input.first(), &unknowns, &mut errors);
+    check_every_symbol_in_a_loop(&scope, &in_loops, input.first(), &unknowns, &mut errors);
     let outputs = outputs(generate, &mut errors);
 
     let input = match input.into_iter().next() {
@@ -259,7 +264,15 @@ fn set_once<T>(slot: &mut Option<(Ident, T)>, keyword: Ident, value: T, errors: 
 }
 
 /// Resolves kinds. `default` is the kind of an undeclared one; `None` makes the kind required.
-fn symbols(decls: Vec<SymbolDecl>, default: Option<Kind>, errors: &mut Errors) -> Vec<Symbol> {
+///
+/// A symbol whose kind is missing or misspelled is reported here and recorded in
+/// `undetermined`, so that its uses are not reported again as being of the wrong kind.
+fn symbols(
+    decls: Vec<SymbolDecl>,
+    default: Option<Kind>,
+    undetermined: &mut BTreeSet<String>,
+    errors: &mut Errors,
+) -> Vec<Symbol> {
     decls
         .into_iter()
         .map(|SymbolDecl { attrs, name, kind }| {
@@ -269,6 +282,7 @@ fn symbols(decls: Vec<SymbolDecl>, default: Option<Kind>, errors: &mut Errors) -
                     "length" => Kind::Length,
                     _ => {
                         errors.error_at(&kind, "expected `angle` or `length`");
+                        undetermined.insert(name.to_string());
                         Kind::Length
                     }
                 },
@@ -281,6 +295,7 @@ fn symbols(decls: Vec<SymbolDecl>, default: Option<Kind>, errors: &mut Errors) -
                              `{name}: angle` or `{name}: length`"
                         ),
                     );
+                    undetermined.insert(name.to_string());
                     Kind::Length
                 }
             };
@@ -295,7 +310,11 @@ fn symbols(decls: Vec<SymbolDecl>, default: Option<Kind>, errors: &mut Errors) -
 
 /// Declared names, for resolving the loops.
 struct Scope {
-    names: BTreeMap<String, (SymbolRef, Kind)>,
+    /// Each name's symbol, and its kind unless the declaration left it undetermined.
+    names: BTreeMap<String, (SymbolRef, Option<Kind>)>,
+    /// Symbols used so far, resolved or not, so "appears in no loop" is not said of a
+    /// symbol whose use was already reported as an error.
+    mentioned: BTreeSet<SymbolRef>,
 }
 
 impl Scope {
@@ -303,6 +322,7 @@ impl Scope {
         params: &[Symbol],
         input: Option<&Symbol>,
         unknowns: &[Symbol],
+        undetermined: &BTreeSet<String>,
         errors: &mut Errors,
     ) -> Self {
         let declared = params
@@ -324,20 +344,33 @@ impl Scope {
             } else if names.contains_key(&text) {
                 errors.error_at(name, format!("`{name}` is declared twice"));
             } else {
-                names.insert(text, (symbol, *kind));
+                let kind = (!undetermined.contains(&text)).then_some(*kind);
+                names.insert(text, (symbol, kind));
             }
         }
-        Scope { names }
+        Scope {
+            names,
+            mentioned: BTreeSet::new(),
+        }
     }
 
-    fn vector_sum(&self, sum: &ast::VectorSum, errors: &mut Errors) -> VectorSum {
+    /// Whether `symbol` is the one its name resolves to (a duplicate declaration is not).
+    fn resolves_to(&self, symbol: SymbolRef) -> bool {
+        self.names.values().any(|(s, _)| *s == symbol)
+    }
+
+    fn vector_sum(&mut self, sum: &ast::VectorSum, errors: &mut Errors) -> VectorSum {
         let terms = sum
             .terms
             .iter()
             .map(|term| Term {
                 negated: term.negated,
-                magnitude: self.linear(&term.magnitude, Kind::Length, errors),
-                angle: self.linear(&term.angle, Kind::Angle, errors),
+                magnitude: self
+                    .linear(&term.magnitude, Kind::Length, errors)
+                    .unwrap_or_default(),
+                angle: self
+                    .linear(&term.angle, Kind::Angle, errors)
+                    .unwrap_or_default(),
             })
             .collect();
         VectorSum {
@@ -347,21 +380,27 @@ impl Scope {
     }
 
     /// Resolves `scalar`, which must be of kind `expected` and linear in the declared names.
-    /// Errors are recorded and the faulty part replaced by zero so checking goes on.
-    fn linear(&self, scalar: &Scalar, expected: Kind, errors: &mut Errors) -> Linear {
+    /// `None` means an error was recorded; enclosing expressions then record nothing more.
+    fn linear(&mut self, scalar: &Scalar, expected: Kind, errors: &mut Errors) -> Option<Linear> {
         match scalar {
-            Scalar::Number(value, _) => Linear::constant(*value),
-            Scalar::Name(name) => match self.names.get(&name.to_string()) {
-                Some((symbol, kind)) if *kind == expected => Linear::symbol(*symbol),
-                Some((_, kind)) => {
-                    let place = match expected {
-                        Kind::Length => "a vector's magnitude must be a length",
-                        Kind::Angle => "a vector's angle must be an angle",
-                    };
-                    errors.error_at(name, format!("`{name}` is {} {kind}: {place}", article(*kind)));
-                    Linear::default()
+            Scalar::Number(value, _) => Some(Linear::constant(*value)),
+            Scalar::Name(name) => match self.names.get(&name.to_string()).copied() {
+                Some((symbol, kind)) => {
+                    self.mentioned.insert(symbol);
+                    match kind {
+                        Some(kind) if kind != expected => {
+                            let place = match expected {
+                                Kind::Length => "a vector's magnitude must be a length",
+                                Kind::Angle => "a vector's angle must be an angle",
+                            };
+                            let article = article(kind);
+                            errors.error_at(name, format!("`{name}` is {article} {kind}: {place}"));
+                            None
+                        }
+                        _ => Some(Linear::symbol(symbol)),
+                    }
                 }
-                None if name == "pi" => Linear::constant(std::f64::consts::PI),
+                None if name == "pi" => Some(Linear::constant(std::f64::consts::PI)),
                 None => {
                     errors.error_at(
                         name,
@@ -370,33 +409,34 @@ impl Scope {
                              declare it in `params`, `input` or `unknowns`"
                         ),
                     );
-                    Linear::default()
+                    None
                 }
             },
-            Scalar::Neg(_, inner) => self.linear(inner, expected, errors).scaled(-1.0),
+            Scalar::Neg(_, inner) => Some(self.linear(inner, expected, errors)?.scaled(-1.0)),
             Scalar::Binary(op, op_span, left, right) => {
                 let l = self.linear(left, expected, errors);
                 let r = self.linear(right, expected, errors);
+                let (l, r) = (l?, r?);
                 match op {
-                    BinaryOp::Add => l.plus(r),
-                    BinaryOp::Sub => l.plus(r.scaled(-1.0)),
+                    BinaryOp::Add => Some(l.plus(r)),
+                    BinaryOp::Sub => Some(l.plus(r.scaled(-1.0))),
                     BinaryOp::Mul => match (l.as_constant(), r.as_constant()) {
-                        (Some(c), _) => r.scaled(c),
-                        (_, Some(c)) => l.scaled(c),
+                        (Some(c), _) => Some(r.scaled(c)),
+                        (_, Some(c)) => Some(l.scaled(c)),
                         (None, None) => {
                             errors.error_at_span(
                                 *op_span,
                                 "loop terms are linear in the declared names: \
                                  multiply by numbers only",
                             );
-                            Linear::default()
+                            None
                         }
                     },
                     BinaryOp::Div => match r.as_constant() {
-                        Some(c) if c != 0.0 => l.scaled(1.0 / c),
+                        Some(c) if c != 0.0 => Some(l.scaled(1.0 / c)),
                         Some(_) => {
                             errors.error_at_span(right.span(), "division by zero");
-                            Linear::default()
+                            None
                         }
                         None => {
                             errors.error_at_span(
@@ -404,7 +444,7 @@ impl Scope {
                                 "loop terms are linear in the declared names: \
                                  divide by numbers only",
                             );
-                            Linear::default()
+                            None
                         }
                     },
                 }
@@ -442,19 +482,16 @@ fn check_counts(loops: &[VectorSum], unknowns: &[Symbol], span: Span, errors: &m
 /// Rule: the input drives the loops and the loops determine the unknowns, so each of them
 /// must appear in at least one loop.
 fn check_every_symbol_in_a_loop(
-    loops: &[VectorSum],
+    scope: &Scope,
+    in_loops: &BTreeSet<SymbolRef>,
     input: Option<&Symbol>,
     unknowns: &[Symbol],
     errors: &mut Errors,
 ) {
-    let appears = |symbol: SymbolRef| {
-        loops.iter().flat_map(|l| &l.terms).any(|term| {
-            term.magnitude.coefficients.contains_key(&symbol)
-                || term.angle.coefficients.contains_key(&symbol)
-        })
-    };
+    // A duplicate declaration was reported already and stands for no symbol of its own.
+    let missing = |symbol: SymbolRef| scope.resolves_to(symbol) && !in_loops.contains(&symbol);
     if let Some(input) = input
-        && !appears(SymbolRef::Input)
+        && missing(SymbolRef::Input)
     {
         errors.error_at(
             &input.name,
@@ -462,7 +499,7 @@ fn check_every_symbol_in_a_loop(
         );
     }
     for (i, unknown) in unknowns.iter().enumerate() {
-        if !appears(SymbolRef::Unknown(i)) {
+        if missing(SymbolRef::Unknown(i)) {
             errors.error_at(
                 &unknown.name,
                 format!(

@@ -1,0 +1,9 @@
+use mechgen::mechanism;
+
+mechanism! {
+    pub struct Empty {
+        params: l1;
+    }
+}
+
+fn main() {}
