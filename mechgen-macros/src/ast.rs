@@ -79,9 +79,10 @@ impl Scalar {
             Scalar::Name(name) => name.span(),
             Scalar::Number(_, span) => *span,
             Scalar::Neg(span, inner) => span.join(inner.span()).unwrap_or(*span),
-            Scalar::Binary(_, _, left, right) => {
-                left.span().join(right.span()).unwrap_or_else(|| left.span())
-            }
+            Scalar::Binary(_, _, left, right) => left
+                .span()
+                .join(right.span())
+                .unwrap_or_else(|| left.span()),
         }
     }
 }

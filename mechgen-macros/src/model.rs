@@ -4,6 +4,7 @@
 //! Every rule below reports on the tokens that break it, and all broken rules are reported
 //! together.
 
+use std::collections::btree_map::Entry;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 
@@ -174,7 +175,11 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         required("driven input", "input: theta2: angle", &mut errors);
     }
     if unknowns.is_none() {
-        required("unknowns", "unknowns: theta3: angle, theta4: angle", &mut errors);
+        required(
+            "unknowns",
+            "unknowns: theta3: angle, theta4: angle",
+            &mut errors,
+        );
     }
     if loops.is_empty() {
         required(
@@ -205,7 +210,13 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         );
     }
 
-    let mut scope = Scope::new(&params, input.first(), &unknowns, &undetermined, &mut errors);
+    let mut scope = Scope::new(
+        &params,
+        input.first(),
+        &unknowns,
+        &undetermined,
+        &mut errors,
+    );
     let loops: Vec<VectorSum> = loops
         .iter()
         .map(|sum| scope.vector_sum(sum, &mut errors))
@@ -216,7 +227,10 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         .iter()
         .map(|(point_name, sum)| {
             if point_names.contains(&point_name) {
-                errors.error_at(point_name, format!("point `{point_name}` is declared twice"));
+                errors.error_at(
+                    point_name,
+                    format!("point `{point_name}` is declared twice"),
+                );
             }
             point_names.push(point_name);
             Point {
@@ -340,12 +354,20 @@ impl Scope {
         for (symbol, Symbol { name, kind, .. }) in declared {
             let text = name.to_string();
             if text == "pi" {
-                errors.error_at(name, "`pi` is reserved for the constant π; pick another name");
-            } else if names.contains_key(&text) {
-                errors.error_at(name, format!("`{name}` is declared twice"));
+                errors.error_at(
+                    name,
+                    "`pi` is reserved for the constant π; pick another name",
+                );
             } else {
                 let kind = (!undetermined.contains(&text)).then_some(*kind);
-                names.insert(text, (symbol, kind));
+                match names.entry(text) {
+                    Entry::Occupied(_) => {
+                        errors.error_at(name, format!("`{name}` is declared twice"))
+                    }
+                    Entry::Vacant(slot) => {
+                        slot.insert((symbol, kind));
+                    }
+                }
             }
         }
         Scope {
@@ -495,7 +517,10 @@ fn check_every_symbol_in_a_loop(
     {
         errors.error_at(
             &input.name,
-            format!("input `{}` appears in no loop, so it drives nothing", input.name),
+            format!(
+                "input `{}` appears in no loop, so it drives nothing",
+                input.name
+            ),
         );
     }
     for (i, unknown) in unknowns.iter().enumerate() {
@@ -531,7 +556,9 @@ fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Output
             Some(i) => seen[i] = Some(name),
             None => errors.error_at(
                 name,
-                format!("unknown output `{name}`: expected `position`, `velocity` or `acceleration`"),
+                format!(
+                    "unknown output `{name}`: expected `position`, `velocity` or `acceleration`"
+                ),
             ),
         }
     }
@@ -539,7 +566,11 @@ fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Output
         if let (Some(name), None) = (seen[i], seen[i - 1]) {
             errors.error_at(
                 name,
-                format!("`{}` needs `{}`: add it to `generate`", OUTPUTS[i], OUTPUTS[i - 1]),
+                format!(
+                    "`{}` needs `{}`: add it to `generate`",
+                    OUTPUTS[i],
+                    OUTPUTS[i - 1]
+                ),
             );
         }
     }

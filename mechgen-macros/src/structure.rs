@@ -29,7 +29,13 @@ pub fn check(model: &Model, equations: &Equations) -> syn::Result<()> {
     let mut column_of_row: Vec<Option<usize>> = vec![None; rows];
     for column in 0..columns {
         let mut visited = vec![false; rows];
-        augment(column, &depends, &mut visited, &mut row_of_column, &mut column_of_row);
+        augment(
+            column,
+            &depends,
+            &mut visited,
+            &mut row_of_column,
+            &mut column_of_row,
+        );
     }
 
     for column in (0..columns).filter(|&c| row_of_column[c].is_none()) {

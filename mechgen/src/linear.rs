@@ -94,16 +94,19 @@ pub fn solve_lu<T: Real, const N: usize>(a: [[T; N]; N], b: [T; N]) -> Result<[T
             determinant = -determinant;
         }
         let pivot = lu[k][k];
+        let x_k = x[k];
         determinant = determinant * pivot;
         if pivot == T::zero() {
             break;
         }
-        for i in (k + 1)..N {
-            let factor = lu[i][k] / pivot;
-            for j in (k + 1)..N {
-                lu[i][j] = lu[i][j] - factor * lu[k][j];
+        let (upper, lower) = lu.split_at_mut(k + 1);
+        let pivot_row = &upper[k];
+        for (row, xi) in lower.iter_mut().zip(x.iter_mut().skip(k + 1)) {
+            let factor = row[k] / pivot;
+            for (entry, above) in row.iter_mut().zip(pivot_row).skip(k + 1) {
+                *entry = *entry - factor * *above;
             }
-            x[i] = x[i] - factor * x[k];
+            *xi = *xi - factor * x_k;
         }
     }
     check_determinant(determinant, &original)?;
@@ -175,13 +178,22 @@ mod tests {
             other => panic!("expected Singular, got {other:?}"),
         }
         let dependent = [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 1.0]];
-        assert!(matches!(solve3(dependent, [1.0; 3]), Err(Error::Singular { .. })));
-        assert!(matches!(solve_lu(dependent, [1.0; 3]), Err(Error::Singular { .. })));
+        assert!(matches!(
+            solve3(dependent, [1.0; 3]),
+            Err(Error::Singular { .. })
+        ));
+        assert!(matches!(
+            solve_lu(dependent, [1.0; 3]),
+            Err(Error::Singular { .. })
+        ));
     }
 
     #[test]
     fn non_finite_matrices_are_errors() {
         let a = [[f64::NAN, 0.0], [0.0, 1.0]];
-        assert!(matches!(solve2(a, [1.0, 1.0]), Err(Error::NonFinite { .. })));
+        assert!(matches!(
+            solve2(a, [1.0, 1.0]),
+            Err(Error::NonFinite { .. })
+        ));
     }
 }

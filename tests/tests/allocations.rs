@@ -64,34 +64,60 @@ fn kinematics_calls_do_not_allocate() {
                 a: 100.0,
                 delta: 0.5,
             };
-            let guess = FourBarUnknowns { theta3: 0.4, theta4: 1.2 };
+            let guess = FourBarUnknowns {
+                theta3: 0.4,
+                theta4: 1.2,
+            };
             let q = four_bar.position(theta2, &guess, &options).unwrap().value;
             let v = four_bar.velocity(theta2, &q, 10.0).unwrap();
             let a = four_bar.acceleration(theta2, &q, 10.0, &v, 1.0).unwrap();
             four_bar.points(theta2, &q).unwrap();
             four_bar.point_velocities(theta2, &q, 10.0, &v).unwrap();
-            four_bar.point_accelerations(theta2, &q, 10.0, &v, 1.0, &a).unwrap();
+            four_bar
+                .point_accelerations(theta2, &q, 10.0, &v, 1.0, &a)
+                .unwrap();
 
-            let slider = mechanisms::SliderCrank { l2: 50.0, l3: 150.0, c: 20.0 };
-            let guess = SliderCrankUnknowns { theta3: 0.0, d: 190.0 };
+            let slider = mechanisms::SliderCrank {
+                l2: 50.0,
+                l3: 150.0,
+                c: 20.0,
+            };
+            let guess = SliderCrankUnknowns {
+                theta3: 0.0,
+                d: 190.0,
+            };
             let q = slider.position(theta2, &guess, &options).unwrap().value;
             let v = slider.velocity(theta2, &q, 10.0).unwrap();
             slider.acceleration(theta2, &q, 10.0, &v, 1.0).unwrap();
 
-            let inverted =
-                mechanisms::InvertedSliderCrank { l1: 150.0, l2: 60.0, c: 20.0, gamma: 0.3 };
-            let guess = InvertedSliderCrankUnknowns { theta4: 3.0, b: 60.0 };
+            let inverted = mechanisms::InvertedSliderCrank {
+                l1: 150.0,
+                l2: 60.0,
+                c: 20.0,
+                gamma: 0.3,
+            };
+            let guess = InvertedSliderCrankUnknowns {
+                theta4: 3.0,
+                b: 60.0,
+            };
             let q = inverted.position(theta2, &guess, &options).unwrap().value;
             let v = inverted.velocity(theta2, &q, 10.0).unwrap();
             inverted.acceleration(theta2, &q, 10.0, &v, 1.0).unwrap();
 
             // Errors are values too: a singular or non-finite case allocates nothing either.
-            assert!(four_bar.position(f64::NAN, &guess_four_bar(), &options).is_err());
+            assert!(
+                four_bar
+                    .position(f64::NAN, &guess_four_bar(), &options)
+                    .is_err()
+            );
         }
     });
     assert_eq!(count, 0);
 }
 
 fn guess_four_bar() -> FourBarUnknowns<f64> {
-    FourBarUnknowns { theta3: 0.4, theta4: 1.2 }
+    FourBarUnknowns {
+        theta3: 0.4,
+        theta4: 1.2,
+    }
 }

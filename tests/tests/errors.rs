@@ -3,8 +3,8 @@
 mod common;
 
 use common::*;
-use mechgen::{Error, NewtonOptions};
 use mechanisms::FourBarUnknowns;
+use mechgen::{Error, NewtonOptions};
 
 #[test]
 fn non_finite_arguments_are_named() {
@@ -12,31 +12,78 @@ fn non_finite_arguments_are_named() {
     let guess = guess_deg(15.0, 80.0);
     let options = NewtonOptions::default();
     let err = linkage.position(f64::NAN, &guess, &options).unwrap_err();
-    assert_eq!(err, Error::NonFinite { quantity: "input `theta2`" });
+    assert_eq!(
+        err,
+        Error::NonFinite {
+            quantity: "input `theta2`"
+        }
+    );
     assert_eq!(err.to_string(), "input `theta2` is not finite");
 
-    let broken = mechanisms::FourBar { l3: f64::INFINITY, ..linkage };
+    let broken = mechanisms::FourBar {
+        l3: f64::INFINITY,
+        ..linkage
+    };
     let err = broken.position(1.0, &guess, &options).unwrap_err();
-    assert_eq!(err, Error::NonFinite { quantity: "parameter `l3`" });
+    assert_eq!(
+        err,
+        Error::NonFinite {
+            quantity: "parameter `l3`"
+        }
+    );
 
-    let err = linkage.position(1.0, &guess_deg(f64::NAN, 80.0), &options).unwrap_err();
-    assert_eq!(err, Error::NonFinite { quantity: "initial guess" });
+    let err = linkage
+        .position(1.0, &guess_deg(f64::NAN, 80.0), &options)
+        .unwrap_err();
+    assert_eq!(
+        err,
+        Error::NonFinite {
+            quantity: "initial guess"
+        }
+    );
 
     let q = linkage.position(1.0, &guess, &options).unwrap().value;
     let err = linkage.velocity(1.0, &q, f64::NAN).unwrap_err();
-    assert_eq!(err, Error::NonFinite { quantity: "input rate `theta2_dot`" });
-    let err = linkage.acceleration(1.0, &q, 1.0, &q, f64::NEG_INFINITY).unwrap_err();
-    assert_eq!(err, Error::NonFinite { quantity: "input acceleration `theta2_ddot`" });
-    let nan_position = FourBarUnknowns { theta3: f64::NAN, ..q };
+    assert_eq!(
+        err,
+        Error::NonFinite {
+            quantity: "input rate `theta2_dot`"
+        }
+    );
+    let err = linkage
+        .acceleration(1.0, &q, 1.0, &q, f64::NEG_INFINITY)
+        .unwrap_err();
+    assert_eq!(
+        err,
+        Error::NonFinite {
+            quantity: "input acceleration `theta2_ddot`"
+        }
+    );
+    let nan_position = FourBarUnknowns {
+        theta3: f64::NAN,
+        ..q
+    };
     let err = linkage.velocity(1.0, &nan_position, 1.0).unwrap_err();
-    assert_eq!(err, Error::NonFinite { quantity: "position" });
+    assert_eq!(
+        err,
+        Error::NonFinite {
+            quantity: "position"
+        }
+    );
     let err = linkage.points(1.0, &nan_position).unwrap_err();
-    assert_eq!(err, Error::NonFinite { quantity: "position" });
+    assert_eq!(
+        err,
+        Error::NonFinite {
+            quantity: "position"
+        }
+    );
 
     let bad_options = NewtonOptions::new(f64::NAN, 10);
     assert!(matches!(
         linkage.position(1.0, &guess, &bad_options),
-        Err(Error::NonFinite { quantity: "Newton tolerance" })
+        Err(Error::NonFinite {
+            quantity: "Newton tolerance"
+        })
     ));
 }
 
@@ -44,7 +91,10 @@ fn non_finite_arguments_are_named() {
 fn a_singular_jacobian_is_an_error_carrying_its_determinant() {
     let linkage = EXAMPLE_1;
     // Coupler and rocker collinear: the Jacobian's columns are parallel.
-    let toggle = FourBarUnknowns { theta3: 0.7, theta4: 0.7 };
+    let toggle = FourBarUnknowns {
+        theta3: 0.7,
+        theta4: 0.7,
+    };
     let err = linkage.velocity(1.0, &toggle, 10.0).unwrap_err();
     let Error::Singular {
         determinant,
@@ -56,9 +106,15 @@ fn a_singular_jacobian_is_an_error_carrying_its_determinant() {
     assert!(determinant.abs() < 1e-10, "{determinant}");
     assert!(relative_determinant < 1e-14, "{relative_determinant}");
     assert!(err.to_string().starts_with("the loop Jacobian is singular"));
-    assert!(linkage.acceleration(1.0, &toggle, 10.0, &toggle, 0.0).is_err());
+    assert!(
+        linkage
+            .acceleration(1.0, &toggle, 10.0, &toggle, 0.0)
+            .is_err()
+    );
     // Newton meets the same singular matrix on its first step from such a guess.
-    let err = linkage.position(1.0, &toggle, &NewtonOptions::default()).unwrap_err();
+    let err = linkage
+        .position(1.0, &toggle, &NewtonOptions::default())
+        .unwrap_err();
     assert!(matches!(err, Error::Singular { .. }), "{err:?}");
 }
 
@@ -66,7 +122,9 @@ fn a_singular_jacobian_is_an_error_carrying_its_determinant() {
 fn running_out_of_iterations_reports_the_residual() {
     let linkage = EXAMPLE_1;
     let options = NewtonOptions::new(1e-12, 2);
-    let err = linkage.position(rad(60.0), &guess_deg(15.0, 80.0), &options).unwrap_err();
+    let err = linkage
+        .position(rad(60.0), &guess_deg(15.0, 80.0), &options)
+        .unwrap_err();
     let Error::NoConvergence {
         iterations,
         residual_norm,
@@ -79,7 +137,10 @@ fn running_out_of_iterations_reports_the_residual() {
     // hand, tabulates 0.0066 there); the tolerance needs a third.
     assert_eq!(rounded(residual_norm, 4), 0.0013);
     let message = err.to_string();
-    assert!(message.contains("did not converge in 2 iterations"), "{message}");
+    assert!(
+        message.contains("did not converge in 2 iterations"),
+        "{message}"
+    );
 }
 
 #[test]

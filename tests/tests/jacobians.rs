@@ -22,7 +22,10 @@ fn check(
     let difference = |f: &dyn Fn(f64) -> [f64; 2], x: f64| {
         let h = 1e-6 * x.abs().max(1.0);
         let (plus, minus) = (f(x + h), f(x - h));
-        [(plus[0] - minus[0]) / (2.0 * h), (plus[1] - minus[1]) / (2.0 * h)]
+        [
+            (plus[0] - minus[0]) / (2.0 * h),
+            (plus[1] - minus[1]) / (2.0 * h),
+        ]
     };
     let tolerance = 1e-7 * scale;
     for column in 0..2 {

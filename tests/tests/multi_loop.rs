@@ -17,18 +17,23 @@ mechanism! {
     }
 }
 
-const LINKAGE: SixBar<f64> = SixBar {
-    l1: 180.0,
-    l2: 80.0,
-    l3: 200.0,
-    l4: 150.0,
-    l4b: 100.0,
-    beta: 0.8,
-    l5: 220.0,
-    l6: 160.0,
-    g: 335.41019662496845, // |(300, 150)|
-    phi: 0.4636476090008061, // atan2(150, 300)
-};
+/// The ground pivot O6.
+const O6: (f64, f64) = (300.0, 150.0);
+
+fn linkage() -> SixBar<f64> {
+    SixBar {
+        l1: 180.0,
+        l2: 80.0,
+        l3: 200.0,
+        l4: 150.0,
+        l4b: 100.0,
+        beta: 0.8,
+        l5: 220.0,
+        l6: 160.0,
+        g: O6.0.hypot(O6.1),
+        phi: O6.1.atan2(O6.0),
+    }
+}
 
 type P = (f64, f64);
 
@@ -38,7 +43,10 @@ fn intersect(p: P, r: f64, q: P, s: f64, side: f64) -> P {
     let d = dx.hypot(dy);
     let a = (r * r - s * s + d * d) / (2.0 * d);
     let h = (r * r - a * a).sqrt();
-    (p.0 + (a * dx - side * h * dy) / d, p.1 + (a * dy + side * h * dx) / d)
+    (
+        p.0 + (a * dx - side * h * dy) / d,
+        p.1 + (a * dy + side * h * dx) / d,
+    )
 }
 
 fn angle(from: P, to: P) -> f64 {
@@ -47,13 +55,16 @@ fn angle(from: P, to: P) -> f64 {
 
 /// Joint positions by geometry alone, on the branch given by the two sides.
 fn by_circles(theta2: f64, sides: (f64, f64)) -> [f64; 4] {
-    let l = LINKAGE;
+    let l = linkage();
     let o4 = (l.l1, 0.0);
     let a = (l.l2 * theta2.cos(), l.l2 * theta2.sin());
     let b = intersect(a, l.l3, o4, l.l4, sides.0);
     let theta4 = angle(o4, b);
-    let c = (o4.0 + l.l4b * (theta4 + l.beta).cos(), o4.1 + l.l4b * (theta4 + l.beta).sin());
-    let o6 = (300.0, 150.0);
+    let c = (
+        o4.0 + l.l4b * (theta4 + l.beta).cos(),
+        o4.1 + l.l4b * (theta4 + l.beta).sin(),
+    );
+    let o6 = O6;
     let d = intersect(c, l.l5, o6, l.l6, sides.1);
     [angle(a, b), theta4, angle(c, d), angle(o6, d)]
 }
@@ -70,39 +81,62 @@ fn six_bar_matches_circle_intersections_and_finite_differences() {
     let (omega, h) = (5.0, 1e-5);
     for degree in 0..360 {
         let theta2 = f64::from(degree).to_radians();
-        let slope = LINKAGE.velocity(theta2, &q, 1.0).unwrap().to_array();
+        let slope = linkage().velocity(theta2, &q, 1.0).unwrap().to_array();
         let predicted = q.to_array();
         let guess = SixBarUnknowns::from_array(std::array::from_fn(|i| {
             predicted[i] + slope[i] * 1f64.to_radians()
         }));
-        let solved = LINKAGE.position(theta2, &guess, &options).unwrap();
+        let solved = linkage().position(theta2, &guess, &options).unwrap();
         q = solved.value;
         assert!(solved.residual_norm < 1e-10);
 
         let expected = by_circles(theta2, (1.0, 1.0));
         for (got, want) in q.to_array().iter().zip(expected) {
-            assert!(wrapped_difference(*got, want).abs() < 1e-10, "{degree}°: {got} vs {want}");
+            assert!(
+                wrapped_difference(*got, want).abs() < 1e-10,
+                "{degree}°: {got} vs {want}"
+            );
         }
 
-        let plus = LINKAGE.position(theta2 + h, &q, &options).unwrap().value.to_array();
-        let minus = LINKAGE.position(theta2 - h, &q, &options).unwrap().value.to_array();
-        let velocity = LINKAGE.velocity(theta2, &q, omega).unwrap();
+        let plus = linkage()
+            .position(theta2 + h, &q, &options)
+            .unwrap()
+            .value
+            .to_array();
+        let minus = linkage()
+            .position(theta2 - h, &q, &options)
+            .unwrap()
+            .value
+            .to_array();
+        let velocity = linkage().velocity(theta2, &q, omega).unwrap();
         for ((p, m), v) in plus.iter().zip(minus).zip(velocity.to_array()) {
             let estimate = (p - m) / (2.0 * h) * omega;
-            assert!((estimate - v).abs() < 1e-6 * omega, "{degree}°: {v} vs {estimate}");
+            assert!(
+                (estimate - v).abs() < 1e-6 * omega,
+                "{degree}°: {v} vs {estimate}"
+            );
         }
 
-        let acceleration = LINKAGE.acceleration(theta2, &q, omega, &velocity, 0.0).unwrap();
-        let v_plus = LINKAGE.velocity(theta2 + h, &SixBarUnknowns::from_array(plus), omega).unwrap();
-        let v_minus = LINKAGE.velocity(theta2 - h, &SixBarUnknowns::from_array(minus), omega).unwrap();
+        let acceleration = linkage()
+            .acceleration(theta2, &q, omega, &velocity, 0.0)
+            .unwrap();
+        let v_plus = linkage()
+            .velocity(theta2 + h, &SixBarUnknowns::from_array(plus), omega)
+            .unwrap();
+        let v_minus = linkage()
+            .velocity(theta2 - h, &SixBarUnknowns::from_array(minus), omega)
+            .unwrap();
         let pairs = v_plus.to_array().into_iter().zip(v_minus.to_array());
         for ((p, m), a) in pairs.zip(acceleration.to_array()) {
             let estimate = (p - m) / (2.0 * h) * omega;
-            assert!((estimate - a).abs() < 1e-5 * omega * omega, "{degree}°: {a} vs {estimate}");
+            assert!(
+                (estimate - a).abs() < 1e-5 * omega * omega,
+                "{degree}°: {a} vs {estimate}"
+            );
         }
 
-        let d = LINKAGE.points(theta2, &q).unwrap().d;
-        let d_expected = (300.0 + 160.0 * q.theta6.cos(), 150.0 + 160.0 * q.theta6.sin());
+        let d = linkage().points(theta2, &q).unwrap().d;
+        let d_expected = (O6.0 + 160.0 * q.theta6.cos(), O6.1 + 160.0 * q.theta6.sin());
         assert!((d.x - d_expected.0).abs() < 1e-9 && (d.y - d_expected.1).abs() < 1e-9);
     }
 }

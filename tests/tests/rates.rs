@@ -22,11 +22,12 @@ fn four_bar_rates_match_the_closed_forms() {
         assert_close("omega3", w3, w3_closed, 1e-12);
         assert_close("omega4", w4, w4_closed, 1e-12);
 
-        let [a3, a4] = linkage.accelerations(t2, q, OMEGA2, [w3, w4], ALPHA2).unwrap();
+        let [a3, a4] = linkage
+            .accelerations(t2, q, OMEGA2, [w3, w4], ALPHA2)
+            .unwrap();
         let a = l4 * t4.sin();
         let b = l3 * t3.sin();
-        let c = l2 * ALPHA2 * t2.sin() + l2 * OMEGA2 * OMEGA2 * t2.cos()
-            + l3 * w3 * w3 * t3.cos()
+        let c = l2 * ALPHA2 * t2.sin() + l2 * OMEGA2 * OMEGA2 * t2.cos() + l3 * w3 * w3 * t3.cos()
             - l4 * w4 * w4 * t4.cos();
         let d = l4 * t4.cos();
         let e = l3 * t3.cos();
@@ -46,19 +47,32 @@ fn slider_crank_rates_match_the_closed_forms() {
     for Sample { input: t2, q } in sweep(&linkage, [0.0, 190.0], 1) {
         let [t3, d] = q;
         // Position: B = A + l3 @ θ3 on the line y = c.
-        assert_close("sin theta3", t3.sin(), (linkage.c - l2 * t2.sin()) / l3, 1e-13);
+        assert_close(
+            "sin theta3",
+            t3.sin(),
+            (linkage.c - l2 * t2.sin()) / l3,
+            1e-13,
+        );
         assert_close("d", d, l2 * t2.cos() + l3 * t3.cos(), 1e-13);
         // Velocity: j l2 ω2 e^{jθ2} + j l3 ω3 e^{jθ3} - ḋ = 0.
         let [w3, d_dot] = linkage.rates(t2, q, OMEGA2).unwrap();
         let w3_closed = -l2 * OMEGA2 * t2.cos() / (l3 * t3.cos());
         assert_close("omega3", w3, w3_closed, 1e-12);
-        assert_close("d dot", d_dot, -l2 * OMEGA2 * t2.sin() - l3 * w3 * t3.sin(), 1e-12);
+        assert_close(
+            "d dot",
+            d_dot,
+            -l2 * OMEGA2 * t2.sin() - l3 * w3 * t3.sin(),
+            1e-12,
+        );
         // Acceleration: (j l2 α2 − l2 ω2²) e^{jθ2} + (j l3 α3 − l3 ω3²) e^{jθ3} − d̈ = 0.
-        let [a3, d_ddot] = linkage.accelerations(t2, q, OMEGA2, [w3, d_dot], ALPHA2).unwrap();
+        let [a3, d_ddot] = linkage
+            .accelerations(t2, q, OMEGA2, [w3, d_dot], ALPHA2)
+            .unwrap();
         let a3_closed = (l2 * OMEGA2 * OMEGA2 * t2.sin() - l2 * ALPHA2 * t2.cos()
             + l3 * w3 * w3 * t3.sin())
             / (l3 * t3.cos());
-        let d_ddot_closed = -l2 * ALPHA2 * t2.sin() - l2 * OMEGA2 * OMEGA2 * t2.cos()
+        let d_ddot_closed = -l2 * ALPHA2 * t2.sin()
+            - l2 * OMEGA2 * OMEGA2 * t2.cos()
             - l3 * a3 * t3.sin()
             - l3 * w3 * w3 * t3.cos();
         assert_close("alpha3", a3, a3_closed, 1e-11);
@@ -74,7 +88,10 @@ struct Discrepancy {
 
 impl Discrepancy {
     fn new() -> Self {
-        Discrepancy { worst: 0.0, scale: 0.0 }
+        Discrepancy {
+            worst: 0.0,
+            scale: 0.0,
+        }
     }
     fn record<T: Real>(&mut self, generated: &[T], estimate: &[T]) {
         for (g, e) in generated.iter().zip(estimate) {
@@ -86,13 +103,19 @@ impl Discrepancy {
     #[track_caller]
     fn assert_below(&self, what: &str, tolerance: f64) {
         let relative = self.worst / self.scale;
-        assert!(relative < tolerance, "{what}: relative discrepancy {relative:e} ≥ {tolerance:e}");
+        assert!(
+            relative < tolerance,
+            "{what}: relative discrepancy {relative:e} ≥ {tolerance:e}"
+        );
     }
 }
 
 fn central_difference<T: Real>(plus: &[T], minus: &[T], h: T, rate: T) -> Vec<T> {
     let two_h = T::constant(2.0) * h;
-    plus.iter().zip(minus).map(|(p, m)| (*p - *m) / two_h * rate).collect()
+    plus.iter()
+        .zip(minus)
+        .map(|(p, m)| (*p - *m) / two_h * rate)
+        .collect()
 }
 
 /// Checks unknown and point rates and accelerations against central differences of the
@@ -135,7 +158,9 @@ fn check_against_finite_differences<T: Real, L: Linkage<T>>(
             .zip(dq_dtheta)
             .map(|(a, d)| *a + alpha * d)
             .collect();
-        let q_ddot = linkage.accelerations(input, q, omega, q_dot, alpha).unwrap();
+        let q_ddot = linkage
+            .accelerations(input, q, omega, q_dot, alpha)
+            .unwrap();
         accel.record(&q_ddot, &fd);
 
         let point_ddot = linkage.point_accelerations(input, q, omega, q_dot, alpha, q_ddot);

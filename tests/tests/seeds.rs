@@ -4,8 +4,8 @@
 mod common;
 
 use common::*;
-use mechgen::{NewtonOptions, Solved};
 use mechanisms::FourBarUnknowns;
+use mechgen::{NewtonOptions, Solved};
 
 /// Z, the diagonal from the crank pin A to O4, from the generated point positions.
 fn diagonal(l1: f64, crank_pin: mechgen::Vec2<f64>) -> f64 {
@@ -23,8 +23,14 @@ fn example_1_open_and_crossed_branches() {
     let linkage = EXAMPLE_1;
     let theta2 = rad(60.0);
     let options = NewtonOptions::default();
-    let open = linkage.position(theta2, &guess_deg(20.0, 70.0), &options).unwrap().value;
-    let crossed = linkage.position(theta2, &guess_deg(290.0, 240.0), &options).unwrap().value;
+    let open = linkage
+        .position(theta2, &guess_deg(20.0, 70.0), &options)
+        .unwrap()
+        .value;
+    let crossed = linkage
+        .position(theta2, &guess_deg(290.0, 240.0), &options)
+        .unwrap()
+        .value;
 
     let z = diagonal(linkage.l1, linkage.points(theta2, &open).unwrap().crank_pin);
     assert_eq!(rounded(z, 2), 156.20);
@@ -49,8 +55,14 @@ fn example_2_newton_from_the_seed_guess() {
         -(f[0] * j[1][1] - j[0][1] * f[1]) / det,
         -(j[0][0] * f[1] - f[0] * j[1][0]) / det,
     ];
-    assert_eq!([rounded(step[0], 5), rounded(step[1], 5)], [0.11893, -0.14204]);
-    assert_eq!([rounded(deg(step[0]), 3), rounded(deg(step[1]), 3)], [6.814, -8.138]);
+    assert_eq!(
+        [rounded(step[0], 5), rounded(step[1], 5)],
+        [0.11893, -0.14204]
+    );
+    assert_eq!(
+        [rounded(deg(step[0]), 3), rounded(deg(step[1]), 3)],
+        [6.814, -8.138]
+    );
 
     // Stopping at |f| < 1e-4 takes 3 updates in exact arithmetic (the seed tabulates 4).
     let Solved {
@@ -71,8 +83,14 @@ fn exercise_3_open_and_crossed_branches() {
     let linkage = four_bar(300.0, 100.0, 250.0, 200.0);
     let theta2 = rad(45.0);
     let options = NewtonOptions::default();
-    let open = linkage.position(theta2, &guess_deg(30.0, 90.0), &options).unwrap().value;
-    let crossed = linkage.position(theta2, &guess_deg(290.0, 230.0), &options).unwrap().value;
+    let open = linkage
+        .position(theta2, &guess_deg(30.0, 90.0), &options)
+        .unwrap()
+        .value;
+    let crossed = linkage
+        .position(theta2, &guess_deg(290.0, 230.0), &options)
+        .unwrap()
+        .value;
     assert_eq!(rounded(transmission_deg(&open), 2), 63.30);
     assert_eq!(rounded(transmission_deg(&crossed), 2), 63.30);
     assert_eq!(rounded(normalised_deg(open.theta4), 2), 94.30);
@@ -83,7 +101,11 @@ fn exercise_3_open_and_crossed_branches() {
 fn exercise_4_newton_from_the_seed_guess() {
     let linkage = four_bar(300.0, 100.0, 250.0, 200.0);
     let solved = linkage
-        .position(rad(60.0), &guess_deg(30.0, 100.0), &NewtonOptions::new(1e-5, 20))
+        .position(
+            rad(60.0),
+            &guess_deg(30.0, 100.0),
+            &NewtonOptions::new(1e-5, 20),
+        )
         .unwrap();
     assert!(solved.residual_norm < 1e-5);
     assert_eq!(rounded(deg(solved.value.theta3), 3), 26.528);
@@ -107,6 +129,16 @@ fn example_1_in_f32_agrees_to_f32_precision() {
     let solved = linkage
         .position(60f32.to_radians(), &guess, &NewtonOptions::default())
         .unwrap();
-    assert_close("theta3", f64::from(solved.value.theta3), rad(21.557634918082556), 1e-6);
-    assert_close("theta4", f64::from(solved.value.theta4), rad(72.13765045102356), 1e-6);
+    assert_close(
+        "theta3",
+        f64::from(solved.value.theta3),
+        rad(21.557634918082556),
+        1e-6,
+    );
+    assert_close(
+        "theta4",
+        f64::from(solved.value.theta4),
+        rad(72.13765045102356),
+        1e-6,
+    );
 }

@@ -13,7 +13,12 @@ use std::fmt::Write;
 const OMEGA2: f64 = 10.0;
 const ALPHA2: f64 = 2.0;
 
-fn table<L: Linkage<f64>>(linkage: &L, guess: [f64; 2], unknowns: [&str; 2], points: &[&str]) -> String {
+fn table<L: Linkage<f64>>(
+    linkage: &L,
+    guess: [f64; 2],
+    unknowns: [&str; 2],
+    points: &[&str],
+) -> String {
     let mut header = vec!["theta2_deg".to_string()];
     for suffix in ["", "_dot", "_ddot"] {
         header.extend(unknowns.iter().map(|u| format!("{u}{suffix}")));
@@ -27,7 +32,9 @@ fn table<L: Linkage<f64>>(linkage: &L, guess: [f64; 2], unknowns: [&str; 2], poi
         .into_iter()
         .map(|Sample { input, q }| {
             let q_dot = linkage.rates(input, q, OMEGA2).unwrap();
-            let q_ddot = linkage.accelerations(input, q, OMEGA2, q_dot, ALPHA2).unwrap();
+            let q_ddot = linkage
+                .accelerations(input, q, OMEGA2, q_dot, ALPHA2)
+                .unwrap();
             let mut row = vec![input.to_degrees()];
             row.extend(q);
             row.extend(q_dot);
@@ -46,7 +53,12 @@ fn table<L: Linkage<f64>>(linkage: &L, guess: [f64; 2], unknowns: [&str; 2], poi
     for row in rows {
         let degrees = format!("{:.0}", row[0]);
         let cells: Vec<String> = std::iter::once(degrees)
-            .chain(row.iter().zip(&column_max).skip(1).map(|(v, max)| significant(*v, *max)))
+            .chain(
+                row.iter()
+                    .zip(&column_max)
+                    .skip(1)
+                    .map(|(v, max)| significant(*v, *max)),
+            )
             .collect();
         writeln!(out, "{}", cells.join(", ")).unwrap();
     }
@@ -77,14 +89,20 @@ fn significant(value: f64, column_max: f64) -> String {
 fn four_bar_full_turn() {
     let linkage = example_1::<f64>();
     let points = ["crank_pin", "rocker_pin", "coupler"];
-    assert_table("four_bar_full_turn", table(&linkage, [0.3, 1.2], ["theta3", "theta4"], &points));
+    assert_table(
+        "four_bar_full_turn",
+        table(&linkage, [0.3, 1.2], ["theta3", "theta4"], &points),
+    );
 }
 
 #[test]
 fn slider_crank_full_turn() {
     let linkage = slider_crank::<f64>();
     let points = ["crank_pin", "slider_pin"];
-    assert_table("slider_crank_full_turn", table(&linkage, [0.0, 190.0], ["theta3", "d"], &points));
+    assert_table(
+        "slider_crank_full_turn",
+        table(&linkage, [0.0, 190.0], ["theta3", "d"], &points),
+    );
 }
 
 #[test]

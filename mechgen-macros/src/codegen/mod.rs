@@ -21,7 +21,9 @@ pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
         #mechanism
         #unknowns
         #points
-        #[allow(clippy::too_many_arguments, clippy::neg_multiply, clippy::double_neg)]
+        // Spans of generated tokens all point at the macro call, which misleads
+        // `possible_missing_comma`; generated argument lists follow the declaration.
+        #[allow(clippy::possible_missing_comma, clippy::too_many_arguments)]
         impl<T: ::mechgen::Real> #name<T> {
             #functions
         }
@@ -119,7 +121,10 @@ impl<'a> Generator<'a> {
         } = self.model;
         let fields = self.model.params.iter().map(|param| {
             let field = &param.name;
-            let docs = docs_or(&param.docs, &format!("Parameter `{field}`: {}.", unit(param.kind)));
+            let docs = docs_or(
+                &param.docs,
+                &format!("Parameter `{field}`: {}.", unit(param.kind)),
+            );
             quote!(#docs pub #field: T,)
         });
         quote! {
@@ -133,7 +138,10 @@ impl<'a> Generator<'a> {
 
     fn unknowns_struct(&self) -> TokenStream {
         let Model {
-            vis, name, unknowns, ..
+            vis,
+            name,
+            unknowns,
+            ..
         } = self.model;
         let ty = &self.unknowns_type;
         let count = Literal::usize_unsuffixed(unknowns.len());
@@ -141,7 +149,10 @@ impl<'a> Generator<'a> {
         let name_strings = names.iter().map(|n| n.to_string());
         let fields = unknowns.iter().map(|unknown| {
             let field = &unknown.name;
-            let docs = docs_or(&unknown.docs, &format!("Unknown `{field}`: {}.", unit(unknown.kind)));
+            let docs = docs_or(
+                &unknown.docs,
+                &format!("Unknown `{field}`: {}.", unit(unknown.kind)),
+            );
             quote!(#docs pub #field: T,)
         });
         let text = format!(
@@ -488,7 +499,11 @@ impl<'a> Generator<'a> {
     }
 
     /// The body of a points function: every point's `which` expressions as a points struct.
-    fn points_body(&self, which: impl Fn(&crate::symbolic::PointExprs) -> [ExprId; 2], quantity: &str) -> TokenStream {
+    fn points_body(
+        &self,
+        which: impl Fn(&crate::symbolic::PointExprs) -> [ExprId; 2],
+        quantity: &str,
+    ) -> TokenStream {
         let entries: Vec<ExprId> = self.equations.points.iter().flat_map(&which).collect();
         let (prologue, outputs) = self.block(&entries);
         let ty = &self.points_type;
@@ -498,9 +513,10 @@ impl<'a> Generator<'a> {
             .map(|name| (local(&format!("{name}_x")), local(&format!("{name}_y"))))
             .collect();
         let pattern = components.iter().map(|(x, y)| quote!(#x, #y));
-        let fields = names.iter().zip(&components).map(|(name, (x, y))| {
-            quote!(#name: ::mechgen::Vec2 { x: #x, y: #y })
-        });
+        let fields = names
+            .iter()
+            .zip(&components)
+            .map(|(name, (x, y))| quote!(#name: ::mechgen::Vec2 { x: #x, y: #y }));
         quote! {
             #prologue
             let [#(#pattern),*] = ::mechgen::__private::finite([#(#outputs),*], #quantity)?;

@@ -65,7 +65,9 @@ impl Equations {
             .collect();
 
         // Every variable a loop can depend on, in a fixed order so expansions are stable.
-        let position_vars: Vec<Var> = std::iter::once(input).chain(unknowns.iter().copied()).collect();
+        let position_vars: Vec<Var> = std::iter::once(input)
+            .chain(unknowns.iter().copied())
+            .collect();
         let rate_vars: Vec<Var> = position_vars
             .iter()
             .filter_map(|v| v.time_derivative())
@@ -90,10 +92,8 @@ impl Equations {
             .iter()
             .map(|point| {
                 let position = vector_sum(&mut graph, &point.position, &mut point_magnitudes);
-                let velocity =
-                    position.map(|p| graph.time_derivative(p, &position_vars, |_| true));
-                let acceleration =
-                    velocity.map(|v| graph.time_derivative(v, &all_vars, |_| true));
+                let velocity = position.map(|p| graph.time_derivative(p, &position_vars, |_| true));
+                let acceleration = velocity.map(|v| graph.time_derivative(v, &all_vars, |_| true));
                 PointExprs {
                     position,
                     velocity,

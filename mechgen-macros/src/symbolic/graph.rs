@@ -248,7 +248,12 @@ impl Graph {
 
     /// `de/dt = Σ ∂e/∂v · dv/dt` over `vars` whose time derivatives `keep` accepts; the others
     /// are taken as zero (constant parameters, or accelerations the caller solves for).
-    pub fn time_derivative(&mut self, e: ExprId, vars: &[Var], keep: impl Fn(Var) -> bool) -> ExprId {
+    pub fn time_derivative(
+        &mut self,
+        e: ExprId,
+        vars: &[Var],
+        keep: impl Fn(Var) -> bool,
+    ) -> ExprId {
         let mut sum = self.constant(0.0);
         for &var in vars {
             let Some(rate) = var.time_derivative().filter(|&rate| keep(rate)) else {

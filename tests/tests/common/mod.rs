@@ -167,7 +167,11 @@ mod slider_crank_impl {
 }
 mod inverted_slider_crank_impl {
     use super::Linkage;
-    impl_linkage!(InvertedSliderCrank, InvertedSliderCrankUnknowns, InvertedSliderCrankPoints);
+    impl_linkage!(
+        InvertedSliderCrank,
+        InvertedSliderCrankUnknowns,
+        InvertedSliderCrankPoints
+    );
 }
 
 /// The shipped mechanisms with the dimensions the tests and tables use, and a guess on the
@@ -213,17 +217,27 @@ pub struct Sample<T> {
 
 /// Solves at every `step_deg` degrees over a full turn starting from `guess` at 0, staying
 /// on the branch by walking in 1° steps with a velocity predictor.
-pub fn sweep<T: mechgen::Real, L: Linkage<T>>(linkage: &L, guess: [T; 2], step_deg: u32) -> Vec<Sample<T>> {
+pub fn sweep<T: mechgen::Real, L: Linkage<T>>(
+    linkage: &L,
+    guess: [T; 2],
+    step_deg: u32,
+) -> Vec<Sample<T>> {
     let one_degree = T::constant(1f64.to_radians());
-    let mut q = linkage.solve(T::zero(), guess).expect("assembles at input 0");
+    let mut q = linkage
+        .solve(T::zero(), guess)
+        .expect("assembles at input 0");
     let mut samples = Vec::new();
     for degree in 0..360u32 {
         let input = T::constant(f64::from(degree).to_radians());
         if degree > 0 {
             let previous = input - one_degree;
-            let slope = linkage.rates(previous, q, T::one()).expect("not at a toggle");
+            let slope = linkage
+                .rates(previous, q, T::one())
+                .expect("not at a toggle");
             let predicted = [q[0] + slope[0] * one_degree, q[1] + slope[1] * one_degree];
-            q = linkage.solve(input, predicted).expect("assembles over the sweep");
+            q = linkage
+                .solve(input, predicted)
+                .expect("assembles over the sweep");
         }
         if degree % step_deg == 0 {
             samples.push(Sample { input, q });
