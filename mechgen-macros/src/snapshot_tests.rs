@@ -29,6 +29,16 @@ fn pretty(tokens: proc_macro2::TokenStream) -> String {
     prettyplease::unparse(&file)
 }
 
+fn assert_expansion(name: &str, expansion: &str) {
+    insta::with_settings!({
+        snapshot_path => "../../tests/snapshots/expansion",
+        prepend_module_to_snapshot => false,
+        omit_expression => true,
+    }, {
+        insta::assert_snapshot!(name, expansion);
+    });
+}
+
 #[test]
 fn shipped_mechanism_expansions() {
     let declarations = shipped_declarations();
@@ -36,12 +46,33 @@ fn shipped_mechanism_expansions() {
     assert_eq!(names, ["FourBar", "SliderCrank", "InvertedSliderCrank"]);
     for (name, tokens) in declarations {
         let expansion = pretty(crate::expand::expand(tokens.into_token_stream()));
-        insta::with_settings!({
-            snapshot_path => "../../tests/snapshots/expansion",
-            prepend_module_to_snapshot => false,
-            omit_expression => true,
-        }, {
-            insta::assert_snapshot!(name, expansion);
-        });
+        assert_expansion(&name, &expansion);
     }
+}
+
+/// A declaration that asks for positions only gets no velocity, acceleration or input
+/// Jacobian code.
+#[test]
+fn position_only_expansion() {
+    let declaration = quote::quote! {
+        /// Four-bar, positions only.
+        pub struct FourBarPositions {
+            params: l1, l2, l3, l4;
+            input: theta2: angle;
+            unknowns: theta3: angle, theta4: angle;
+            loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
+            point coupler_pin = l2 @ theta2 + l3 @ theta3;
+            generate: position;
+        }
+    };
+    let expansion = pretty(crate::expand::expand(declaration));
+    for absent in [
+        "fn velocity",
+        "fn acceleration",
+        "fn input_jacobian",
+        "fn point_velocities",
+    ] {
+        assert!(!expansion.contains(absent), "{absent} was generated");
+    }
+    assert_expansion("FourBarPositions", &expansion);
 }
