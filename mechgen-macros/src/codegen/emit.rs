@@ -267,8 +267,41 @@ pub fn constant(value: f64) -> TokenStream {
         quote!(T::zero())
     } else if value == 1.0 {
         quote!(T::one())
+    } else if let Some(name) = named_constant(value) {
+        let name = Ident::new(name, Span::call_site());
+        quote!(T::constant(::core::f64::consts::#name))
     } else {
         let literal = Literal::f64_unsuffixed(value);
         quote!(T::constant(#literal))
     }
+}
+
+/// The name of `value` in `core::f64::consts`, if it is one of them exactly: reads better
+/// than 16 digits, and does not trip clippy's `approx_constant` in the user's crate.
+fn named_constant(value: f64) -> Option<&'static str> {
+    use std::f64::consts as c;
+    const NAMED: [(f64, &str); 18] = [
+        (c::PI, "PI"),
+        (c::TAU, "TAU"),
+        (c::FRAC_PI_2, "FRAC_PI_2"),
+        (c::FRAC_PI_3, "FRAC_PI_3"),
+        (c::FRAC_PI_4, "FRAC_PI_4"),
+        (c::FRAC_PI_6, "FRAC_PI_6"),
+        (c::FRAC_PI_8, "FRAC_PI_8"),
+        (c::FRAC_1_PI, "FRAC_1_PI"),
+        (c::FRAC_2_PI, "FRAC_2_PI"),
+        (c::FRAC_2_SQRT_PI, "FRAC_2_SQRT_PI"),
+        (c::SQRT_2, "SQRT_2"),
+        (c::FRAC_1_SQRT_2, "FRAC_1_SQRT_2"),
+        (c::E, "E"),
+        (c::LOG2_E, "LOG2_E"),
+        (c::LOG10_E, "LOG10_E"),
+        (c::LN_2, "LN_2"),
+        (c::LN_10, "LN_10"),
+        (c::LOG2_10, "LOG2_10"),
+    ];
+    NAMED
+        .iter()
+        .find(|(named, _)| named.to_bits() == value.to_bits())
+        .map(|(_, name)| *name)
 }
