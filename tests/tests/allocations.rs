@@ -4,6 +4,9 @@
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
+mod common;
+
+use common::{example_1, inverted_slider_crank, slider_crank};
 use mechanisms::{FourBarUnknowns, InvertedSliderCrankUnknowns, SliderCrankUnknowns};
 
 /// Counts allocations made by the current thread (the test harness allocates on others).
@@ -56,14 +59,7 @@ fn kinematics_calls_do_not_allocate() {
         for degree in (0..360).step_by(15) {
             let theta2 = f64::from(degree).to_radians();
 
-            let four_bar = mechanisms::FourBar {
-                l1: 180.0,
-                l2: 80.0,
-                l3: 200.0,
-                l4: 150.0,
-                a: 100.0,
-                delta: 0.5,
-            };
+            let four_bar = example_1::<f64>();
             let guess = FourBarUnknowns {
                 theta3: 0.4,
                 theta4: 1.2,
@@ -77,11 +73,7 @@ fn kinematics_calls_do_not_allocate() {
                 .point_accelerations(theta2, &q, 10.0, &v, 1.0, &a)
                 .unwrap();
 
-            let slider = mechanisms::SliderCrank {
-                l2: 50.0,
-                l3: 150.0,
-                c: 20.0,
-            };
+            let slider = slider_crank::<f64>();
             let guess = SliderCrankUnknowns {
                 theta3: 0.0,
                 d: 190.0,
@@ -90,12 +82,7 @@ fn kinematics_calls_do_not_allocate() {
             let v = slider.velocity(theta2, &q, 10.0).unwrap();
             slider.acceleration(theta2, &q, 10.0, &v, 1.0).unwrap();
 
-            let inverted = mechanisms::InvertedSliderCrank {
-                l1: 150.0,
-                l2: 60.0,
-                c: 20.0,
-                gamma: 0.3,
-            };
+            let inverted = inverted_slider_crank::<f64>();
             let guess = InvertedSliderCrankUnknowns {
                 theta4: 3.0,
                 b: 60.0,

@@ -114,14 +114,7 @@ fn exercise_4_newton_from_the_seed_guess() {
 
 #[test]
 fn example_1_in_f32_agrees_to_f32_precision() {
-    let linkage = mechanisms::FourBar::<f32> {
-        l1: 180.0,
-        l2: 80.0,
-        l3: 200.0,
-        l4: 150.0,
-        a: 100.0,
-        delta: 0.5,
-    };
+    let linkage = example_1::<f32>();
     let guess = FourBarUnknowns {
         theta3: 15f32.to_radians(),
         theta4: 80f32.to_radians(),

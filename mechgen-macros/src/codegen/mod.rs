@@ -434,68 +434,83 @@ impl<'a> Generator<'a> {
         }
     }
 
-    fn velocity(&self) -> TokenStream {
+    /// A checked kinematics function taking the first `arity` of the arguments
+    /// (input, position, input rate, velocity, input acceleration, acceleration): it rejects
+    /// non-finite parameters and arguments, then runs `body`.
+    fn checked_function(
+        &self,
+        name: &str,
+        docs: &str,
+        arity: usize,
+        output: &TokenStream,
+        body: TokenStream,
+    ) -> TokenStream {
         let input = &self.model.input.name;
-        let input_dot = &self.input_dot;
-        let position = arg("position");
         let (unknowns, _, _) = self.signature_types();
-        let body = self.linear_solve(&self.equations.velocity_rhs, "velocity");
-        let input_dot_label = format!("input rate `{input_dot}`");
-        let doc = doc(&format!(
-            "The unknowns' rates at a solved `position`, for the input moving at \
-             `{input_dot}`:\nsolves `J·q̇ = -(∂f/∂{input})·{input_dot}`."
-        ));
+        let scalars = [
+            (None, input.clone()),
+            (Some("input rate"), self.input_dot.clone()),
+            (Some("input acceleration"), self.input_ddot.clone()),
+        ];
+        let mut parameters = Vec::new();
+        let mut scalar_checks = Vec::new();
+        let mut unknowns_checks = Vec::new();
+        for index in 0..arity {
+            if index % 2 == 0 {
+                let (label, name) = &scalars[index / 2];
+                parameters.push(quote!(#name: T));
+                if let Some(label) = label {
+                    let label = format!("{label} `{name}`");
+                    scalar_checks.push(quote!((#name, #label)));
+                }
+            } else {
+                let quantity = ["position", "velocity", "acceleration"][index / 2];
+                let name = arg(quantity);
+                parameters.push(quote!(#name: &#unknowns));
+                unknowns_checks
+                    .push(quote!(::mechgen::__private::finite(#name.to_array(), #quantity)?;));
+            }
+        }
+        let scalar_checks = (!scalar_checks.is_empty())
+            .then(|| quote!(::mechgen::__private::check_finite(&[#(#scalar_checks),*])?;));
+        let name = Ident::new(name, proc_macro2::Span::call_site());
+        let docs = doc(docs);
         quote! {
-            #doc
-            ///
-            /// Errors: a non-finite argument; a singular Jacobian (a toggle, where the rates
-            /// are unbounded).
-            pub fn velocity(
+            #docs
+            pub fn #name(
                 &self,
-                #input: T,
-                #position: &#unknowns,
-                #input_dot: T,
-            ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
+                #(#parameters),*
+            ) -> ::core::result::Result<#output, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
-                ::mechgen::__private::check_finite(&[(#input_dot, #input_dot_label)])?;
-                ::mechgen::__private::finite(#position.to_array(), "position")?;
+                #scalar_checks
+                #(#unknowns_checks)*
                 #body
             }
         }
     }
 
-    fn acceleration(&self) -> TokenStream {
+    fn velocity(&self) -> TokenStream {
         let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
-        let (position, velocity) = (arg("position"), arg("velocity"));
+        let input_dot = &self.input_dot;
+        let (unknowns, _, _) = self.signature_types();
+        let body = self.linear_solve(&self.equations.velocity_rhs, "velocity");
+        let docs = format!(
+            "The unknowns' rates at a solved `position`, for the input moving at \
+             `{input_dot}`:\nsolves `J·q̇ = -(∂f/∂{input})·{input_dot}`.\n\n\
+             Errors: a non-finite argument; a singular Jacobian (a toggle, where the rates \
+             are unbounded)."
+        );
+        self.checked_function("velocity", &docs, 3, &unknowns, body)
+    }
+
+    fn acceleration(&self) -> TokenStream {
         let (unknowns, _, _) = self.signature_types();
         let body = self.linear_solve(&self.equations.acceleration_rhs, "acceleration");
-        let labels = [
-            format!("input rate `{input_dot}`"),
-            format!("input acceleration `{input_ddot}`"),
-        ];
-        let [dot_label, ddot_label] = &labels;
-        quote! {
-            /// The unknowns' accelerations at a solved `position` and `velocity`, for the
-            /// input's rate and acceleration. The right-hand side is the second time
-            /// derivative of the loops, so centripetal, Coriolis and sliding terms are all in it.
-            ///
-            /// Errors: a non-finite argument; a singular Jacobian.
-            pub fn acceleration(
-                &self,
-                #input: T,
-                #position: &#unknowns,
-                #input_dot: T,
-                #velocity: &#unknowns,
-                #input_ddot: T,
-            ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
-                self.mechgen_check_finite(#input)?;
-                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
-                ::mechgen::__private::finite(#position.to_array(), "position")?;
-                ::mechgen::__private::finite(#velocity.to_array(), "velocity")?;
-                #body
-            }
-        }
+        let docs = "The unknowns' accelerations at a solved `position` and `velocity`, for the \
+             input's rate and acceleration.\nThe right-hand side is the second time derivative \
+             of the loops, so centripetal, Coriolis and sliding terms are all in it.\n\n\
+             Errors: a non-finite argument; a singular Jacobian.";
+        self.checked_function("acceleration", docs, 5, &unknowns, body)
     }
 
     /// The body of a points function: every point's `which` expressions as a points struct.
@@ -525,94 +540,70 @@ impl<'a> Generator<'a> {
     }
 
     fn points(&self) -> TokenStream {
-        let input = &self.model.input.name;
-        let position = arg("position");
-        let (unknowns, _, _) = self.signature_types();
         let ty = &self.points_type;
         let body = self.points_body(|p| p.position, "point position");
-        quote! {
-            /// The tracked points' positions at a solved `position`.
-            pub fn points(
-                &self,
-                #input: T,
-                #position: &#unknowns,
-            ) -> ::core::result::Result<#ty<T>, ::mechgen::Error<T>> {
-                self.mechgen_check_finite(#input)?;
-                ::mechgen::__private::finite(#position.to_array(), "position")?;
-                #body
-            }
-        }
+        let docs = "The tracked points' positions at a solved `position`.";
+        self.checked_function("points", docs, 2, &quote!(#ty<T>), body)
     }
 
     fn point_velocities(&self) -> TokenStream {
-        let input = &self.model.input.name;
-        let input_dot = &self.input_dot;
-        let (position, velocity) = (arg("position"), arg("velocity"));
-        let (unknowns, _, _) = self.signature_types();
         let ty = &self.points_type;
         let body = self.points_body(|p| p.velocity, "point velocity");
-        let label = format!("input rate `{input_dot}`");
-        quote! {
-            /// The tracked points' velocities at a solved `position` and `velocity`.
-            pub fn point_velocities(
-                &self,
-                #input: T,
-                #position: &#unknowns,
-                #input_dot: T,
-                #velocity: &#unknowns,
-            ) -> ::core::result::Result<#ty<T>, ::mechgen::Error<T>> {
-                self.mechgen_check_finite(#input)?;
-                ::mechgen::__private::check_finite(&[(#input_dot, #label)])?;
-                ::mechgen::__private::finite(#position.to_array(), "position")?;
-                ::mechgen::__private::finite(#velocity.to_array(), "velocity")?;
-                #body
-            }
-        }
+        let docs = "The tracked points' velocities at a solved `position` and `velocity`.";
+        self.checked_function("point_velocities", docs, 4, &quote!(#ty<T>), body)
     }
 
     fn point_accelerations(&self) -> TokenStream {
-        let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
-        let (position, velocity, acceleration) =
-            (arg("position"), arg("velocity"), arg("acceleration"));
-        let (unknowns, _, _) = self.signature_types();
         let ty = &self.points_type;
         let body = self.points_body(|p| p.acceleration, "point acceleration");
-        let labels = [
-            format!("input rate `{input_dot}`"),
-            format!("input acceleration `{input_ddot}`"),
-        ];
-        let [dot_label, ddot_label] = &labels;
-        quote! {
-            /// The tracked points' accelerations at a solved `position`, `velocity` and
-            /// `acceleration`.
-            pub fn point_accelerations(
-                &self,
-                #input: T,
-                #position: &#unknowns,
-                #input_dot: T,
-                #velocity: &#unknowns,
-                #input_ddot: T,
-                #acceleration: &#unknowns,
-            ) -> ::core::result::Result<#ty<T>, ::mechgen::Error<T>> {
-                self.mechgen_check_finite(#input)?;
-                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
-                ::mechgen::__private::finite(#position.to_array(), "position")?;
-                ::mechgen::__private::finite(#velocity.to_array(), "velocity")?;
-                ::mechgen::__private::finite(#acceleration.to_array(), "acceleration")?;
-                #body
-            }
-        }
+        let docs = "The tracked points' accelerations at a solved `position`, `velocity` and \
+             `acceleration`.";
+        self.checked_function("point_accelerations", docs, 6, &quote!(#ty<T>), body)
     }
 }
 
-/// `#[doc]` attributes for `text`, one per line, each with the space `///` would give.
+/// `#[doc]` attributes for `text`, one per line, each with the space `///` would give, and
+/// long lines wrapped so the expansion reads like hand-written docs.
 fn doc(text: &str) -> TokenStream {
-    let lines = text.lines().map(|line| {
+    const WIDTH: usize = 88;
+    let mut lines = Vec::new();
+    for paragraph_line in text.lines() {
+        let mut line = String::new();
+        for word in unbreakable_words(paragraph_line) {
+            if !line.is_empty() && line.len() + 1 + word.len() > WIDTH {
+                lines.push(std::mem::take(&mut line));
+            }
+            if !line.is_empty() {
+                line.push(' ');
+            }
+            line.push_str(&word);
+        }
+        lines.push(line);
+    }
+    let attributes = lines.iter().map(|line| {
         let line = format!(" {line}");
         quote!(#[doc = #line])
     });
-    quote!(#(#lines)*)
+    quote!(#(#attributes)*)
+}
+
+/// The words of `line`, with each `code span` kept whole so wrapping never splits one.
+fn unbreakable_words(line: &str) -> Vec<String> {
+    let mut words: Vec<String> = Vec::new();
+    let mut in_code = false;
+    for word in line.split(' ') {
+        match words.last_mut() {
+            Some(last) if in_code => {
+                last.push(' ');
+                last.push_str(word);
+            }
+            _ => words.push(word.to_string()),
+        }
+        if word.matches('`').count() % 2 == 1 {
+            in_code = !in_code;
+        }
+    }
+    words
 }
 
 fn matrix(entries: &[TokenStream], count: usize) -> TokenStream {

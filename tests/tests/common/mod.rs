@@ -3,6 +3,7 @@
 
 use mechanisms::{FourBar, FourBarUnknowns};
 
+/// The seeds' Example 1 four-bar (180, 80, 200, 150 mm) with a coupler point.
 pub const EXAMPLE_1: FourBar<f64> = FourBar {
     l1: 180.0,
     l2: 80.0,
@@ -195,15 +196,17 @@ pub fn inverted_slider_crank<T: mechgen::Real>() -> mechanisms::InvertedSliderCr
     }
 }
 
+/// [`EXAMPLE_1`] in the float type `T`.
 pub fn example_1<T: mechgen::Real>() -> mechanisms::FourBar<T> {
-    let c = |v| T::constant(v);
+    let c = T::constant;
+    let e = EXAMPLE_1;
     mechanisms::FourBar {
-        l1: c(180.0),
-        l2: c(80.0),
-        l3: c(200.0),
-        l4: c(150.0),
-        a: c(100.0),
-        delta: c(0.5),
+        l1: c(e.l1),
+        l2: c(e.l2),
+        l3: c(e.l3),
+        l4: c(e.l4),
+        a: c(e.a),
+        delta: c(e.delta),
     }
 }
 
