@@ -73,17 +73,29 @@ pub enum BinaryOp {
 }
 
 impl Scalar {
-    /// The span covering the expression, for diagnostics.
+    /// The span of the expression's first token.
     pub fn span(&self) -> Span {
         match self {
             Scalar::Name(name) => name.span(),
-            Scalar::Number(_, span) => *span,
-            Scalar::Neg(span, inner) => span.join(inner.span()).unwrap_or(*span),
-            Scalar::Binary(_, _, left, right) => left
-                .span()
-                .join(right.span())
-                .unwrap_or_else(|| left.span()),
+            Scalar::Number(_, span) | Scalar::Neg(span, _) => *span,
+            Scalar::Binary(_, _, left, _) => left.span(),
         }
+    }
+
+    fn last_span(&self) -> Span {
+        match self {
+            Scalar::Name(name) => name.span(),
+            Scalar::Number(_, span) => *span,
+            Scalar::Neg(_, inner) | Scalar::Binary(_, _, _, inner) => inner.last_span(),
+        }
+    }
+
+    /// An error underlining the whole expression. (`Span::join` is unavailable on stable, but
+    /// `syn::Error::new_spanned` spans from a stream's first token to its last.)
+    pub fn error(&self, message: impl std::fmt::Display) -> syn::Error {
+        let first = proc_macro2::Ident::new("first", self.span());
+        let last = proc_macro2::Ident::new("last", self.last_span());
+        syn::Error::new_spanned(quote::quote!(#first #last), message)
     }
 }
 
@@ -270,13 +282,21 @@ fn parse_atom(input: ParseStream) -> syn::Result<Scalar> {
     } else if lookahead.peek(syn::LitInt) {
         let literal: syn::LitInt = input.parse()?;
         reject_suffix(literal.suffix(), literal.span())?;
-        Ok(Scalar::Number(literal.base10_parse()?, literal.span()))
+        finite(literal.base10_parse()?, literal.span())
     } else if lookahead.peek(syn::LitFloat) {
         let literal: syn::LitFloat = input.parse()?;
         reject_suffix(literal.suffix(), literal.span())?;
-        Ok(Scalar::Number(literal.base10_parse()?, literal.span()))
+        finite(literal.base10_parse()?, literal.span())
     } else {
         Err(lookahead.error())
+    }
+}
+
+fn finite(value: f64, span: Span) -> syn::Result<Scalar> {
+    if value.is_finite() {
+        Ok(Scalar::Number(value, span))
+    } else {
+        Err(syn::Error::new(span, "this number is too large for f64"))
     }
 }
 

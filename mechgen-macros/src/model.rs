@@ -72,6 +72,16 @@ impl Linear {
         self
     }
 
+    fn divided(mut self, divisor: f64) -> Self {
+        self.coefficients.values_mut().for_each(|c| *c /= divisor);
+        self.constant /= divisor;
+        self
+    }
+
+    fn is_finite(&self) -> bool {
+        self.constant.is_finite() && self.coefficients.values().all(|c| c.is_finite())
+    }
+
     fn plus(mut self, other: Linear) -> Self {
         for (symbol, coefficient) in other.coefficients {
             *self.coefficients.entry(symbol).or_insert(0.0) += coefficient;
@@ -217,11 +227,15 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         &undetermined,
         &mut errors,
     );
+    // Extra inputs were reported above; their uses in the loops need no second error.
+    scope
+        .poisoned
+        .extend(input.iter().skip(1).map(|extra| extra.name.to_string()));
     let loops: Vec<VectorSum> = loops
         .iter()
         .map(|sum| scope.vector_sum(sum, &mut errors))
         .collect();
-    let in_loops = std::mem::take(&mut scope.mentioned);
+    let in_loops = std::mem::take(&mut scope.appearing);
     let mut point_names: Vec<&Ident> = Vec::new();
     let points: Vec<Point> = points
         .iter()
@@ -266,14 +280,23 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
     })
 }
 
-fn set_once<T>(slot: &mut Option<(Ident, T)>, keyword: Ident, value: T, errors: &mut Errors) {
-    if slot.is_some() {
-        errors.error_at(
-            &keyword,
-            format!("`{keyword}` is given twice: list everything in one `{keyword}:` section"),
-        );
-    } else {
-        *slot = Some((keyword, value));
+/// Records a section that may appear once. A repeat is an error, but its entries are kept,
+/// so the names it declares do not also show up as undeclared.
+fn set_once<T>(
+    slot: &mut Option<(Ident, Vec<T>)>,
+    keyword: Ident,
+    value: Vec<T>,
+    errors: &mut Errors,
+) {
+    match slot {
+        Some((_, existing)) => {
+            errors.error_at(
+                &keyword,
+                format!("`{keyword}` is given twice: list everything in one `{keyword}:` section"),
+            );
+            existing.extend(value);
+        }
+        None => *slot = Some((keyword, value)),
     }
 }
 
@@ -326,9 +349,12 @@ fn symbols(
 struct Scope {
     /// Each name's symbol, and its kind unless the declaration left it undetermined.
     names: BTreeMap<String, (SymbolRef, Option<Kind>)>,
-    /// Symbols used so far, resolved or not, so "appears in no loop" is not said of a
-    /// symbol whose use was already reported as an error.
-    mentioned: BTreeSet<SymbolRef>,
+    /// Names declared in error (an extra input): using one reports nothing more.
+    poisoned: BTreeSet<String>,
+    /// Symbols the resolved sums depend on so far (see [`Scope::resolve`]).
+    appearing: BTreeSet<SymbolRef>,
+    /// Symbols mentioned by the expression being resolved.
+    seen: BTreeSet<SymbolRef>,
 }
 
 impl Scope {
@@ -372,7 +398,9 @@ impl Scope {
         }
         Scope {
             names,
-            mentioned: BTreeSet::new(),
+            poisoned: BTreeSet::new(),
+            appearing: BTreeSet::new(),
+            seen: BTreeSet::new(),
         }
     }
 
@@ -387,17 +415,38 @@ impl Scope {
             .iter()
             .map(|term| Term {
                 negated: term.negated,
-                magnitude: self
-                    .linear(&term.magnitude, Kind::Length, errors)
-                    .unwrap_or_default(),
-                angle: self
-                    .linear(&term.angle, Kind::Angle, errors)
-                    .unwrap_or_default(),
+                magnitude: self.resolve(&term.magnitude, Kind::Length, errors),
+                angle: self.resolve(&term.angle, Kind::Angle, errors),
             })
             .collect();
         VectorSum {
             terms,
             source: sum.to_string(),
+        }
+    }
+
+    /// Resolves one magnitude or angle and records which symbols it really depends on (a
+    /// name whose coefficient cancels, as in `theta2 - theta2`, does not count). After an
+    /// error, every name it mentions counts, so no "appears in no loop" follows from it.
+    fn resolve(&mut self, scalar: &Scalar, expected: Kind, errors: &mut Errors) -> Linear {
+        self.seen.clear();
+        let resolved = self.linear(scalar, expected, errors).and_then(|linear| {
+            if linear.is_finite() {
+                Some(linear)
+            } else {
+                errors.push(scalar.error("this expression overflows f64"));
+                None
+            }
+        });
+        match resolved {
+            Some(linear) => {
+                self.appearing.extend(linear.coefficients.keys().copied());
+                linear
+            }
+            None => {
+                self.appearing.append(&mut self.seen);
+                Linear::default()
+            }
         }
     }
 
@@ -408,7 +457,7 @@ impl Scope {
             Scalar::Number(value, _) => Some(Linear::constant(*value)),
             Scalar::Name(name) => match self.names.get(&name.to_string()).copied() {
                 Some((symbol, kind)) => {
-                    self.mentioned.insert(symbol);
+                    self.seen.insert(symbol);
                     match kind {
                         Some(kind) if kind != expected => {
                             let place = match expected {
@@ -423,6 +472,7 @@ impl Scope {
                     }
                 }
                 None if name == "pi" => Some(Linear::constant(std::f64::consts::PI)),
+                None if self.poisoned.contains(&name.to_string()) => None,
                 None => {
                     errors.error_at(
                         name,
@@ -455,17 +505,16 @@ impl Scope {
                         }
                     },
                     BinaryOp::Div => match r.as_constant() {
-                        Some(c) if c != 0.0 => Some(l.scaled(1.0 / c)),
+                        Some(c) if c != 0.0 => Some(l.divided(c)),
                         Some(_) => {
-                            errors.error_at_span(right.span(), "division by zero");
+                            errors.push(right.error("division by zero"));
                             None
                         }
                         None => {
-                            errors.error_at_span(
-                                right.span(),
+                            errors.push(right.error(
                                 "loop terms are linear in the declared names: \
                                  divide by numbers only",
-                            );
+                            ));
                             None
                         }
                     },
@@ -608,8 +657,11 @@ impl fmt::Display for Scalar {
                     BinaryOp::Mul => "*",
                     BinaryOp::Div => "/",
                 };
+                let right_needs_parens =
+                    matches!(**right, Scalar::Binary(BinaryOp::Mul | BinaryOp::Div, ..));
                 match op {
                     "+" | "-" => write!(f, "({left} {op} {right})"),
+                    _ if right_needs_parens => write!(f, "{left} {op} ({right})"),
                     _ => write!(f, "{left} {op} {right}"),
                 }
             }

@@ -1,8 +1,12 @@
 //! Small dense linear solves on the stack, with a singularity check.
 //!
-//! Generated code calls [`solve2`] or [`solve3`] (closed form, Cramer's rule) for the common
-//! sizes and [`solve_lu`] (partial pivoting) for larger systems. Each reports a singular
-//! matrix as [`Error::Singular`] rather than dividing by (nearly) zero.
+//! Generated code calls [`solve2`] (closed form, Cramer's rule) for a single loop's 2×2
+//! system and [`solve_lu`] (partial pivoting) for larger ones. Loops give two equations each,
+//! so systems always have an even size. Each solver first scales every row (and its
+//! right-hand side) to unit length: that leaves the solution unchanged, makes the
+//! determinant of the scaled matrix a scale-free singularity measure in [0, 1] (Hadamard's
+//! bound), and keeps it from overflowing or underflowing for very large or small mechanisms.
+//! A matrix singular to working precision is reported as [`Error::Singular`].
 
 use crate::Error;
 use crate::Real;
@@ -13,30 +17,40 @@ fn singular_threshold<T: Real>(rows: usize) -> T {
     T::constant(4.0 * rows as f64) * T::epsilon()
 }
 
-fn row_norm<T: Real>(row: &[T]) -> T {
-    row.iter().fold(T::zero(), |acc, v| acc.hypot(*v))
+/// Scales each row of `a` and entry of `b` by the row's Euclidean norm. Returns the product
+/// of the norms (the scale the determinant is divided by), or an error for a zero row or a
+/// non-finite entry.
+fn equilibrate<T: Real, const N: usize>(
+    a: &mut [[T; N]; N],
+    b: &mut [T; N],
+) -> Result<T, Error<T>> {
+    let mut scale = T::one();
+    for (row, bi) in a.iter_mut().zip(b.iter_mut()) {
+        let norm = row.iter().fold(T::zero(), |acc, v| acc.hypot(*v));
+        if !norm.is_finite() || !bi.is_finite() {
+            return Err(Error::NonFinite {
+                quantity: "linear system",
+            });
+        }
+        if norm == T::zero() {
+            return Err(Error::Singular {
+                determinant: T::zero(),
+                relative_determinant: T::zero(),
+            });
+        }
+        row.iter_mut().for_each(|v| *v = *v / norm);
+        *bi = *bi / norm;
+        scale = scale * norm;
+    }
+    Ok(scale)
 }
 
-/// Checks `determinant` against Hadamard's bound for `rows`.
-fn check_determinant<T: Real, const N: usize>(
-    determinant: T,
-    rows: &[[T; N]; N],
-) -> Result<(), Error<T>> {
-    let bound = rows.iter().fold(T::one(), |acc, row| acc * row_norm(row));
-    let relative_determinant = if bound > T::zero() {
-        determinant.abs() / bound
-    } else {
-        T::zero()
-    };
-    if !determinant.is_finite() || !bound.is_finite() {
-        return Err(Error::NonFinite {
-            quantity: "Jacobian",
-        });
-    }
-    if relative_determinant <= singular_threshold::<T>(N) {
+/// Rejects a scaled matrix whose determinant (`relative`, in [0, 1]) is at rounding level.
+fn check_determinant<T: Real>(relative: T, rows: usize, row_norms: T) -> Result<(), Error<T>> {
+    if relative.abs() <= singular_threshold::<T>(rows) {
         return Err(Error::Singular {
-            determinant,
-            relative_determinant,
+            determinant: relative * row_norms,
+            relative_determinant: relative.abs(),
         });
     }
     Ok(())
@@ -44,10 +58,11 @@ fn check_determinant<T: Real, const N: usize>(
 
 /// Solves the 2×2 system `a·x = b` by Cramer's rule.
 #[inline]
-pub fn solve2<T: Real>(a: [[T; 2]; 2], b: [T; 2]) -> Result<[T; 2], Error<T>> {
+pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<[T; 2], Error<T>> {
+    let row_norms = equilibrate(&mut a, &mut b)?;
     let [[a00, a01], [a10, a11]] = a;
     let determinant = a00 * a11 - a01 * a10;
-    check_determinant(determinant, &a)?;
+    check_determinant(determinant, 2, row_norms)?;
     let inverse = T::one() / determinant;
     Ok([
         (b[0] * a11 - a01 * b[1]) * inverse,
@@ -55,30 +70,14 @@ pub fn solve2<T: Real>(a: [[T; 2]; 2], b: [T; 2]) -> Result<[T; 2], Error<T>> {
     ])
 }
 
-/// Solves the 3×3 system `a·x = b` by Cramer's rule.
-#[inline]
-pub fn solve3<T: Real>(a: [[T; 3]; 3], b: [T; 3]) -> Result<[T; 3], Error<T>> {
-    let [[a00, a01, a02], [a10, a11, a12], [a20, a21, a22]] = a;
-    // Cofactors of the first row, reused for the determinant.
-    let c00 = a11 * a22 - a12 * a21;
-    let c01 = a12 * a20 - a10 * a22;
-    let c02 = a10 * a21 - a11 * a20;
-    let determinant = a00 * c00 + a01 * c01 + a02 * c02;
-    check_determinant(determinant, &a)?;
-    let inverse = T::one() / determinant;
-    let [b0, b1, b2] = b;
-    let x0 = b0 * c00 + a01 * (b2 * a12 - b1 * a22) + a02 * (b1 * a21 - b2 * a11);
-    let x1 = a00 * (b1 * a22 - b2 * a12) + b0 * c01 + a02 * (b2 * a10 - b1 * a20);
-    let x2 = a00 * (b2 * a11 - b1 * a21) + a01 * (b1 * a20 - b2 * a10) + b0 * c02;
-    Ok([x0 * inverse, x1 * inverse, x2 * inverse])
-}
-
 /// Solves the N×N system `a·x = b` by LU factorisation with partial pivoting, in place on
 /// stack copies.
-pub fn solve_lu<T: Real, const N: usize>(a: [[T; N]; N], b: [T; N]) -> Result<[T; N], Error<T>> {
-    let original = a;
-    let mut lu = a;
-    let mut x = b;
+pub fn solve_lu<T: Real, const N: usize>(
+    mut a: [[T; N]; N],
+    mut b: [T; N],
+) -> Result<[T; N], Error<T>> {
+    let row_norms = equilibrate(&mut a, &mut b)?;
+    let (mut lu, mut x) = (a, b);
     let mut determinant = T::one();
     for k in 0..N {
         let pivot_row = (k..N).fold(k, |best, i| {
@@ -109,7 +108,7 @@ pub fn solve_lu<T: Real, const N: usize>(a: [[T; N]; N], b: [T; N]) -> Result<[T
             *xi = *xi - factor * x_k;
         }
     }
-    check_determinant(determinant, &original)?;
+    check_determinant(determinant, N, row_norms)?;
     for k in (0..N).rev() {
         let sum = ((k + 1)..N).fold(x[k], |acc, j| acc - lu[k][j] * x[j]);
         x[k] = sum / lu[k][k];
@@ -146,10 +145,31 @@ mod tests {
     }
 
     #[test]
-    fn solve3_and_lu_recover_known_solution() {
+    fn lu_recovers_known_solution() {
         let b = multiply(&A3, &X3);
-        assert_close(solve3(A3, b).unwrap(), X3);
         assert_close(solve_lu(A3, b).unwrap(), X3);
+        let a2 = [[3.0, 1.0], [-2.0, 4.0]];
+        let x2 = [0.5, -1.5];
+        assert_close(solve_lu(a2, multiply(&a2, &x2)).unwrap(), x2);
+    }
+
+    #[test]
+    fn extreme_scales_neither_overflow_nor_underflow() {
+        // Row norms whose product overflows f32 (or underflows), with a well-conditioned
+        // matrix: the scaled determinant is 1, so both solve.
+        for scale in [1e25f32, 1e-25] {
+            let a = [[scale, 0.0], [0.0, scale]];
+            let x = solve2(a, [scale, 2.0 * scale]).unwrap();
+            assert_eq!(x, [1.0, 2.0]);
+            let a4 = [
+                [scale, 0.0, 0.0, 0.0],
+                [0.0, scale, 0.0, 0.0],
+                [0.0, 0.0, scale, 0.0],
+                [0.0, 0.0, 0.0, scale],
+            ];
+            let x = solve_lu(a4, [scale; 4]).unwrap();
+            assert_eq!(x, [1.0; 4]);
+        }
     }
 
     #[test]
@@ -178,8 +198,9 @@ mod tests {
             other => panic!("expected Singular, got {other:?}"),
         }
         let dependent = [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 1.0]];
+        let zero_row = [[1.0, 2.0], [0.0, 0.0]];
         assert!(matches!(
-            solve3(dependent, [1.0; 3]),
+            solve2(zero_row, [1.0; 2]),
             Err(Error::Singular { .. })
         ));
         assert!(matches!(

@@ -73,7 +73,7 @@ pub struct Linearisation<T, const N: usize> {
 /// Solves `f(x) = 0` by Newton-Raphson from `guess`.
 ///
 /// `linearise` evaluates the residual and Jacobian; `solve` solves `J·dx = f` (the generator
-/// passes the closed-form 2×2 or 3×3 solver, or the LU one).
+/// passes the closed-form 2×2 solver, or the LU one).
 pub fn newton<T: Real, const N: usize>(
     guess: [T; N],
     options: &NewtonOptions<T>,
@@ -119,6 +119,11 @@ pub fn newton<T: Real, const N: usize>(
             });
         }
         let step = solve(jacobian, residual)?;
+        if !all_finite(&step) {
+            return Err(Error::NonFinite {
+                quantity: "Newton step",
+            });
+        }
         for (xi, di) in x.iter_mut().zip(step) {
             *xi = *xi - di;
         }

@@ -97,3 +97,82 @@ fn rewritten_four_bar_agrees_with_the_shipped_one() {
     assert!((q.theta3 - reference.theta3).abs() < 1e-12);
     assert!((q.psi + std::f64::consts::FRAC_PI_2 - reference.theta4).abs() < 1e-12);
 }
+
+mechanism! {
+    /// The four-bar with negated magnitudes instead of subtracted terms.
+    pub struct NegatedMagnitudes {
+        params: l1, l2, l3, l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 + -l4 @ theta4 + -l1 @ 0;
+    }
+}
+
+mechanism! {
+    /// The four-bar with names that generated locals are derived from: the input `sin`
+    /// (rate `sin_dot`) and the unknown `dot` (whose sine would be `sin_dot`).
+    pub struct AwkwardNames {
+        params: l1, l2, l3, l4;
+        input: sin: angle;
+        unknowns: dot: angle, r#fn: angle;
+        loop: l2 @ sin + l3 @ dot - l4 @ r#fn - l1 @ 0;
+        point r#loop = l2 @ sin;
+    }
+}
+
+/// Example 1's open position and rates, from the shipped four-bar.
+fn example_1_reference(theta2: f64) -> ([f64; 2], [f64; 2]) {
+    let shipped = mechanisms::FourBar {
+        l1: 180.0,
+        l2: 80.0,
+        l3: 200.0,
+        l4: 150.0,
+        a: 0.0,
+        delta: 0.0,
+    };
+    let guess = mechanisms::FourBarUnknowns {
+        theta3: 0.4,
+        theta4: 1.2,
+    };
+    let q = shipped
+        .position(theta2, &guess, &NewtonOptions::default())
+        .unwrap()
+        .value;
+    let v = shipped.velocity(theta2, &q, 10.0).unwrap();
+    (q.to_array(), v.to_array())
+}
+
+#[test]
+fn negated_magnitudes_converge_to_the_rounding_floor() {
+    let linkage = NegatedMagnitudes {
+        l1: 180.0,
+        l2: 80.0,
+        l3: 200.0,
+        l4: 150.0,
+    };
+    for degree in (0..360).step_by(5) {
+        let theta2 = f64::from(degree).to_radians();
+        let (reference, _) = example_1_reference(theta2);
+        let guess = NegatedMagnitudesUnknowns::from_array(reference);
+        let solved = linkage.position(theta2 + 1e-3, &guess, &NewtonOptions::default());
+        assert!(solved.is_ok(), "{degree}°: {solved:?}");
+    }
+}
+
+#[test]
+fn generated_names_never_shadow_each_other() {
+    let linkage = AwkwardNames {
+        l1: 180.0,
+        l2: 80.0,
+        l3: 200.0,
+        l4: 150.0,
+    };
+    let theta2 = 1.0;
+    let (q_ref, v_ref) = example_1_reference(theta2);
+    let q = AwkwardNamesUnknowns::from_array(q_ref);
+    let v = linkage.velocity(theta2, &q, 10.0).unwrap().to_array();
+    assert!((v[0] - v_ref[0]).abs() < 1e-12 && (v[1] - v_ref[1]).abs() < 1e-12);
+    assert_eq!(AwkwardNamesUnknowns::<f64>::NAMES, ["dot", "fn"]);
+    let pin = linkage.points(theta2, &q).unwrap().r#loop;
+    assert!((pin.x - 80.0 * theta2.cos()).abs() < 1e-12);
+}

@@ -9,15 +9,40 @@ use std::collections::BTreeSet;
 
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
+use syn::ext::IdentExt;
 
 use crate::symbolic::{ExprId, Graph, Node, Var};
 
 /// The statements that compute some outputs, and the expression for each output.
 pub struct Block {
     pub statements: Vec<TokenStream>,
-    pub outputs: Vec<TokenStream>,
+    pub outputs: Vec<Emitted>,
     /// The variables the block reads, so the caller binds only those.
     pub used: BTreeSet<Var>,
+}
+
+/// An emitted expression and the precedence of its outermost operator.
+pub struct Emitted {
+    tokens: TokenStream,
+    precedence: Precedence,
+}
+
+impl Emitted {
+    /// The expression as the receiver of a method call, parenthesised if it needs to be.
+    pub fn receiver(&self) -> TokenStream {
+        let tokens = &self.tokens;
+        if self.precedence < Precedence::Atom {
+            quote!((#tokens))
+        } else {
+            tokens.clone()
+        }
+    }
+}
+
+impl quote::ToTokens for Emitted {
+    fn to_tokens(&self, tokens: &mut TokenStream) {
+        self.tokens.to_tokens(tokens);
+    }
 }
 
 /// Operator precedence, low to high, for minimal parentheses.
@@ -34,15 +59,29 @@ pub fn local(name: &str) -> Ident {
     Ident::new(name, Span::mixed_site())
 }
 
-pub fn emit(graph: &Graph, outputs: &[ExprId], var_name: &dyn Fn(Var) -> Ident) -> Block {
+/// Emits `outputs`. `reserved` holds the other generated names in scope (arguments, rates),
+/// which the block's own locals must not shadow.
+pub fn emit(
+    graph: &Graph,
+    outputs: &[ExprId],
+    var_name: &dyn Fn(Var) -> Ident,
+    reserved: &BTreeSet<String>,
+) -> Block {
     let mut emitter = Emitter {
         graph,
         var_name,
         names: vec![None; graph.len()],
         used: BTreeSet::new(),
+        taken: reserved.clone(),
     };
     let statements = emitter.schedule(outputs);
-    let outputs = outputs.iter().map(|&o| emitter.expr(o).0).collect();
+    let outputs = outputs
+        .iter()
+        .map(|&o| {
+            let (tokens, precedence) = emitter.expr(o);
+            Emitted { tokens, precedence }
+        })
+        .collect();
     Block {
         statements,
         outputs,
@@ -56,6 +95,8 @@ struct Emitter<'a> {
     /// The local holding a node's value, once it has one.
     names: Vec<Option<Ident>>,
     used: BTreeSet<Var>,
+    /// Generated names in scope so far, so a new local never shadows another.
+    taken: BTreeSet<String>,
 }
 
 impl Emitter<'_> {
@@ -103,19 +144,33 @@ impl Emitter<'_> {
             let id = id_at(i);
             match graph.node(id) {
                 Node::Sin(a) | Node::Cos(a) if self.names[i].is_none() => {
-                    let stem = match graph.node(a) {
-                        Node::Var(var) => (self.var_name)(var).to_string(),
-                        _ => {
+                    // Named after the angle when it is a variable (`sin_theta3`), else numbered.
+                    let named = match graph.node(a) {
+                        Node::Var(var) => Some((self.var_name)(var).unraw().to_string()),
+                        _ => None,
+                    };
+                    let stem = match named.filter(|stem| self.trig_names_free(stem)) {
+                        Some(stem) => stem,
+                        None => loop {
                             angles += 1;
-                            (angles - 1).to_string()
-                        }
+                            let stem = (angles - 1).to_string();
+                            if self.trig_names_free(&stem) {
+                                break stem;
+                            }
+                        },
                     };
                     statements.push(self.trig(a, &stem, has_sin[a.index()], has_cos[a.index()]));
                 }
                 Node::Add(..) | Node::Mul(..) if uses[i] > 1 => {
                     let value = self.expr(id).0;
-                    let name = local(&format!("t{temporaries}"));
-                    temporaries += 1;
+                    let name = loop {
+                        let name = format!("t{temporaries}");
+                        temporaries += 1;
+                        if !self.taken.contains(&name) {
+                            break name;
+                        }
+                    };
+                    let name = local(&name);
                     statements.push(quote!(let #name = #value;));
                     self.names[i] = Some(name);
                 }
@@ -125,11 +180,19 @@ impl Emitter<'_> {
         statements
     }
 
+    fn trig_names_free(&self, stem: &str) -> bool {
+        ![format!("sin_{stem}"), format!("cos_{stem}")]
+            .iter()
+            .any(|name| self.taken.contains(name))
+    }
+
     /// `let (sin_x, cos_x) = x.sin_cos();`, or the one of them that is needed.
     fn trig(&mut self, angle: ExprId, stem: &str, sin: bool, cos: bool) -> TokenStream {
         let argument = self.operand(angle, Precedence::Atom);
         let sin_name = local(&format!("sin_{stem}"));
         let cos_name = local(&format!("cos_{stem}"));
+        self.taken
+            .extend([sin_name.to_string(), cos_name.to_string()]);
         let mut assign = |node: Node, name: &Ident| {
             if let Some(index) = self.find(node) {
                 self.names[index] = Some(name.clone());
@@ -263,7 +326,13 @@ fn children(node: Node) -> impl Iterator<Item = ExprId> {
 
 /// A constant of the generic float type `T`.
 pub fn constant(value: f64) -> TokenStream {
-    if value == 0.0 {
+    // The model rejects non-finite numbers; folding extreme ones can still overflow, and
+    // then the generated code computes with the same infinity instead of failing to expand.
+    if value.is_nan() {
+        quote!(T::nan())
+    } else if value.is_infinite() {
+        quote!(T::infinity())
+    } else if value == 0.0 {
         quote!(T::zero())
     } else if value == 1.0 {
         quote!(T::one())

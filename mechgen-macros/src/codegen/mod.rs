@@ -3,12 +3,15 @@
 
 mod emit;
 
+use std::collections::BTreeSet;
+
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
 use crate::model::{Kind, Model, Symbol, SymbolRef};
 use crate::symbolic::{Equations, ExprId, Var};
-use emit::{Block, emit, local};
+use emit::{Block, Emitted, emit, local};
+use syn::ext::IdentExt;
 
 pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
     let generator = Generator::new(model, equations);
@@ -40,25 +43,68 @@ struct Generator<'a> {
     input_ddot: Ident,
     unknown_dots: Vec<Ident>,
     unknown_ddots: Vec<Ident>,
+    /// Every generated name a function body can see besides its own temporaries.
+    reserved: BTreeSet<String>,
 }
 
-/// Names of the generated functions' own arguments.
+/// Said of the evaluators, which unlike the solvers return plain arrays.
+const RAW_EVALUATION: &str = "A raw evaluation: it does not check its arguments, so a NaN \
+     in gives NaN out. The solvers check theirs.";
+
+/// The generated functions' own argument and local names, besides derived ones.
+const ARGUMENT_NAMES: [&str; 10] = [
+    "position",
+    "velocity",
+    "acceleration",
+    "guess",
+    "options",
+    "x",
+    "jacobian",
+    "rhs",
+    "solution",
+    "values",
+];
+
+/// One of [`ARGUMENT_NAMES`], as a hygienic identifier.
 fn arg(name: &str) -> Ident {
+    debug_assert!(ARGUMENT_NAMES.contains(&name));
     local(name)
 }
 
 impl<'a> Generator<'a> {
     fn new(model: &'a Model, equations: &'a Equations) -> Self {
-        let derived = |symbol: &Symbol, suffix: &str| local(&format!("{}_{suffix}", symbol.name));
+        let derived =
+            |symbol: &Symbol, suffix: &str| local(&format!("{}_{suffix}", symbol.name.unraw()));
+        let input_dot = derived(&model.input, "dot");
+        let input_ddot = derived(&model.input, "ddot");
+        let unknown_dots: Vec<Ident> = model.unknowns.iter().map(|u| derived(u, "dot")).collect();
+        let unknown_ddots: Vec<Ident> = model.unknowns.iter().map(|u| derived(u, "ddot")).collect();
+        let point_components = model.points.iter().flat_map(|p| {
+            let name = p.name.unraw();
+            [format!("{name}_x"), format!("{name}_y")]
+        });
+        let reserved = ARGUMENT_NAMES
+            .iter()
+            .map(|name| name.to_string())
+            .chain(
+                [&input_dot, &input_ddot]
+                    .into_iter()
+                    .chain(&unknown_dots)
+                    .chain(&unknown_ddots)
+                    .map(Ident::to_string),
+            )
+            .chain(point_components)
+            .collect();
         Generator {
             model,
             equations,
             unknowns_type: format_ident!("{}Unknowns", model.name),
             points_type: format_ident!("{}Points", model.name),
-            input_dot: derived(&model.input, "dot"),
-            input_ddot: derived(&model.input, "ddot"),
-            unknown_dots: model.unknowns.iter().map(|u| derived(u, "dot")).collect(),
-            unknown_ddots: model.unknowns.iter().map(|u| derived(u, "ddot")).collect(),
+            input_dot,
+            input_ddot,
+            unknown_dots,
+            unknown_ddots,
+            reserved,
         }
     }
 
@@ -79,12 +125,17 @@ impl<'a> Generator<'a> {
     /// Emits `outputs` with the `let`s that bind the parameters and unknowns they read.
     /// Some outputs do not depend on the input (a Jacobian often does not); then the
     /// prologue marks the input argument as deliberately unused.
-    fn block(&self, outputs: &[ExprId]) -> (TokenStream, Vec<TokenStream>) {
+    fn block(&self, outputs: &[ExprId]) -> (TokenStream, Vec<Emitted>) {
         let Block {
             statements,
             outputs,
             used,
-        } = emit(&self.equations.graph, outputs, &|var| self.var_name(var));
+        } = emit(
+            &self.equations.graph,
+            outputs,
+            &|var| self.var_name(var),
+            &self.reserved,
+        );
         let position = arg("position");
         let velocity = arg("velocity");
         let acceleration = arg("acceleration");
@@ -123,7 +174,7 @@ impl<'a> Generator<'a> {
             let field = &param.name;
             let docs = docs_or(
                 &param.docs,
-                &format!("Parameter `{field}`: {}.", unit(param.kind)),
+                &format!("Parameter `{}`: {}.", field.unraw(), unit(param.kind)),
             );
             quote!(#docs pub #field: T,)
         });
@@ -146,12 +197,12 @@ impl<'a> Generator<'a> {
         let ty = &self.unknowns_type;
         let count = Literal::usize_unsuffixed(unknowns.len());
         let names: Vec<&Ident> = unknowns.iter().map(|u| &u.name).collect();
-        let name_strings = names.iter().map(|n| n.to_string());
+        let name_strings = names.iter().map(|n| n.unraw().to_string());
         let fields = unknowns.iter().map(|unknown| {
             let field = &unknown.name;
             let docs = docs_or(
                 &unknown.docs,
-                &format!("Unknown `{field}`: {}.", unit(unknown.kind)),
+                &format!("Unknown `{}`: {}.", field.unraw(), unit(unknown.kind)),
             );
             quote!(#docs pub #field: T,)
         });
@@ -196,7 +247,11 @@ impl<'a> Generator<'a> {
         let ty = &self.points_type;
         let fields = points.iter().map(|point| {
             let field = &point.name;
-            let doc = doc(&format!("Point `{field}` = `{}`.", point.position.source));
+            let doc = doc(&format!(
+                "Point `{}` = `{}`.",
+                field.unraw(),
+                point.position.source
+            ));
             quote!(#doc pub #field: ::mechgen::Vec2<T>,)
         });
         let text = format!(
@@ -245,10 +300,10 @@ impl<'a> Generator<'a> {
         let input = &self.model.input.name;
         let checks = self.model.params.iter().map(|param| {
             let field = &param.name;
-            let label = format!("parameter `{field}`");
+            let label = format!("parameter `{}`", field.unraw());
             quote!((self.#field, #label),)
         });
-        let input_label = format!("input `{input}`");
+        let input_label = format!("input `{}`", input.unraw());
         quote! {
             /// Checks that the parameters and the input are finite.
             #[inline]
@@ -287,7 +342,7 @@ impl<'a> Generator<'a> {
         let (prologue, outputs) = self.block(&self.equations.residual);
         let doc = doc(&format!(
             "The loop-closure residual at `{input}` and `{position}`: zero when the loops \
-             close.\n{}",
+             close.\n{}\n\n{RAW_EVALUATION}",
             self.loops_doc()
         ));
         quote! {
@@ -306,9 +361,12 @@ impl<'a> Generator<'a> {
         let entries: Vec<ExprId> = self.equations.jacobian.iter().flatten().copied().collect();
         let (prologue, outputs) = self.block(&entries);
         let rows = matrix(&outputs, self.model.unknowns.len());
+        let raw = doc(RAW_EVALUATION);
         quote! {
             /// The Jacobian of [`Self::residual`] with respect to the unknowns: row `i`,
             /// column `j` is `∂residual[i]/∂unknown[j]`.
+            ///
+            #raw
             pub fn jacobian(&self, #input: T, #position: &#unknowns) -> [[T; #count]; #count] {
                 #prologue
                 #rows
@@ -334,7 +392,10 @@ impl<'a> Generator<'a> {
         let (residual, rest) = outputs.split_at(n);
         let (jacobian, magnitudes) = rest.split_at(n * n);
         let jacobian = matrix(jacobian, n);
-        let scale = magnitudes.iter().map(|m| quote!(#m.abs()));
+        let scale = magnitudes.iter().map(|m| {
+            let m = m.receiver();
+            quote!(#m.abs())
+        });
         quote! {
             #[inline]
             fn mechgen_linearise(
@@ -353,9 +414,9 @@ impl<'a> Generator<'a> {
     }
 
     fn solver(&self) -> TokenStream {
+        // Loops give two equations each: one loop is the closed-form 2×2 case.
         match self.model.unknowns.len() {
             2 => quote!(::mechgen::__private::solve2),
-            3 => quote!(::mechgen::__private::solve3),
             _ => quote!(::mechgen::__private::solve_lu),
         }
     }
@@ -399,8 +460,11 @@ impl<'a> Generator<'a> {
         let position = arg("position");
         let (unknowns, array, _) = self.signature_types();
         let (prologue, outputs) = self.block(&self.equations.input_jacobian);
+        let raw = doc(RAW_EVALUATION);
         quote! {
             /// The derivative of [`Self::residual`] with respect to the input.
+            ///
+            #raw
             pub fn input_jacobian(&self, #input: T, #position: &#unknowns) -> #array {
                 #prologue
                 [#(#outputs),*]
@@ -525,7 +589,10 @@ impl<'a> Generator<'a> {
         let names: Vec<&Ident> = self.model.points.iter().map(|p| &p.name).collect();
         let components: Vec<(Ident, Ident)> = names
             .iter()
-            .map(|name| (local(&format!("{name}_x")), local(&format!("{name}_y"))))
+            .map(|name| {
+                let name = name.unraw();
+                (local(&format!("{name}_x")), local(&format!("{name}_y")))
+            })
             .collect();
         let pattern = components.iter().map(|(x, y)| quote!(#x, #y));
         let fields = names
@@ -606,7 +673,7 @@ fn unbreakable_words(line: &str) -> Vec<String> {
     words
 }
 
-fn matrix(entries: &[TokenStream], count: usize) -> TokenStream {
+fn matrix(entries: &[Emitted], count: usize) -> TokenStream {
     let rows = entries.chunks(count).map(|row| quote!([#(#row),*]));
     quote!([#(#rows),*])
 }

@@ -138,6 +138,10 @@ impl Graph {
             _ if self.is_zero(b) => a,
             (Node::Neg(x), _) if x == b => self.constant(0.0),
             (_, Node::Neg(y)) if y == a => self.constant(0.0),
+            _ if a == b => {
+                let two = self.constant(2.0);
+                self.mul(two, a)
+            }
             // -x + -y = -(x + y): one negation instead of two.
             (Node::Neg(x), Node::Neg(y)) => {
                 let sum = self.add(x, y);
@@ -158,28 +162,53 @@ impl Graph {
             (Some(0.0), _) | (_, Some(0.0)) => return self.constant(0.0),
             (Some(1.0), _) => return b,
             (_, Some(1.0)) => return a,
-            (Some(-1.0), _) => return self.neg(b),
-            (_, Some(-1.0)) => return self.neg(a),
-            // Constants go first, and the rest in arena order, so `x·y` and `y·x` are one node.
-            (None, Some(_)) => return self.mul(b, a),
-            (None, None) if b < a => return self.mul(b, a),
             _ => {}
         }
-        match (self.node(a), self.node(b)) {
-            (Node::Neg(x), _) => {
-                let product = self.mul(x, b);
-                self.neg(product)
+        if let Node::Neg(x) = self.node(a) {
+            let product = self.mul(x, b);
+            return self.neg(product);
+        }
+        if let Node::Neg(y) = self.node(b) {
+            let product = self.mul(a, y);
+            return self.neg(product);
+        }
+        // A product is kept as one constant times its other factors sorted by arena order,
+        // so `x·(y·z)` and `(z·x)·y` are one node, and a negative constant becomes a negation.
+        let mut factors = Vec::new();
+        let mut constant = 1.0;
+        for side in [a, b] {
+            self.collect_factors(side, &mut factors, &mut constant);
+        }
+        factors.sort_unstable();
+        let mut product = factors[0];
+        for &factor in &factors[1..] {
+            product = self.intern(Node::Mul(product, factor));
+        }
+        match constant {
+            1.0 => product,
+            -1.0 => self.neg(product),
+            c if c < 0.0 => {
+                let magnitude = self.constant(-c);
+                let scaled = self.intern(Node::Mul(magnitude, product));
+                self.neg(scaled)
             }
-            (_, Node::Neg(y)) => {
-                let product = self.mul(a, y);
-                self.neg(product)
+            c => {
+                let factor = self.constant(c);
+                self.intern(Node::Mul(factor, product))
             }
-            // c1·(c2·x) = (c1·c2)·x
-            (Node::Const(_), Node::Mul(c, x)) if self.constant_value(c).is_some() => {
-                let factor = self.mul(a, c);
-                self.mul(factor, x)
+        }
+    }
+
+    /// The non-constant factors of a product (pushed to `factors`) and the product of its
+    /// constant ones (multiplied into `constant`).
+    fn collect_factors(&self, e: ExprId, factors: &mut Vec<ExprId>, constant: &mut f64) {
+        match self.node(e) {
+            Node::Const(bits) => *constant *= f64::from_bits(bits),
+            Node::Mul(x, y) => {
+                self.collect_factors(x, factors, constant);
+                self.collect_factors(y, factors, constant);
             }
-            _ => self.intern(Node::Mul(a, b)),
+            _ => factors.push(e),
         }
     }
 

@@ -1,0 +1,21 @@
+use mechgen::mechanism;
+
+mechanism! {
+    pub struct FourBar {
+        params: l1, l2, l3, l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - 1e400 * l1 @ 0;
+    }
+}
+
+mechanism! {
+    pub struct Overflowing {
+        params: l1, l2, l3, l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 / 1e-310 - l4 @ theta4 - 1e200 * 1e200 * l1 @ 0;
+    }
+}
+
+fn main() {}
