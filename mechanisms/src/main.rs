@@ -1,76 +1,53 @@
-//! Reproduces the course notes' worked examples (KINEMATICS.md) with the generated
-//! four-bar code and prints them next to the values the notes print.
+//! Reproduces the course notes' worked examples (KINEMATICS.md) with the shipped,
+//! macro-generated four-bar and prints them next to the values the notes print.
 //!
 //! Run with `cargo run --release -p mechanisms`.
 
+use std::error::Error;
+
 use mechanisms::{FourBar, FourBarUnknowns};
-use mechgen::{Error, NewtonOptions, Solved};
-
-fn linkage(l1: f64, l2: f64, l3: f64, l4: f64) -> FourBar<f64> {
-    FourBar {
-        l1,
-        l2,
-        l3,
-        l4,
-        a: 0.0,
-        delta: 0.0,
-    }
-}
-
-fn guess(theta3_deg: f64, theta4_deg: f64) -> FourBarUnknowns<f64> {
-    FourBarUnknowns {
-        theta3: theta3_deg.to_radians(),
-        theta4: theta4_deg.to_radians(),
-    }
-}
-
-fn lengths(l: [f64; 4]) -> String {
-    l.map(|x| x.to_string()).join(" ")
-}
+use mechgen::{Branch, NewtonOptions, Solved};
 
 fn degrees(radians: f64) -> f64 {
     radians.to_degrees().rem_euclid(360.0)
 }
 
-/// The transmission angle between coupler and rocker, in [0°, 180°].
-fn transmission_deg(q: &FourBarUnknowns<f64>) -> f64 {
-    let gamma = degrees(q.theta4 - q.theta3);
-    if gamma > 180.0 { 360.0 - gamma } else { gamma }
+fn lengths(linkage: &FourBar<f64>) -> String {
+    linkage.lengths().map(|x| x.to_string()).join(" ")
 }
 
-fn row(case: &str, quantity: &str, notes: &str, ours: impl std::fmt::Display) {
-    println!("{case:<12} {quantity:<22} {notes:>10} {ours:>12}");
+fn row(quantity: &str, notes: &str, ours: impl std::fmt::Display) {
+    println!("  {quantity:<24} {notes:>10} {ours:>14}");
 }
 
-/// The analytic examples: both branches, from guesses near each.
-fn analytic(case: &str, l: [f64; 4], theta2_deg: f64, notes: [&str; 4]) -> Result<(), Error<f64>> {
-    let linkage = linkage(l[0], l[1], l[2], l[3]);
+/// The analytic examples: both branches in closed form.
+fn analytic(
+    case: &str,
+    linkage: &FourBar<f64>,
+    theta2_deg: f64,
+    notes: [&str; 4],
+) -> Result<(), Box<dyn Error>> {
     let theta2 = theta2_deg.to_radians();
-    let options = NewtonOptions::default();
-    let open = linkage
-        .position(theta2, &guess(20.0, 80.0), &options)?
-        .value;
-    let crossed = linkage
-        .position(theta2, &guess(290.0, 235.0), &options)?
-        .value;
+    let open = linkage.assemble(theta2, Branch::Open)?;
+    let crossed = linkage.assemble(theta2, Branch::Crossed)?;
     let pin = linkage.points(theta2, &open)?.crank_pin;
-    let z = (pin.x - linkage.l1).hypot(pin.y);
-    println!("{case}: L1..L4 = {} mm, θ2 = {theta2_deg}°", lengths(l));
-    row("", "Z (mm)", notes[0], format!("{z:.4}"));
+    let z = (pin.x - linkage.lengths()[0]).hypot(pin.y);
+    println!(
+        "{case}: L1..L4 = {} mm, θ2 = {theta2_deg}°",
+        lengths(linkage)
+    );
+    row("Z (mm)", notes[0], format!("{z:.4}"));
     row(
-        "",
         "γ (°)",
         notes[1],
-        format!("{:.4}", transmission_deg(&open)),
+        format!("{:.4}", linkage.transmission_angle(&open).to_degrees()),
     );
     row(
-        "",
         "θ4 open (°)",
         notes[2],
         format!("{:.4}", degrees(open.theta4)),
     );
     row(
-        "",
         "θ4 crossed (°)",
         notes[3],
         format!("{:.4}", degrees(crossed.theta4)),
@@ -81,80 +58,95 @@ fn analytic(case: &str, l: [f64; 4], theta2_deg: f64, notes: [&str; 4]) -> Resul
 /// The Newton examples: the notes' own guess and tolerance.
 fn newton(
     case: &str,
-    l: [f64; 4],
+    linkage: &FourBar<f64>,
     theta2_deg: f64,
-    start: (f64, f64),
+    start_deg: (f64, f64),
     tolerance: f64,
     notes: [&str; 2],
-) -> Result<(), Error<f64>> {
-    let linkage = linkage(l[0], l[1], l[2], l[3]);
-    let options = NewtonOptions::new(tolerance, 50);
+) -> Result<(), Box<dyn Error>> {
+    let guess = FourBarUnknowns {
+        theta3: start_deg.0.to_radians(),
+        theta4: start_deg.1.to_radians(),
+    };
     let Solved {
         value,
         iterations,
         residual_norm,
-    } = linkage.position(theta2_deg.to_radians(), &guess(start.0, start.1), &options)?;
+    } = linkage.position(
+        theta2_deg.to_radians(),
+        &guess,
+        &NewtonOptions::new(tolerance, 50),
+    )?;
     println!(
         "{case}: L1..L4 = {} mm, θ2 = {theta2_deg}°, Newton from θ3 = {}°, θ4 = {}°, |f| < {tolerance:e}",
-        lengths(l),
-        start.0,
-        start.1
+        lengths(linkage),
+        start_deg.0,
+        start_deg.1
     );
-    row(
-        "",
-        "θ3 (°)",
-        notes[0],
-        format!("{:.4}", degrees(value.theta3)),
-    );
-    row(
-        "",
-        "θ4 (°)",
-        notes[1],
-        format!("{:.4}", degrees(value.theta4)),
-    );
-    row("", "Newton updates", "", iterations.to_string());
-    row("", "final |f| (mm)", "", format!("{residual_norm:.1e}"));
+    row("θ3 (°)", notes[0], format!("{:.4}", degrees(value.theta3)));
+    row("θ4 (°)", notes[1], format!("{:.4}", degrees(value.theta4)));
+    row("Newton updates", "", iterations);
+    row("final |f| (mm)", "", format!("{residual_norm:.1e}"));
     Ok(())
 }
 
-/// Rates at Example 1's open position for a crank turning at 10 rad/s, speeding up at
-/// 5 rad/s² (not in the notes: they stop at positions for this linkage).
-fn rates() -> Result<(), Error<f64>> {
-    let linkage = linkage(180.0, 80.0, 200.0, 150.0);
+/// What else the generated code and the analyses give for Example 1 (not in the notes, which
+/// stop at positions for this linkage): rates for a crank turning at 10 rad/s and speeding up
+/// at 5 rad/s², Grashof class, transmission extremes and mechanical advantage.
+fn beyond_the_notes(linkage: &FourBar<f64>) -> Result<(), Box<dyn Error>> {
     let theta2 = 60f64.to_radians();
-    let q = linkage
-        .position(theta2, &guess(20.0, 80.0), &NewtonOptions::default())?
-        .value;
+    let q = linkage.assemble(theta2, Branch::Open)?;
     let v = linkage.velocity(theta2, &q, 10.0)?;
     let a = linkage.acceleration(theta2, &q, 10.0, &v, 5.0)?;
+    let grashof = linkage.grashof();
+    let extremes = linkage.transmission_extremes();
     println!("Example 1, open branch, ω2 = 10 rad/s, α2 = 5 rad/s²");
     row(
-        "",
         "ω3, ω4 (rad/s)",
         "",
         format!("{:.4}, {:.4}", v.theta3, v.theta4),
     );
     row(
-        "",
         "α3, α4 (rad/s²)",
         "",
         format!("{:.3}, {:.3}", a.theta3, a.theta4),
     );
+    row(
+        "Grashof",
+        "",
+        format!("{:?}, {:?}", grashof.class, grashof.inversion),
+    );
+    row(
+        "γ min, max (°)",
+        "",
+        format!(
+            "{:.2}, {:.2}",
+            extremes.min.to_degrees(),
+            extremes.max.to_degrees()
+        ),
+    );
+    let advantage = linkage.mechanical_advantage(theta2, &q)?;
+    let advantage = advantage
+        .finite()
+        .map_or("unbounded".into(), |ma| format!("{ma:.4}"));
+    row("mechanical advantage", "", advantage);
     Ok(())
 }
 
-fn main() -> Result<(), Error<f64>> {
+fn main() -> Result<(), Box<dyn Error>> {
     println!("The course notes' worked examples, solved by code generated by mechgen::mechanism!");
-    row("", "quantity", "notes", "mechgen");
+    println!("  {:<24} {:>10} {:>14}", "quantity", "notes", "mechgen");
+    let example_1 = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+    let exercises = FourBar::new(300.0, 100.0, 250.0, 200.0)?;
     analytic(
         "Example 1",
-        [180.0, 80.0, 200.0, 150.0],
+        &example_1,
         60.0,
         ["156.20", "50.58", "72.14", "235.20"],
     )?;
     newton(
         "Example 2",
-        [180.0, 80.0, 200.0, 150.0],
+        &example_1,
         60.0,
         (15.0, 80.0),
         1e-4,
@@ -162,17 +154,17 @@ fn main() -> Result<(), Error<f64>> {
     )?;
     analytic(
         "Exercise 3",
-        [300.0, 100.0, 250.0, 200.0],
+        &exercises,
         45.0,
         ["", "63.30", "94.30", "231.43"],
     )?;
     newton(
         "Exercise 4",
-        [300.0, 100.0, 250.0, 200.0],
+        &exercises,
         60.0,
         (30.0, 100.0),
         1e-5,
         ["26.528", "97.562"],
     )?;
-    rates()
+    beyond_the_notes(&example_1)
 }

@@ -4,7 +4,7 @@
 //! mechanism! {
 //!     /// docs
 //!     pub struct FourBar {
-//!         params: l1, l2, l3, l4, gamma: angle;
+//!         params: pub l1, pub l2, pub l3, pub l4, pub gamma: angle;
 //!         input: theta2: angle;
 //!         unknowns: theta3: angle, theta4: angle;
 //!         loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
@@ -33,13 +33,14 @@ pub enum Section {
     Input(Ident, Vec<SymbolDecl>),
     Unknowns(Ident, Vec<SymbolDecl>),
     Loop(VectorSum),
-    Point(Ident, VectorSum),
+    Point(Vec<Attribute>, Ident, VectorSum),
     Generate(Ident, Vec<Ident>),
 }
 
-/// `name` or `name: kind`, with doc attributes.
+/// `name` or `name: kind`, with doc attributes and, for a parameter, a visibility.
 pub struct SymbolDecl {
     pub attrs: Vec<Attribute>,
+    pub vis: Visibility,
     pub name: Ident,
     pub kind: Option<Ident>,
 }
@@ -124,6 +125,14 @@ impl Parse for Declaration {
 
 impl Parse for Section {
     fn parse(input: ParseStream) -> syn::Result<Self> {
+        let attrs = input.call(Attribute::parse_outer)?;
+        let is_point = input.fork().parse::<Ident>().is_ok_and(|i| i == "point");
+        if let (Some(attr), false) = (attrs.first(), is_point) {
+            return Err(syn::Error::new_spanned(
+                attr,
+                "doc comments and attributes go on points and on declared names, not on sections",
+            ));
+        }
         if input.peek(Token![loop]) {
             input.parse::<Token![loop]>()?;
             input.parse::<Token![:]>()?;
@@ -141,7 +150,7 @@ impl Parse for Section {
             "point" => {
                 let name = input.parse()?;
                 input.parse::<Token![=]>()?;
-                Section::Point(name, input.parse()?)
+                Section::Point(attrs, name, input.parse()?)
             }
             "generate" => {
                 input.parse::<Token![:]>()?;
@@ -169,6 +178,7 @@ fn parse_symbol_list(input: ParseStream) -> syn::Result<Vec<SymbolDecl>> {
 impl Parse for SymbolDecl {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let attrs = input.call(Attribute::parse_outer)?;
+        let vis = input.parse()?;
         let name = input.parse()?;
         let kind = if input.peek(Token![:]) {
             input.parse::<Token![:]>()?;
@@ -176,7 +186,12 @@ impl Parse for SymbolDecl {
         } else {
             None
         };
-        Ok(SymbolDecl { attrs, name, kind })
+        Ok(SymbolDecl {
+            attrs,
+            vis,
+            name,
+            kind,
+        })
     }
 }
 

@@ -42,6 +42,8 @@ pub struct Symbol {
     pub name: Ident,
     pub kind: Kind,
     pub docs: Vec<Attribute>,
+    /// The field's visibility, for a parameter (private unless declared `pub`, as in Rust).
+    pub vis: Visibility,
 }
 
 /// `Σ coefficient·symbol + constant`: every scalar in a loop is linear in the declared names.
@@ -112,6 +114,7 @@ pub struct VectorSum {
 
 pub struct Point {
     pub name: Ident,
+    pub docs: Vec<Attribute>,
     pub position: VectorSum,
 }
 
@@ -168,7 +171,7 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
                 set_once(&mut unknowns, keyword, decls, &mut errors)
             }
             Section::Loop(sum) => loops.push(sum),
-            Section::Point(name, sum) => points.push((name, sum)),
+            Section::Point(docs, name, sum) => points.push((docs, name, sum)),
             Section::Generate(keyword, outputs) => {
                 set_once(&mut generate, keyword, outputs, &mut errors)
             }
@@ -239,7 +242,7 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
     let mut point_names: Vec<&Ident> = Vec::new();
     let points: Vec<Point> = points
         .iter()
-        .map(|(point_name, sum)| {
+        .map(|(docs, point_name, sum)| {
             if point_names.contains(&point_name) {
                 errors.error_at(
                     point_name,
@@ -249,6 +252,7 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
             point_names.push(point_name);
             Point {
                 name: point_name.clone(),
+                docs: docs.clone(),
                 position: scope.vector_sum(sum, &mut errors),
             }
         })
@@ -265,6 +269,7 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
             name: Ident::new("input", name.span()),
             kind: Kind::Angle,
             docs: Vec::new(),
+            vis: Visibility::Inherited,
         },
     };
     errors.finish(Model {
@@ -312,36 +317,51 @@ fn symbols(
 ) -> Vec<Symbol> {
     decls
         .into_iter()
-        .map(|SymbolDecl { attrs, name, kind }| {
-            let kind = match (kind, default) {
-                (Some(kind), _) => match kind.to_string().as_str() {
-                    "angle" => Kind::Angle,
-                    "length" => Kind::Length,
-                    _ => {
-                        errors.error_at(&kind, "expected `angle` or `length`");
+        .map(
+            |SymbolDecl {
+                 attrs,
+                 vis,
+                 name,
+                 kind,
+             }| {
+                if !matches!(vis, Visibility::Inherited) && default.is_none() {
+                    errors.error_at(
+                        &vis,
+                        "only parameters have a visibility: the input and unknowns are arguments \
+                     and fields of the public unknowns struct",
+                    );
+                }
+                let kind = match (kind, default) {
+                    (Some(kind), _) => match kind.to_string().as_str() {
+                        "angle" => Kind::Angle,
+                        "length" => Kind::Length,
+                        _ => {
+                            errors.error_at(&kind, "expected `angle` or `length`");
+                            undetermined.insert(name.to_string());
+                            Kind::Length
+                        }
+                    },
+                    (None, Some(default)) => default,
+                    (None, None) => {
+                        errors.error_at(
+                            &name,
+                            format!(
+                                "say whether `{name}` is an angle or a length: \
+                             `{name}: angle` or `{name}: length`"
+                            ),
+                        );
                         undetermined.insert(name.to_string());
                         Kind::Length
                     }
-                },
-                (None, Some(default)) => default,
-                (None, None) => {
-                    errors.error_at(
-                        &name,
-                        format!(
-                            "say whether `{name}` is an angle or a length: \
-                             `{name}: angle` or `{name}: length`"
-                        ),
-                    );
-                    undetermined.insert(name.to_string());
-                    Kind::Length
+                };
+                Symbol {
+                    name,
+                    kind,
+                    docs: attrs,
+                    vis,
                 }
-            };
-            Symbol {
-                name,
-                kind,
-                docs: attrs,
-            }
-        })
+            },
+        )
         .collect()
 }
 

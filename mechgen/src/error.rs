@@ -13,6 +13,12 @@ pub enum Error<T> {
         /// Which quantity: `"parameter l3"`, `"input theta2"`, `"velocity"`, ...
         quantity: &'static str,
     },
+    /// The loops cannot close at this input: the links are too short or too long to meet
+    /// (the input is outside the mechanism's range of motion).
+    CannotAssemble {
+        /// The input at which assembly was asked for.
+        input: T,
+    },
     /// The Jacobian of the loop equations with respect to the unknowns is singular at this
     /// configuration (a toggle or change point), so the unknowns are not determined by the
     /// input there and their rates are unbounded.
@@ -38,6 +44,11 @@ impl<T: fmt::Display> fmt::Display for Error<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Error::NonFinite { quantity } => write!(f, "{quantity} is not finite"),
+            Error::CannotAssemble { input } => write!(
+                f,
+                "the mechanism cannot be assembled at input {input}: it is outside the range \
+                 of motion"
+            ),
             Error::Singular {
                 determinant,
                 relative_determinant,

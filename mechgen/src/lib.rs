@@ -2,16 +2,21 @@
 #![no_std]
 #![forbid(unsafe_code)]
 
+mod advantage;
+mod branch;
 mod error;
+pub mod grashof;
 mod linear;
 mod newton;
 mod real;
 mod vec2;
 
+pub use advantage::MechanicalAdvantage;
+pub use branch::Branch;
 pub use error::Error;
 pub use newton::{NewtonOptions, Solved};
 pub use real::Real;
-pub use vec2::Vec2;
+pub use vec2::{AccelerationParts, Vec2};
 
 /// Declares a planar mechanism by its vector loops and generates its kinematics.
 ///

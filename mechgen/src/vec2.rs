@@ -26,3 +26,52 @@ impl<T: crate::Real> Vec2<T> {
         self.y.atan2(self.x)
     }
 }
+
+impl<T: crate::Real> core::ops::Add for Vec2<T> {
+    type Output = Self;
+    fn add(self, other: Self) -> Self {
+        Vec2::new(self.x + other.x, self.y + other.y)
+    }
+}
+
+impl<T: crate::Real> core::ops::Sub for Vec2<T> {
+    type Output = Self;
+    fn sub(self, other: Self) -> Self {
+        Vec2::new(self.x - other.x, self.y - other.y)
+    }
+}
+
+/// A point's acceleration split into the four parts the course notes name (seed 002). For a
+/// vector `r·e^{iθ}` of varying length and angle,
+/// `d²/dt²(r·e^{iθ}) = i·r·θ̈·e^{iθ} − r·θ̇²·e^{iθ} + r̈·e^{iθ} + 2·i·ṙ·θ̇·e^{iθ}`:
+/// tangential, normal (centripetal), sliding and Coriolis, in that order. A point's parts
+/// add these up over the vectors that lead to it.
+///
+/// ```
+/// use mechgen::{AccelerationParts, Vec2};
+/// let parts = AccelerationParts {
+///     tangential: Vec2::new(1.0, 0.0),
+///     normal: Vec2::new(0.0, -4.0),
+///     sliding: Vec2::new(0.5, 0.0),
+///     coriolis: Vec2::new(0.0, 2.0),
+/// };
+/// assert_eq!(parts.total(), Vec2::new(1.5, -2.0));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AccelerationParts<T> {
+    /// `i·r·θ̈·e^{iθ}`: from angular acceleration, perpendicular to each vector.
+    pub tangential: Vec2<T>,
+    /// `−r·θ̇²·e^{iθ}`: centripetal, toward the start of each vector.
+    pub normal: Vec2<T>,
+    /// `r̈·e^{iθ}`: from a changing length (a slider), along each vector.
+    pub sliding: Vec2<T>,
+    /// `2·i·ṙ·θ̇·e^{iθ}`: from a length changing while it turns, perpendicular to it.
+    pub coriolis: Vec2<T>,
+}
+
+impl<T: crate::Real> AccelerationParts<T> {
+    /// The point's acceleration: the sum of the four parts.
+    pub fn total(&self) -> Vec2<T> {
+        self.tangential + self.normal + self.sliding + self.coriolis
+    }
+}

@@ -68,14 +68,7 @@ fn rewritten_four_bar_agrees_with_the_shipped_one() {
         l4: 150.0,
         offset: 0.1,
     };
-    let shipped = mechanisms::FourBar {
-        l1: 180.0,
-        l2: 80.0,
-        l3: 200.0,
-        l4: 150.0,
-        a: 0.0,
-        delta: 0.0,
-    };
+    let shipped = mechanisms::FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
     let options = NewtonOptions::default();
     let phi = 0.9;
     let guess = RewrittenUnknowns {
@@ -122,14 +115,7 @@ mechanism! {
 
 /// Example 1's open position and rates, from the shipped four-bar.
 fn example_1_reference(theta2: f64) -> ([f64; 2], [f64; 2]) {
-    let shipped = mechanisms::FourBar {
-        l1: 180.0,
-        l2: 80.0,
-        l3: 200.0,
-        l4: 150.0,
-        a: 0.0,
-        delta: 0.0,
-    };
+    let shipped = mechanisms::FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
     let guess = mechanisms::FourBarUnknowns {
         theta3: 0.4,
         theta4: 1.2,

@@ -4,11 +4,22 @@ mod common;
 
 use common::*;
 use mechanisms::FourBarUnknowns;
-use mechgen::{Error, NewtonOptions};
+use mechgen::{Error, NewtonOptions, mechanism};
+
+mechanism! {
+    /// A four-bar whose lengths anyone may set.
+    pub struct OpenFourBar {
+        params: pub l1, pub l2, pub l3, pub l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
+        generate: position;
+    }
+}
 
 #[test]
 fn non_finite_arguments_are_named() {
-    let linkage = EXAMPLE_1;
+    let linkage = example_1::<f64>();
     let guess = guess_deg(15.0, 80.0);
     let options = NewtonOptions::default();
     let err = linkage.position(f64::NAN, &guess, &options).unwrap_err();
@@ -20,11 +31,16 @@ fn non_finite_arguments_are_named() {
     );
     assert_eq!(err.to_string(), "input `theta2` is not finite");
 
-    let broken = mechanisms::FourBar {
+    // The shipped types check their lengths at construction; a declaration with public
+    // fields can be given a bad one, and the generated solvers still refuse it.
+    let broken = OpenFourBar {
+        l1: 180.0,
+        l2: 80.0,
         l3: f64::INFINITY,
-        ..linkage
+        l4: 150.0,
     };
-    let err = broken.position(1.0, &guess, &options).unwrap_err();
+    let open_guess = OpenFourBarUnknowns::from_array(guess.to_array());
+    let err = broken.position(1.0, &open_guess, &options).unwrap_err();
     assert_eq!(
         err,
         Error::NonFinite {
@@ -89,7 +105,7 @@ fn non_finite_arguments_are_named() {
 
 #[test]
 fn a_singular_jacobian_is_an_error_carrying_its_determinant() {
-    let linkage = EXAMPLE_1;
+    let linkage = example_1::<f64>();
     // Coupler and rocker collinear: the Jacobian's columns are parallel.
     let toggle = FourBarUnknowns {
         theta3: 0.7,
@@ -120,7 +136,7 @@ fn a_singular_jacobian_is_an_error_carrying_its_determinant() {
 
 #[test]
 fn running_out_of_iterations_reports_the_residual() {
-    let linkage = EXAMPLE_1;
+    let linkage = example_1::<f64>();
     let options = NewtonOptions::new(1e-12, 2);
     let err = linkage
         .position(rad(60.0), &guess_deg(15.0, 80.0), &options)
@@ -146,9 +162,34 @@ fn running_out_of_iterations_reports_the_residual() {
 #[test]
 fn a_mechanism_that_cannot_assemble_is_an_error_not_nan() {
     // Coupler and rocker too short to reach across: no position exists at any input.
-    let linkage = four_bar(300.0, 50.0, 60.0, 70.0);
-    let result = linkage.position(0.5, &guess_deg(30.0, 100.0), &NewtonOptions::default());
+    let err = mechanisms::FourBar::new(300.0, 50.0, 60.0, 70.0).unwrap_err();
+    assert_eq!(err.name, "ground");
+    assert!(
+        err.to_string().contains("assembles at some crank angle"),
+        "{err}"
+    );
+    // Built anyway, the generated Newton fails rather than returning NaN.
+    let linkage = OpenFourBar {
+        l1: 300.0,
+        l2: 50.0,
+        l3: 60.0,
+        l4: 70.0,
+    };
+    let guess = OpenFourBarUnknowns::from_array([0.5, 1.7]);
+    let result = linkage.position(0.5, &guess, &NewtonOptions::default());
     assert!(result.is_err(), "{result:?}");
+    // The closed form says so directly, past a non-Grashof linkage's limit angle.
+    let triple_rocker = mechanisms::FourBar::new(100.0, 120.0, 90.0, 80.0).unwrap();
+    let limit = triple_rocker.limit_angles().extended.unwrap();
+    let err = triple_rocker
+        .assemble(limit + 1e-6, mechgen::Branch::Open)
+        .unwrap_err();
+    assert_eq!(
+        err,
+        Error::CannotAssemble {
+            input: limit + 1e-6
+        }
+    );
 }
 
 #[test]

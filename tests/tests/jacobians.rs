@@ -73,7 +73,9 @@ proptest! {
         input in angle(),
         q in [angle(), angle()],
     ) {
-        let linkage = FourBar { l1: l[0], l2: l[1], l3: l[2], l4: l[3], a: 1.0, delta: 0.0 };
+        let linkage = FourBar::new(l[0], l[1], l[2], l[3]);
+        prop_assume!(linkage.is_ok(), "lengths that never assemble");
+        let linkage = linkage.unwrap();
         let unknowns = FourBarUnknowns::from_array(q);
         let residual = |u, q| linkage.residual(u, &FourBarUnknowns::from_array(q));
         check(
@@ -85,9 +87,7 @@ proptest! {
             l.iter().sum(),
         )?;
 
-        let single = FourBar {
-            l1: l[0] as f32, l2: l[1] as f32, l3: l[2] as f32, l4: l[3] as f32, a: 1.0, delta: 0.0,
-        };
+        let single = FourBar::new(l[0] as f32, l[1] as f32, l[2] as f32, l[3] as f32).unwrap();
         let unknowns32 = FourBarUnknowns::from_array(q.map(|x| x as f32));
         let j32 = single.jacobian(input as f32, &unknowns32);
         let j64 = linkage.jacobian(input, &unknowns);
@@ -100,12 +100,14 @@ proptest! {
 
     #[test]
     fn slider_crank_jacobians(
-        l in [length(), length(), length()],
+        l in (length(), length(), -10.0f64..10.0).prop_map(|(a, b, c)| [a, b, c]),
         input in angle(),
         theta3 in angle(),
         d in -20.0f64..20.0,
     ) {
-        let linkage = SliderCrank { l2: l[0], l3: l[1], c: l[2] };
+        let linkage = SliderCrank::new(l[0], l[1], l[2]);
+        prop_assume!(linkage.is_ok(), "offset out of reach");
+        let linkage = linkage.unwrap();
         let q = [theta3, d];
         let unknowns = SliderCrankUnknowns::from_array(q);
         let residual = |u, q| linkage.residual(u, &SliderCrankUnknowns::from_array(q));
@@ -115,19 +117,21 @@ proptest! {
             linkage.input_jacobian(input, &unknowns),
             input,
             q,
-            l.iter().sum::<f64>() + d.abs(),
+            l.iter().map(|x| x.abs()).sum::<f64>() + d.abs(),
         )?;
     }
 
     #[test]
     fn inverted_slider_crank_jacobians(
-        l in [length(), length(), length()],
+        l in (length(), length(), -10.0f64..10.0).prop_map(|(a, b, c)| [a, b, c]),
         gamma in angle(),
         input in angle(),
         theta4 in angle(),
         b in -20.0f64..20.0,
     ) {
-        let linkage = InvertedSliderCrank { l1: l[0], l2: l[1], c: l[2], gamma };
+        let linkage = InvertedSliderCrank::new(l[0], l[1], l[2], gamma);
+        prop_assume!(linkage.is_ok(), "offset out of reach");
+        let linkage = linkage.unwrap();
         let q = [theta4, b];
         let unknowns = InvertedSliderCrankUnknowns::from_array(q);
         let residual = |u, q| linkage.residual(u, &InvertedSliderCrankUnknowns::from_array(q));
@@ -137,7 +141,7 @@ proptest! {
             linkage.input_jacobian(input, &unknowns),
             input,
             q,
-            l.iter().sum::<f64>() + b.abs(),
+            l.iter().map(|x| x.abs()).sum::<f64>() + b.abs(),
         )?;
     }
 }

@@ -13,7 +13,7 @@ const ALPHA2: f64 = -30.0;
 #[test]
 fn four_bar_rates_match_the_closed_forms() {
     let linkage = example_1::<f64>();
-    let (l2, l3, l4) = (linkage.l2, linkage.l3, linkage.l4);
+    let [_, l2, l3, l4] = linkage.lengths();
     for Sample { input: t2, q } in sweep(&linkage, [0.3, 1.2], 1) {
         let [t3, t4] = q;
         let [w3, w4] = linkage.rates(t2, q, OMEGA2).unwrap();
@@ -43,16 +43,11 @@ fn four_bar_rates_match_the_closed_forms() {
 #[test]
 fn slider_crank_rates_match_the_closed_forms() {
     let linkage = slider_crank::<f64>();
-    let (l2, l3) = (linkage.l2, linkage.l3);
+    let [l2, l3, offset] = linkage.dimensions();
     for Sample { input: t2, q } in sweep(&linkage, [0.0, 190.0], 1) {
         let [t3, d] = q;
         // Position: B = A + l3 @ θ3 on the line y = c.
-        assert_close(
-            "sin theta3",
-            t3.sin(),
-            (linkage.c - l2 * t2.sin()) / l3,
-            1e-13,
-        );
+        assert_close("sin theta3", t3.sin(), (offset - l2 * t2.sin()) / l3, 1e-13);
         assert_close("d", d, l2 * t2.cos() + l3 * t3.cos(), 1e-13);
         // Velocity: j l2 ω2 e^{jθ2} + j l3 ω3 e^{jθ3} - ḋ = 0.
         let [w3, d_dot] = linkage.rates(t2, q, OMEGA2).unwrap();

@@ -20,7 +20,7 @@ fn transmission_deg(position: &FourBarUnknowns<f64>) -> f64 {
 
 #[test]
 fn example_1_open_and_crossed_branches() {
-    let linkage = EXAMPLE_1;
+    let linkage = example_1::<f64>();
     let theta2 = rad(60.0);
     let options = NewtonOptions::default();
     let open = linkage
@@ -32,7 +32,10 @@ fn example_1_open_and_crossed_branches() {
         .unwrap()
         .value;
 
-    let z = diagonal(linkage.l1, linkage.points(theta2, &open).unwrap().crank_pin);
+    let z = diagonal(
+        linkage.lengths()[0],
+        linkage.points(theta2, &open).unwrap().crank_pin,
+    );
     assert_eq!(rounded(z, 2), 156.20);
     assert_eq!(rounded(transmission_deg(&open), 2), 50.58);
     assert_eq!(rounded(transmission_deg(&crossed), 2), 50.58);
@@ -42,7 +45,7 @@ fn example_1_open_and_crossed_branches() {
 
 #[test]
 fn example_2_newton_from_the_seed_guess() {
-    let linkage = EXAMPLE_1;
+    let linkage = example_1::<f64>();
     let theta2 = rad(60.0);
     let guess = guess_deg(15.0, 80.0);
 

@@ -1,5 +1,6 @@
-//! Numeric snapshots: a full crank turn, every 10°, for each shipped declaration, with the
-//! unknowns, their rates and accelerations and the tracked points, to 10 significant digits.
+//! Numeric snapshots: a full crank turn, every 10°, for each shipped mechanism, with the
+//! unknowns, their rates and accelerations, the analyses (transmission angle, mechanical
+//! advantage) and the tracked points, to 10 significant digits.
 //!
 //! Values below 1e-9 of their column's largest magnitude are printed as 0: they are rounding
 //! noise around an exact zero, and would differ between machines.
@@ -13,16 +14,21 @@ use std::fmt::Write;
 const OMEGA2: f64 = 10.0;
 const ALPHA2: f64 = 2.0;
 
+/// Per-position analyses: column names and a function of (θ2, unknowns) giving them.
+type Analyses<'a> = (&'a [&'a str], &'a dyn Fn(f64, [f64; 2]) -> Vec<f64>);
+
 fn table<L: Linkage<f64>>(
     linkage: &L,
     guess: [f64; 2],
     unknowns: [&str; 2],
+    (analysis_names, analyses): Analyses,
     points: &[&str],
 ) -> String {
     let mut header = vec!["theta2_deg".to_string()];
     for suffix in ["", "_dot", "_ddot"] {
         header.extend(unknowns.iter().map(|u| format!("{u}{suffix}")));
     }
+    header.extend(analysis_names.iter().map(|name| name.to_string()));
     for suffix in ["", "_dot", "_ddot"] {
         for p in points {
             header.extend([format!("{p}{suffix}.x"), format!("{p}{suffix}.y")]);
@@ -39,6 +45,7 @@ fn table<L: Linkage<f64>>(
             row.extend(q);
             row.extend(q_dot);
             row.extend(q_ddot);
+            row.extend(analyses(input, q));
             row.extend(linkage.point_positions(input, q));
             row.extend(linkage.point_velocities(input, q, OMEGA2, q_dot));
             row.extend(linkage.point_accelerations(input, q, OMEGA2, q_dot, ALPHA2, q_ddot));
@@ -46,9 +53,15 @@ fn table<L: Linkage<f64>>(
         })
         .collect();
     let column_max: Vec<f64> = (0..header.len())
-        .map(|c| rows.iter().fold(0.0f64, |m, r| m.max(r[c].abs())))
+        .map(|c| {
+            let finite = rows.iter().map(|r| r[c].abs()).filter(|v| v.is_finite());
+            finite.fold(0.0f64, f64::max)
+        })
         .collect();
-    let mut out = format!("# omega2 = {OMEGA2} rad/s, alpha2 = {ALPHA2} rad/s^2; angles in rad\n");
+    let mut out = format!(
+        "# omega2 = {OMEGA2} rad/s, alpha2 = {ALPHA2} rad/s^2; angles in rad; \
+         an unbounded mechanical advantage prints as inf\n"
+    );
     writeln!(out, "{}", header.join(", ")).unwrap();
     for row in rows {
         let degrees = format!("{:.0}", row[0]);
@@ -78,37 +91,80 @@ fn assert_table(name: &str, table: String) {
 
 /// `value` to 10 significant digits, or 0 if it is below 1e-9 of `column_max`.
 fn significant(value: f64, column_max: f64) -> String {
-    if value.abs() <= 1e-9 * column_max {
+    if value.is_infinite() {
+        "inf".to_string()
+    } else if value.abs() <= 1e-9 * column_max {
         "0".to_string()
     } else {
         format!("{value:.9e}")
     }
 }
 
+/// A mechanical advantage as a number, with unbounded as infinity.
+fn advantage(value: Result<mechgen::MechanicalAdvantage<f64>, mechgen::Error<f64>>) -> f64 {
+    value.unwrap().finite().unwrap_or(f64::INFINITY)
+}
+
 #[test]
 fn four_bar_full_turn() {
     let linkage = example_1::<f64>();
-    let points = ["crank_pin", "rocker_pin", "coupler"];
-    assert_table(
-        "four_bar_full_turn",
-        table(&linkage, [0.3, 1.2], ["theta3", "theta4"], &points),
+    let analyses = |theta2: f64, q: [f64; 2]| {
+        let q = mechanisms::FourBarUnknowns::from_array(q);
+        vec![
+            linkage.transmission_angle(&q),
+            advantage(linkage.mechanical_advantage(theta2, &q)),
+        ]
+    };
+    let points = ["crank_pin", "rocker_pin", "coupler_point"];
+    let names = ["transmission_angle", "mechanical_advantage"];
+    let table = table(
+        &linkage,
+        [0.3, 1.2],
+        ["theta3", "theta4"],
+        (&names, &analyses),
+        &points,
     );
+    assert_table("four_bar_full_turn", table);
 }
 
 #[test]
 fn slider_crank_full_turn() {
     let linkage = slider_crank::<f64>();
-    let points = ["crank_pin", "slider_pin"];
-    assert_table(
-        "slider_crank_full_turn",
-        table(&linkage, [0.0, 190.0], ["theta3", "d"], &points),
+    let analyses = |theta2: f64, q: [f64; 2]| {
+        let q = mechanisms::SliderCrankUnknowns::from_array(q);
+        vec![
+            linkage.transmission_angle(&q),
+            advantage(linkage.mechanical_advantage(theta2, &q)),
+        ]
+    };
+    let points = ["crank_pin", "slider_pin", "coupler_point"];
+    let names = ["transmission_angle", "mechanical_advantage_per_mm"];
+    let table = table(
+        &linkage,
+        [0.0, 190.0],
+        ["theta3", "d"],
+        (&names, &analyses),
+        &points,
     );
+    assert_table("slider_crank_full_turn", table);
 }
 
 #[test]
 fn inverted_slider_crank_full_turn() {
     let linkage = inverted_slider_crank::<f64>();
-    let table = table(&linkage, [3.0, 60.0], ["theta4", "b"], &["crank_pin"]);
+    let analyses = |theta2: f64, q: [f64; 2]| {
+        let q = mechanisms::InvertedSliderCrankUnknowns::from_array(q);
+        vec![advantage(linkage.mechanical_advantage(theta2, &q))]
+    };
+    let points = ["crank_pin", "block_pin", "slide_origin", "coupler_point"];
+    let names = ["mechanical_advantage"];
+    let table = table(
+        &linkage,
+        [3.0, 60.0],
+        ["theta4", "b"],
+        (&names, &analyses),
+        &points,
+    );
     assert_table("inverted_slider_crank_full_turn", table);
 }
 

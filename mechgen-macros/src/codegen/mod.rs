@@ -80,8 +80,11 @@ impl<'a> Generator<'a> {
         let unknown_dots: Vec<Ident> = model.unknowns.iter().map(|u| derived(u, "dot")).collect();
         let unknown_ddots: Vec<Ident> = model.unknowns.iter().map(|u| derived(u, "ddot")).collect();
         let point_components = model.points.iter().flat_map(|p| {
-            let name = p.name.unraw();
-            [format!("{name}_x"), format!("{name}_y")]
+            let name = p.name.unraw().to_string();
+            component_names(&name, &[])
+                .into_iter()
+                .chain(component_names(&name, &ACCELERATION_PARTS))
+                .flatten()
         });
         let reserved = ARGUMENT_NAMES
             .iter()
@@ -176,7 +179,8 @@ impl<'a> Generator<'a> {
                 &param.docs,
                 &format!("Parameter `{}`: {}.", field.unraw(), unit(param.kind)),
             );
-            quote!(#docs pub #field: T,)
+            let vis = &param.vis;
+            quote!(#docs #vis #field: T,)
         });
         quote! {
             #(#attrs)*
@@ -247,22 +251,25 @@ impl<'a> Generator<'a> {
         let ty = &self.points_type;
         let fields = points.iter().map(|point| {
             let field = &point.name;
-            let doc = doc(&format!(
+            let formula = doc(&format!(
                 "Point `{}` = `{}`.",
                 field.unraw(),
                 point.position.source
             ));
-            quote!(#doc pub #field: ::mechgen::Vec2<T>,)
+            let docs = &point.docs;
+            let separator = (!docs.is_empty()).then(|| quote!(#[doc = ""]));
+            quote!(#(#docs)* #separator #formula pub #field: V,)
         });
         let text = format!(
-            "[`{name}`]'s tracked points: their positions, velocities or accelerations, in \
-             the frame of the loops."
+            "[`{name}`]'s tracked points: for each, a `V` that is its position, velocity or \
+             acceleration (a [`mechgen::Vec2`]) or its acceleration's parts (a \
+             [`mechgen::AccelerationParts`]), in the frame of the loops."
         );
         let doc = doc(&text);
         quote! {
             #doc
             #[derive(Clone, Copy, Debug, Default, PartialEq)]
-            #vis struct #ty<T> {
+            #vis struct #ty<V> {
                 #(#fields)*
             }
         }
@@ -289,7 +296,7 @@ impl<'a> Generator<'a> {
                 functions.push(self.point_velocities());
             }
             if outputs.acceleration {
-                functions.push(self.point_accelerations());
+                functions.extend([self.point_accelerations(), self.point_acceleration_parts()]);
             }
         }
         quote!(#(#functions)*)
@@ -577,28 +584,46 @@ impl<'a> Generator<'a> {
         self.checked_function("acceleration", docs, 5, &unknowns, body)
     }
 
-    /// The body of a points function: every point's `which` expressions as a points struct.
+    /// The body of a points function: each point's value built from `which` of its
+    /// expressions, a `(x, y)` pair per named vector (`parts`; one unnamed vector for a plain
+    /// `Vec2`).
     fn points_body(
         &self,
-        which: impl Fn(&crate::symbolic::PointExprs) -> [ExprId; 2],
+        which: impl Fn(&crate::symbolic::PointExprs) -> Vec<[ExprId; 2]>,
+        parts: &[&str],
         quantity: &str,
     ) -> TokenStream {
-        let entries: Vec<ExprId> = self.equations.points.iter().flat_map(&which).collect();
+        let entries: Vec<ExprId> = self
+            .equations
+            .points
+            .iter()
+            .flat_map(|p| which(p).into_iter().flatten())
+            .collect();
         let (prologue, outputs) = self.block(&entries);
         let ty = &self.points_type;
-        let names: Vec<&Ident> = self.model.points.iter().map(|p| &p.name).collect();
-        let components: Vec<(Ident, Ident)> = names
-            .iter()
-            .map(|name| {
-                let name = name.unraw();
-                (local(&format!("{name}_x")), local(&format!("{name}_y")))
-            })
-            .collect();
-        let pattern = components.iter().map(|(x, y)| quote!(#x, #y));
-        let fields = names
-            .iter()
-            .zip(&components)
-            .map(|(name, (x, y))| quote!(#name: ::mechgen::Vec2 { x: #x, y: #y }));
+        let mut pattern = Vec::new();
+        let fields = self.model.points.iter().map(|point| {
+            let name = &point.name;
+            let vectors: Vec<TokenStream> = component_names(&name.unraw().to_string(), parts)
+                .into_iter()
+                .map(|[x, y]| {
+                    let (x, y) = (local(&x), local(&y));
+                    pattern.extend([x.clone(), y.clone()]);
+                    quote!(::mechgen::Vec2 { x: #x, y: #y })
+                })
+                .collect();
+            let value = match parts {
+                [] => quote!(#(#vectors)*),
+                _ => {
+                    let parts = parts
+                        .iter()
+                        .map(|p| Ident::new(p, proc_macro2::Span::call_site()));
+                    quote!(::mechgen::AccelerationParts { #(#parts: #vectors),* })
+                }
+            };
+            quote!(#name: #value)
+        });
+        let fields: Vec<TokenStream> = fields.collect();
         quote! {
             #prologue
             let [#(#pattern),*] = ::mechgen::__private::finite([#(#outputs),*], #quantity)?;
@@ -608,24 +633,58 @@ impl<'a> Generator<'a> {
 
     fn points(&self) -> TokenStream {
         let ty = &self.points_type;
-        let body = self.points_body(|p| p.position, "point position");
+        let body = self.points_body(|p| vec![p.position], &[], "point position");
         let docs = "The tracked points' positions at a solved `position`.";
-        self.checked_function("points", docs, 2, &quote!(#ty<T>), body)
+        let output = quote!(#ty<::mechgen::Vec2<T>>);
+        self.checked_function("points", docs, 2, &output, body)
     }
 
     fn point_velocities(&self) -> TokenStream {
         let ty = &self.points_type;
-        let body = self.points_body(|p| p.velocity, "point velocity");
+        let body = self.points_body(|p| vec![p.velocity], &[], "point velocity");
         let docs = "The tracked points' velocities at a solved `position` and `velocity`.";
-        self.checked_function("point_velocities", docs, 4, &quote!(#ty<T>), body)
+        let output = quote!(#ty<::mechgen::Vec2<T>>);
+        self.checked_function("point_velocities", docs, 4, &output, body)
     }
 
     fn point_accelerations(&self) -> TokenStream {
         let ty = &self.points_type;
-        let body = self.points_body(|p| p.acceleration, "point acceleration");
+        let body = self.points_body(|p| vec![p.acceleration], &[], "point acceleration");
         let docs = "The tracked points' accelerations at a solved `position`, `velocity` and \
              `acceleration`.";
-        self.checked_function("point_accelerations", docs, 6, &quote!(#ty<T>), body)
+        let output = quote!(#ty<::mechgen::Vec2<T>>);
+        self.checked_function("point_accelerations", docs, 6, &output, body)
+    }
+
+    fn point_acceleration_parts(&self) -> TokenStream {
+        let ty = &self.points_type;
+        let body = self.points_body(
+            |p| p.acceleration_parts.to_vec(),
+            &ACCELERATION_PARTS,
+            "point acceleration part",
+        );
+        let docs = "The tracked points' accelerations split, term by term of each point's \
+             vector sum `Σ r·e^{iθ}`, into tangential `i·r·θ̈·e^{iθ}`, normal `−r·θ̇²·e^{iθ}`, \
+             sliding `r̈·e^{iθ}` and Coriolis `2·i·ṙ·θ̇·e^{iθ}` parts, which sum to \
+             [`Self::point_accelerations`].";
+        let output = quote!(#ty<::mechgen::AccelerationParts<T>>);
+        self.checked_function("point_acceleration_parts", docs, 6, &output, body)
+    }
+}
+
+/// The named parts of a point's acceleration, as fields of `mechgen::AccelerationParts`.
+const ACCELERATION_PARTS: [&str; 4] = ["tangential", "normal", "sliding", "coriolis"];
+
+/// The locals holding a point's components: `{point}_x`, `{point}_y` for one vector, or
+/// `{point}_{part}_x`, `{point}_{part}_y` for named parts.
+fn component_names(point: &str, parts: &[&str]) -> Vec<[String; 2]> {
+    if parts.is_empty() {
+        vec![[format!("{point}_x"), format!("{point}_y")]]
+    } else {
+        parts
+            .iter()
+            .map(|part| [format!("{point}_{part}_x"), format!("{point}_{part}_y")])
+            .collect()
     }
 }
 

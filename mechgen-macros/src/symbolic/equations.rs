@@ -10,11 +10,14 @@ use crate::model::{Linear, Model, SymbolRef, VectorSum};
 
 use super::graph::{ExprId, Graph, Var};
 
-/// A tracked point's position, velocity and acceleration as `(x, y)` expressions.
+/// A tracked point's position, velocity and acceleration as `(x, y)` expressions, and its
+/// acceleration split into tangential, normal, sliding and Coriolis parts.
 pub struct PointExprs {
     pub position: [ExprId; 2],
     pub velocity: [ExprId; 2],
     pub acceleration: [ExprId; 2],
+    /// `[tangential, normal, sliding, coriolis]`, each `(x, y)`.
+    pub acceleration_parts: [[ExprId; 2]; 4],
 }
 
 pub struct Equations {
@@ -94,10 +97,13 @@ impl Equations {
                 let position = vector_sum(&mut graph, &point.position, &mut point_magnitudes);
                 let velocity = position.map(|p| graph.time_derivative(p, &position_vars, |_| true));
                 let acceleration = velocity.map(|v| graph.time_derivative(v, &all_vars, |_| true));
+                let acceleration_parts =
+                    acceleration_parts(&mut graph, &point.position, &position_vars, &all_vars);
                 PointExprs {
                     position,
                     velocity,
                     acceleration,
+                    acceleration_parts,
                 }
             })
             .collect();
@@ -135,6 +141,54 @@ fn vector_sum(graph: &mut Graph, sum: &VectorSum, magnitudes: &mut Vec<ExprId>) 
         }
     }
     components
+}
+
+/// The parts of `d²/dt² Σ ± r·e^{iθ}`, term by term: for each `r·e^{iθ}`,
+/// `(r̈ − r·θ̇²)·e^{iθ} + i·(r·θ̈ + 2·ṙ·θ̇)·e^{iθ}`, grouped as tangential `i·r·θ̈·e^{iθ}`,
+/// normal `−r·θ̇²·e^{iθ}`, sliding `r̈·e^{iθ}` and Coriolis `2·i·ṙ·θ̇·e^{iθ}`.
+fn acceleration_parts(
+    graph: &mut Graph,
+    sum: &VectorSum,
+    position_vars: &[Var],
+    all_vars: &[Var],
+) -> [[ExprId; 2]; 4] {
+    let zero = graph.constant(0.0);
+    let two = graph.constant(2.0);
+    let mut parts = [[zero; 2]; 4];
+    for term in &sum.terms {
+        let r = linear(graph, &term.magnitude);
+        let theta = linear(graph, &term.angle);
+        let r_dot = graph.time_derivative(r, position_vars, |_| true);
+        let r_ddot = graph.time_derivative(r_dot, all_vars, |_| true);
+        let theta_dot = graph.time_derivative(theta, position_vars, |_| true);
+        let theta_ddot = graph.time_derivative(theta_dot, all_vars, |_| true);
+        let (cos, sin) = (graph.cos(theta), graph.sin(theta));
+        let minus_sin = graph.neg(sin);
+        // Each part is a coefficient times e^{iθ} = (cos, sin) or i·e^{iθ} = (−sin, cos).
+        let tangential = graph.mul(r, theta_ddot);
+        let theta_dot_squared = graph.mul(theta_dot, theta_dot);
+        let centripetal = graph.mul(r, theta_dot_squared);
+        let normal = graph.neg(centripetal);
+        let rates = graph.mul(r_dot, theta_dot);
+        let coriolis = graph.mul(two, rates);
+        let coefficients = [
+            (tangential, [minus_sin, cos]),
+            (normal, [cos, sin]),
+            (r_ddot, [cos, sin]),
+            (coriolis, [minus_sin, cos]),
+        ];
+        for (part, (coefficient, direction)) in parts.iter_mut().zip(coefficients) {
+            for (component, unit) in part.iter_mut().zip(direction) {
+                let value = graph.mul(coefficient, unit);
+                *component = if term.negated {
+                    graph.sub(*component, value)
+                } else {
+                    graph.add(*component, value)
+                };
+            }
+        }
+    }
+    parts
 }
 
 fn linear(graph: &mut Graph, linear: &Linear) -> ExprId {

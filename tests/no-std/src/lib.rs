@@ -9,7 +9,7 @@ use mechgen::{Error, NewtonOptions, mechanism};
 mechanism! {
     /// A slider-crank with offset, as a controller would carry it.
     pub struct SliderCrank {
-        params: l2, l3, c;
+        params: pub l2, pub l3, pub c;
         input: theta2: angle;
         unknowns: theta3: angle, d: length;
         loop: l2 @ theta2 + l3 @ theta3 - c @ pi / 2 - d @ 0;

@@ -3,16 +3,6 @@
 
 use mechanisms::{FourBar, FourBarUnknowns};
 
-/// The seeds' Example 1 four-bar (180, 80, 200, 150 mm) with a coupler point.
-pub const EXAMPLE_1: FourBar<f64> = FourBar {
-    l1: 180.0,
-    l2: 80.0,
-    l3: 200.0,
-    l4: 150.0,
-    a: 100.0,
-    delta: 0.5,
-};
-
 pub fn deg(radians: f64) -> f64 {
     radians.to_degrees()
 }
@@ -32,14 +22,11 @@ pub fn rounded(value: f64, decimals: i32) -> f64 {
     (value * scale).round() / scale
 }
 
+/// A four-bar with these lengths and Example 1's coupler point.
 pub fn four_bar(l1: f64, l2: f64, l3: f64, l4: f64) -> FourBar<f64> {
-    FourBar {
-        l1,
-        l2,
-        l3,
-        l4,
-        ..EXAMPLE_1
-    }
+    FourBar::new(l1, l2, l3, l4)
+        .and_then(|linkage| linkage.with_coupler_point(100.0, 0.5))
+        .expect("valid lengths")
 }
 
 pub fn guess_deg(theta3: f64, theta4: f64) -> FourBarUnknowns<f64> {
@@ -88,7 +75,7 @@ pub trait Linkage<T: mechgen::Real> {
 
 macro_rules! impl_linkage {
     ($mechanism:ident, $unknowns:ident, $points:ident) => {
-        fn flatten<T: Copy>(p: mechanisms::$points<T>) -> Vec<T> {
+        fn flatten<T: Copy>(p: mechanisms::$points<mechgen::Vec2<T>>) -> Vec<T> {
             impl_linkage!(@points p, $points)
         }
         impl<T: mechgen::Real> Linkage<T> for mechanisms::$mechanism<T> {
@@ -148,13 +135,16 @@ macro_rules! impl_linkage {
         }
     };
     (@points $p:ident, FourBarPoints) => {
-        [$p.crank_pin, $p.rocker_pin, $p.coupler].iter().flat_map(|v| [v.x, v.y]).collect()
+        [$p.crank_pin, $p.rocker_pin, $p.coupler_point].iter().flat_map(|v| [v.x, v.y]).collect()
     };
     (@points $p:ident, SliderCrankPoints) => {
-        [$p.crank_pin, $p.slider_pin].iter().flat_map(|v| [v.x, v.y]).collect()
+        [$p.crank_pin, $p.slider_pin, $p.coupler_point].iter().flat_map(|v| [v.x, v.y]).collect()
     };
     (@points $p:ident, InvertedSliderCrankPoints) => {
-        [$p.crank_pin].iter().flat_map(|v| [v.x, v.y]).collect()
+        [$p.crank_pin, $p.block_pin, $p.slide_origin, $p.coupler_point]
+            .iter()
+            .flat_map(|v| [v.x, v.y])
+            .collect()
     };
 }
 
@@ -178,36 +168,26 @@ mod inverted_slider_crank_impl {
 /// The shipped mechanisms with the dimensions the tests and tables use, and a guess on the
 /// open branch at input 0.
 pub fn slider_crank<T: mechgen::Real>() -> mechanisms::SliderCrank<T> {
-    let c = |v| T::constant(v);
-    mechanisms::SliderCrank {
-        l2: c(50.0),
-        l3: c(150.0),
-        c: c(20.0),
-    }
+    let c = T::constant;
+    mechanisms::SliderCrank::new(c(50.0), c(150.0), c(20.0))
+        .and_then(|linkage| linkage.with_coupler_point(c(75.0), c(0.2)))
+        .expect("valid dimensions")
 }
 
 pub fn inverted_slider_crank<T: mechgen::Real>() -> mechanisms::InvertedSliderCrank<T> {
-    let c = |v| T::constant(v);
-    mechanisms::InvertedSliderCrank {
-        l1: c(150.0),
-        l2: c(60.0),
-        c: c(20.0),
-        gamma: c(0.3),
-    }
+    let c = T::constant;
+    mechanisms::InvertedSliderCrank::new(c(150.0), c(60.0), c(20.0), c(0.3))
+        .and_then(|linkage| linkage.with_coupler_point(c(30.0), c(1.0)))
+        .expect("valid dimensions")
 }
 
-/// [`EXAMPLE_1`] in the float type `T`.
+/// The seeds' Example 1 four-bar (180, 80, 200, 150 mm) with a coupler point, in the float
+/// type `T`.
 pub fn example_1<T: mechgen::Real>() -> mechanisms::FourBar<T> {
     let c = T::constant;
-    let e = EXAMPLE_1;
-    mechanisms::FourBar {
-        l1: c(e.l1),
-        l2: c(e.l2),
-        l3: c(e.l3),
-        l4: c(e.l4),
-        a: c(e.a),
-        delta: c(e.delta),
-    }
+    mechanisms::FourBar::new(c(180.0), c(80.0), c(200.0), c(150.0))
+        .and_then(|linkage| linkage.with_coupler_point(c(100.0), c(0.5)))
+        .expect("valid lengths")
 }
 
 /// One sample of a sweep: input and unknowns (values and their derivatives with respect to

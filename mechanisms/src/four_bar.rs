@@ -1,0 +1,405 @@
+//! The four-bar linkage.
+
+use mechgen::grashof::{self, Grashof, Inversion};
+use mechgen::{Branch, Error, MechanicalAdvantage, Real, mechanism};
+
+use crate::dimensions::{DimensionError, finite, non_negative, positive};
+
+mechanism! {
+    /// Four-bar linkage: ground `l1` from O2 = (0, 0) to O4 = (l1, 0), crank `l2` from O2 to
+    /// A at the input `theta2`, coupler `l3` from A to B at `theta3`, rocker `l4` from O4 to B
+    /// at `theta4`. The coupler point P sits at distance `a` from A, at angle `delta` from the
+    /// coupler line A B.
+    ///
+    /// Loop: `l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0 = 0` (KINEMATICS.md).
+    /// Build one with [`FourBar::new`], which checks the lengths.
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// use mechgen::Branch;
+    /// // The seeds' Example 1.
+    /// let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+    /// let q = linkage.assemble(60f64.to_radians(), Branch::Open)?;
+    /// assert!((q.theta4.to_degrees() - 72.1377).abs() < 1e-4);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub struct FourBar {
+        params:
+            /// Ground link O2 O4.
+            l1,
+            /// Crank O2 A.
+            l2,
+            /// Coupler A B.
+            l3,
+            /// Rocker O4 B.
+            l4,
+            /// Distance from A to the coupler point P.
+            a,
+            /// Angle of A P from the coupler line A B, in radians.
+            delta: angle;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
+        /// A, the crank pin.
+        point crank_pin = l2 @ theta2;
+        /// B, the rocker pin.
+        point rocker_pin = l1 @ 0 + l4 @ theta4;
+        /// P, the coupler point.
+        point coupler_point = l2 @ theta2 + a @ (theta3 + delta);
+        generate: position, velocity, acceleration;
+    }
+}
+
+/// The transmission angle's extremes over the motion (see [`FourBar::transmission_extremes`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TransmissionExtremes<T> {
+    /// The smallest transmission angle, radians.
+    pub min: T,
+    /// An input angle in [0, π] where it occurs (also at its negative).
+    pub min_at: T,
+    /// The largest transmission angle, radians.
+    pub max: T,
+    /// An input angle in [0, π] where it occurs (also at its negative).
+    pub max_at: T,
+}
+
+impl<T: Real> TransmissionExtremes<T> {
+    /// Whether the transmission angle stays within the 40° to 140° guideline throughout.
+    pub fn within_guideline(&self) -> bool {
+        self.min >= T::constant(40f64.to_radians()) && self.max <= T::constant(140f64.to_radians())
+    }
+}
+
+/// The input angles at which a crank that cannot turn fully stops (toggles), in (0, π); the
+/// linkage is symmetric, so each also stops at the negative angle. See
+/// [`FourBar::limit_angles`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LimitAngles<T> {
+    /// Where the coupler and rocker line up folded (`Z = |l3 − l4|`), if they can: the crank
+    /// cannot come nearer to θ2 = 0 than this.
+    pub folded: Option<T>,
+    /// Where the coupler and rocker line up extended (`Z = l3 + l4`), if they can: the crank
+    /// cannot come nearer to θ2 = π than this.
+    pub extended: Option<T>,
+}
+
+impl<T: Real> LimitAngles<T> {
+    /// Whether the crank turns fully (no toggle).
+    pub fn full_turn(&self) -> bool {
+        self.folded.is_none() && self.extended.is_none()
+    }
+
+    /// Whether the linkage assembles at `theta2`: `|θ2|`, wrapped to [0, π], lies between the
+    /// folded limit (or 0) and the extended limit (or π).
+    pub fn reaches(&self, theta2: T) -> bool {
+        let pi = T::constant(core::f64::consts::PI);
+        let wrapped = (theta2 % (pi + pi)).abs();
+        let magnitude = if wrapped > pi {
+            pi + pi - wrapped
+        } else {
+            wrapped
+        };
+        self.folded.is_none_or(|f| magnitude >= f) && self.extended.is_none_or(|e| magnitude <= e)
+    }
+}
+
+/// A position where the rocker stops while the crank turns on (crank and coupler in line),
+/// see [`FourBar::dead_centres`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DeadCentre<T> {
+    /// The crank angle θ2 there, radians.
+    pub theta2: T,
+    /// The rocker angle θ4 there, radians: one of the rocker's two extremes.
+    pub theta4: T,
+}
+
+impl<T: Real> FourBar<T> {
+    /// A four-bar with the coupler point at the crank pin A (see
+    /// [`with_coupler_point`](Self::with_coupler_point)).
+    ///
+    /// Errors: a length that is not positive and finite, or lengths that cannot be assembled
+    /// at any crank angle (`|l3 − l4| > l1 + l2` or `l3 + l4 < |l1 − l2|`).
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// assert!(FourBar::new(180.0, 80.0, 200.0, 150.0).is_ok());
+    /// assert!(FourBar::new(180.0, f64::NAN, 200.0, 150.0).is_err());
+    /// assert_eq!(FourBar::new(500.0, 80.0, 200.0, 150.0).unwrap_err().name, "ground");
+    /// ```
+    pub fn new(ground: T, crank: T, coupler: T, rocker: T) -> Result<Self, DimensionError<T>> {
+        let linkage = FourBar {
+            l1: positive("ground", ground)?,
+            l2: positive("crank", crank)?,
+            l3: positive("coupler", coupler)?,
+            l4: positive("rocker", rocker)?,
+            a: T::zero(),
+            delta: T::zero(),
+        };
+        // Z = |A − O4| ranges over [|l1 − l2|, l1 + l2]; B exists for Z in [|l3 − l4|, l3 + l4].
+        let reach = ground + crank;
+        if (coupler - rocker).abs() > reach || coupler + rocker < (ground - crank).abs() {
+            return Err(DimensionError {
+                name: "ground",
+                value: ground,
+                requirement: "such that the linkage assembles at some crank angle",
+            });
+        }
+        Ok(linkage)
+    }
+
+    /// The same linkage with its coupler point P at `distance` from the crank pin A, at
+    /// `angle` (radians, counter-clockwise) from the coupler line A B.
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0)?.with_coupler_point(100.0, 0.5)?;
+    /// assert_eq!(linkage.coupler_point(), (100.0, 0.5));
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
+    pub fn with_coupler_point(self, distance: T, angle: T) -> Result<Self, DimensionError<T>> {
+        Ok(FourBar {
+            a: non_negative("coupler point distance", distance)?,
+            delta: finite("coupler point angle", angle)?,
+            ..self
+        })
+    }
+
+    /// The link lengths `[ground, crank, coupler, rocker]`.
+    pub fn lengths(&self) -> [T; 4] {
+        [self.l1, self.l2, self.l3, self.l4]
+    }
+
+    /// The coupler point's `(distance from A, angle from A B)`.
+    pub fn coupler_point(&self) -> (T, T) {
+        (self.a, self.delta)
+    }
+
+    /// The position at crank angle `theta2` on `branch`, in closed form: B is where the circle
+    /// of radius `l3` about A meets the circle of radius `l4` about O4.
+    ///
+    /// Branches are told apart by `sin(θ4 − θ3)`: positive on the open branch (the rocker's
+    /// direction O4→B is counter-clockwise from the coupler's A→B, so the transmission angle
+    /// opens the same way), negative on the crossed one. The sign changes only where coupler
+    /// and rocker line up, so a crank turning through a Grashof crank-rocker's full circle stays
+    /// on its branch.
+    ///
+    /// Errors: [`Error::CannotAssemble`] where the crank cannot reach (see
+    /// [`limit_angles`](Self::limit_angles)); a non-finite input.
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// use mechgen::Branch;
+    /// let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+    /// let open = linkage.assemble(60f64.to_radians(), Branch::Open)?;
+    /// let crossed = linkage.assemble(60f64.to_radians(), Branch::Crossed)?;
+    /// assert!((open.theta4.to_degrees() - 72.14).abs() < 0.005);
+    /// assert!((crossed.theta4.to_degrees().rem_euclid(360.0) - 235.20).abs() < 0.005);
+    /// assert_eq!(linkage.branch_of(&crossed), Branch::Crossed);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn assemble(&self, theta2: T, branch: Branch) -> Result<FourBarUnknowns<T>, Error<T>> {
+        if !theta2.is_finite() {
+            return Err(Error::NonFinite {
+                quantity: "input `theta2`",
+            });
+        }
+        let (sin2, cos2) = theta2.sin_cos();
+        let (ax, ay) = (self.l2 * cos2, self.l2 * sin2);
+        // Unit vector from A to O4, and the distance Z between them.
+        let (dx, dy) = (self.l1 - ax, -ay);
+        let z = dx.hypot(dy);
+        if z == T::zero() {
+            // A on O4: the coupler and rocker can turn together to any angle.
+            return Err(Error::Singular {
+                determinant: T::zero(),
+                relative_determinant: T::zero(),
+            });
+        }
+        let (ux, uy) = (dx / z, dy / z);
+        let along = (self.l3 * self.l3 - self.l4 * self.l4 + z * z) / (z + z);
+        let height_squared = self.l3 * self.l3 - along * along;
+        // Within rounding of a toggle the height is zero, not a failure.
+        let rounding = T::constant(8.0) * T::epsilon() * self.l3 * self.l3;
+        if height_squared < -rounding {
+            return Err(Error::CannotAssemble { input: theta2 });
+        }
+        let height = branch.sign::<T>() * height_squared.max(T::zero()).sqrt();
+        let (bx, by) = (ax + along * ux - height * uy, ay + along * uy + height * ux);
+        Ok(FourBarUnknowns {
+            theta3: (by - ay).atan2(bx - ax),
+            theta4: by.atan2(bx - self.l1),
+        })
+    }
+
+    /// The branch a position is on: open where `sin(θ4 − θ3) ≥ 0` (see
+    /// [`assemble`](Self::assemble)).
+    ///
+    /// ```
+    /// use mechanisms::{FourBar, FourBarUnknowns};
+    /// use mechgen::Branch;
+    /// let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+    /// let q = FourBarUnknowns { theta3: 0.38, theta4: 1.26 };
+    /// assert_eq!(linkage.branch_of(&q), Branch::Open);
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
+    pub fn branch_of(&self, position: &FourBarUnknowns<T>) -> Branch {
+        Branch::from_sign((position.theta4 - position.theta3).sin())
+    }
+
+    /// Grashof's classification (`s + l` against `p + q`) with the ground `l1`, input `l2`,
+    /// coupler `l3` and output `l4`; see [`mechgen::grashof`].
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// use mechgen::grashof::{Class, Inversion};
+    /// let g = FourBar::new(180.0, 80.0, 200.0, 150.0)?.grashof();
+    /// assert_eq!((g.class, g.inversion), (Class::Grashof, Inversion::CrankRocker));
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
+    pub fn grashof(&self) -> Grashof {
+        grashof::classify(self.l1, self.l2, self.l3, self.l4)
+    }
+
+    /// The transmission angle γ between coupler and rocker at a position, in [0, π]: the
+    /// interior angle at B of the triangle A B O4,
+    /// `cos γ = (l3² + l4² − Z²)/(2·l3·l4)` with `Z = |A − O4|`, computed as
+    /// `γ = acos(cos(θ4 − θ3))`. Force is transmitted best at 90°; keep it within 40° to 140°.
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// use mechgen::Branch;
+    /// let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+    /// let q = linkage.assemble(60f64.to_radians(), Branch::Open)?;
+    /// assert!((linkage.transmission_angle(&q).to_degrees() - 50.58).abs() < 0.005);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn transmission_angle(&self, position: &FourBarUnknowns<T>) -> T {
+        (position.theta4 - position.theta3).cos().acos()
+    }
+
+    /// The smallest and largest transmission angles over the whole motion, and the crank
+    /// angles where they occur. γ grows with `Z = |A − O4|`, and `Z² = l1² + l2² − 2·l1·l2·cos θ2`
+    /// grows with `|θ2|`, so the extremes are at the ends of the reachable range: θ2 = 0 and π
+    /// for a crank that turns fully, else the limit angles (where γ is 0 or π). Both branches
+    /// share them.
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// let extremes = FourBar::new(180.0, 80.0, 200.0, 150.0)?.transmission_extremes();
+    /// assert_eq!((extremes.min_at, extremes.max_at), (0.0, std::f64::consts::PI));
+    /// assert!((extremes.min.to_degrees() - 28.955).abs() < 0.001); // acos(0.875)
+    /// assert!(!extremes.within_guideline());
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
+    pub fn transmission_extremes(&self) -> TransmissionExtremes<T> {
+        let limits = self.limit_angles();
+        let pi = T::constant(core::f64::consts::PI);
+        let min_at = limits.folded.unwrap_or(T::zero());
+        let max_at = limits.extended.unwrap_or(pi);
+        let gamma = |theta2: T| {
+            let z_squared = self.l1 * self.l1 + self.l2 * self.l2
+                - (self.l1 + self.l1) * self.l2 * theta2.cos();
+            let cosine = (self.l3 * self.l3 + self.l4 * self.l4 - z_squared)
+                / ((self.l3 + self.l3) * self.l4);
+            cosine.max(-T::one()).min(T::one()).acos()
+        };
+        TransmissionExtremes {
+            min: gamma(min_at),
+            min_at,
+            max: gamma(max_at),
+            max_at,
+        }
+    }
+
+    /// The crank angles where coupler and rocker line up, the toggles a crank that cannot turn
+    /// fully stops at: `cos θ2 = (l1² + l2² − (l3 ± l4)²)/(2·l1·l2)`, `+` extended and `−`
+    /// folded. A toggle exists where the right-hand side lies in (−1, 1); there the Jacobian
+    /// is singular and just beyond it the loop cannot close.
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// // Example 1 is a crank-rocker: no limits.
+    /// assert!(FourBar::new(180.0, 80.0, 200.0, 150.0)?.limit_angles().full_turn());
+    /// // A triple-rocker stops at θ2 = ±acos((100² + 120² − 170²)/(2·100·120)).
+    /// let limits = FourBar::new(100.0, 120.0, 90.0, 80.0)?.limit_angles();
+    /// let expected = ((100.0f64.powi(2) + 120.0f64.powi(2) - 170.0f64.powi(2)) / 24000.0).acos();
+    /// assert!((limits.extended.unwrap() - expected).abs() < 1e-12);
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
+    pub fn limit_angles(&self) -> LimitAngles<T> {
+        let toggle = |reach: T| {
+            let cosine = (self.l1 * self.l1 + self.l2 * self.l2 - reach * reach)
+                / ((self.l1 + self.l1) * self.l2);
+            (cosine > -T::one() && cosine < T::one()).then(|| cosine.acos())
+        };
+        LimitAngles {
+            folded: toggle((self.l3 - self.l4).abs()),
+            extended: toggle(self.l3 + self.l4),
+        }
+    }
+
+    /// The dead-centre positions of a crank-rocker on `branch`: where crank and coupler line
+    /// up, extended (`|O2 B| = l2 + l3`) and folded (`|O2 B| = l3 − l2`), and the rocker stops
+    /// (`ω4 = 0`) at its two extremes. B is on the rocker's circle, so
+    /// `cos θ4 = ((l3 ± l2)² − l1² − l4²)/(2·l1·l4)`. `None` unless the linkage is a
+    /// crank-rocker.
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// use mechgen::Branch;
+    /// let linkage = FourBar::new(180.0_f64, 80.0, 200.0, 150.0)?;
+    /// let [extended, folded] = linkage.dead_centres(Branch::Open).unwrap();
+    /// let q = linkage.assemble(extended.theta2, Branch::Open)?;
+    /// let rates = linkage.velocity(extended.theta2, &q, 1.0)?;
+    /// assert!(rates.theta4.abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn dead_centres(&self, branch: Branch) -> Option<[DeadCentre<T>; 2]> {
+        if self.grashof().inversion != Inversion::CrankRocker {
+            return None;
+        }
+        let pi = T::constant(core::f64::consts::PI);
+        let at_reach = |reach: T, folded: bool| {
+            let cosine = (reach * reach - self.l1 * self.l1 - self.l4 * self.l4)
+                / ((self.l1 + self.l1) * self.l4);
+            let magnitude = cosine.max(-T::one()).min(T::one()).acos();
+            // Of B's two places on the rocker circle, take the one on `branch`.
+            [magnitude, -magnitude].into_iter().find_map(|theta4| {
+                let (bx, by) = (self.l1 + self.l4 * theta4.cos(), self.l4 * theta4.sin());
+                let theta3 = by.atan2(bx);
+                let theta2 = if folded { theta3 + pi } else { theta3 };
+                let position = FourBarUnknowns { theta3, theta4 };
+                (self.branch_of(&position) == branch).then_some(DeadCentre { theta2, theta4 })
+            })
+        };
+        Some([
+            at_reach(self.l3 + self.l2, false)?,
+            at_reach(self.l3 - self.l2, true)?,
+        ])
+    }
+
+    /// The ideal mechanical advantage at a position, rocker torque over crank torque:
+    /// `MA = T4/T2 = ω2/ω4`, from the generated velocity. Unbounded at a dead centre
+    /// (`ω4 = 0`).
+    ///
+    /// Errors: as [`velocity`](Self::velocity) (a toggle, where the crank cannot drive).
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// use mechgen::{Branch, MechanicalAdvantage};
+    /// let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+    /// let theta2 = 60f64.to_radians();
+    /// let q = linkage.assemble(theta2, Branch::Open)?;
+    /// let omega4 = linkage.velocity(theta2, &q, 1.0)?.theta4;
+    /// assert_eq!(linkage.mechanical_advantage(theta2, &q)?, MechanicalAdvantage::Finite(1.0 / omega4));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn mechanical_advantage(
+        &self,
+        theta2: T,
+        position: &FourBarUnknowns<T>,
+    ) -> Result<MechanicalAdvantage<T>, Error<T>> {
+        let rates = self.velocity(theta2, position, T::one())?;
+        Ok(MechanicalAdvantage::from_rates(T::one(), rates.theta4))
+    }
+}

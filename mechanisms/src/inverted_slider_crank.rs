@@ -1,0 +1,186 @@
+//! The inverted slider-crank (Norton's general form).
+
+use mechgen::{Branch, Error, MechanicalAdvantage, Real, mechanism};
+
+use crate::dimensions::{DimensionError, finite, non_negative, positive};
+
+mechanism! {
+    /// Inverted slider-crank: crank `l2` from O2 = (0, 0) to the crank pin A at the input
+    /// `theta2`; a block pinned at A slides along the rocker, which pivots at O4 = (l1, 0)
+    /// and points along `theta4`. The slide runs at the constant angle `gamma` to the rocker
+    /// (θ3 = θ4 + γ), offset `c` along the rocker from O4; `b` is the block's position along
+    /// the slide (the variable slide length). The seeds' case is `gamma = 0`. A coupler point
+    /// P on the block sits at distance `a` from A, at angle `delta` from the slide.
+    ///
+    /// Loop: `l2 @ theta2 - b @ (theta4 + gamma) - c @ theta4 - l1 @ 0 = 0` (KINEMATICS.md).
+    /// Build one with [`InvertedSliderCrank::new`], which checks the dimensions.
+    ///
+    /// ```
+    /// use mechanisms::InvertedSliderCrank;
+    /// use mechgen::Branch;
+    /// let linkage = InvertedSliderCrank::new(150.0_f64, 60.0, 0.0, 0.0)?;
+    /// // Crank along +x: A = (60, 0), so the rocker points back at it and b = 90.
+    /// let q = linkage.assemble(0.0, Branch::Open)?;
+    /// assert!((q.b - 90.0).abs() < 1e-12);
+    /// assert!((q.theta4 - std::f64::consts::PI).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub struct InvertedSliderCrank {
+        params:
+            /// Ground link O2 O4.
+            l1,
+            /// Crank O2 A.
+            l2,
+            /// Offset of the slide from O4, along the rocker.
+            c,
+            /// Constant angle from the rocker to the slide, in radians (0 in the seeds).
+            gamma: angle,
+            /// Distance from A to the coupler point P on the block.
+            a,
+            /// Angle of A P from the slide, in radians.
+            delta: angle;
+        input: theta2: angle;
+        unknowns: theta4: angle, b: length;
+        loop: l2 @ theta2 - b @ (theta4 + gamma) - c @ theta4 - l1 @ 0;
+        /// A, the crank pin, reached through the crank.
+        point crank_pin = l2 @ theta2;
+        /// A again, reached through the rocker and the slide: its acceleration parts show the
+        /// block's sliding and Coriolis accelerations.
+        point block_pin = l1 @ 0 + c @ theta4 + b @ (theta4 + gamma);
+        /// The start of the slide on the rocker, `O4 + c @ theta4`.
+        point slide_origin = l1 @ 0 + c @ theta4;
+        /// P, the coupler point on the block.
+        point coupler_point = l2 @ theta2 + a @ (theta4 + gamma + delta);
+        generate: position, velocity, acceleration;
+    }
+}
+
+impl<T: Real> InvertedSliderCrank<T> {
+    /// An inverted slider-crank with the coupler point at the crank pin A.
+    ///
+    /// Errors: a ground or crank that is not positive and finite, a non-finite offset or
+    /// angle, or a slide that passes farther from O4 than A can ever be
+    /// (`|c·sin γ| > l1 + l2`).
+    ///
+    /// ```
+    /// use mechanisms::InvertedSliderCrank;
+    /// assert!(InvertedSliderCrank::new(150.0, 60.0, 20.0, 0.3).is_ok());
+    /// assert_eq!(InvertedSliderCrank::new(150.0, 60.0, 20.0, f64::NAN).unwrap_err().name, "angle");
+    /// ```
+    pub fn new(ground: T, crank: T, offset: T, angle: T) -> Result<Self, DimensionError<T>> {
+        let linkage = InvertedSliderCrank {
+            l1: positive("ground", ground)?,
+            l2: positive("crank", crank)?,
+            c: finite("offset", offset)?,
+            gamma: finite("angle", angle)?,
+            a: T::zero(),
+            delta: T::zero(),
+        };
+        if (offset * angle.sin()).abs() > ground + crank {
+            return Err(DimensionError {
+                name: "offset",
+                value: offset,
+                requirement: "such that the slide can pass through the crank pin",
+            });
+        }
+        Ok(linkage)
+    }
+
+    /// The same linkage with its coupler point P on the block, at `distance` from A and
+    /// `angle` (radians) from the slide.
+    pub fn with_coupler_point(self, distance: T, angle: T) -> Result<Self, DimensionError<T>> {
+        Ok(InvertedSliderCrank {
+            a: non_negative("coupler point distance", distance)?,
+            delta: finite("coupler point angle", angle)?,
+            ..self
+        })
+    }
+
+    /// `[ground, crank, offset, angle]`.
+    pub fn dimensions(&self) -> [T; 4] {
+        [self.l1, self.l2, self.c, self.gamma]
+    }
+
+    /// The position at crank angle `theta2` on `branch`, in closed form. With
+    /// `R = A − O4 = e^{iθ4}·(b·e^{iγ} + c)`, `|R|² = b² + 2·b·c·cos γ + c²`, so
+    /// `b = −c·cos γ ± √(|R|² − c²·sin² γ)` and `θ4 = arg R − arg(b·e^{iγ} + c)`.
+    ///
+    /// Branches are told apart by the sign of the root, `b + c·cos γ`, which is A's distance
+    /// along the slide direction from the foot of the perpendicular from O4: positive on the
+    /// open branch (A lies ahead of the rocker along the slide), negative on the crossed one.
+    ///
+    /// Errors: [`Error::CannotAssemble`] where the slide cannot pass through A; a non-finite
+    /// input.
+    ///
+    /// ```
+    /// use mechanisms::InvertedSliderCrank;
+    /// use mechgen::Branch;
+    /// let linkage = InvertedSliderCrank::new(150.0_f64, 60.0, 20.0, 0.3)?;
+    /// let q = linkage.assemble(1.0, Branch::Crossed)?;
+    /// assert_eq!(linkage.branch_of(&q), Branch::Crossed);
+    /// assert!(linkage.residual(1.0, &q).iter().all(|f| f.abs() < 1e-12));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn assemble(
+        &self,
+        theta2: T,
+        branch: Branch,
+    ) -> Result<InvertedSliderCrankUnknowns<T>, Error<T>> {
+        if !theta2.is_finite() {
+            return Err(Error::NonFinite {
+                quantity: "input `theta2`",
+            });
+        }
+        let (sin2, cos2) = theta2.sin_cos();
+        let (rx, ry) = (self.l2 * cos2 - self.l1, self.l2 * sin2);
+        let (sin_gamma, cos_gamma) = self.gamma.sin_cos();
+        let across = self.c * sin_gamma;
+        let discriminant = rx * rx + ry * ry - across * across;
+        let rounding = T::constant(8.0) * T::epsilon() * (rx * rx + ry * ry + across * across);
+        if discriminant < -rounding {
+            return Err(Error::CannotAssemble { input: theta2 });
+        }
+        let b = -self.c * cos_gamma + branch.sign::<T>() * discriminant.max(T::zero()).sqrt();
+        // The direction of b·e^{iγ} + c, which R makes with the rocker.
+        let (ux, uy) = (b * cos_gamma + self.c, b * sin_gamma);
+        if ux == T::zero() && uy == T::zero() {
+            // A on the slide's foot: the rocker's angle is not determined.
+            return Err(Error::Singular {
+                determinant: T::zero(),
+                relative_determinant: T::zero(),
+            });
+        }
+        Ok(InvertedSliderCrankUnknowns {
+            theta4: ry.atan2(rx) - uy.atan2(ux),
+            b,
+        })
+    }
+
+    /// The branch a position is on: open where `b + c·cos γ ≥ 0` (see
+    /// [`assemble`](Self::assemble)).
+    pub fn branch_of(&self, position: &InvertedSliderCrankUnknowns<T>) -> Branch {
+        Branch::from_sign(position.b + self.c * self.gamma.cos())
+    }
+
+    /// The ideal mechanical advantage at a position, rocker torque over crank torque:
+    /// `MA = T4/T2 = ω2/ω4`, from the generated velocity. Unbounded where the rocker stops.
+    ///
+    /// ```
+    /// use mechanisms::InvertedSliderCrank;
+    /// use mechgen::Branch;
+    /// let linkage = InvertedSliderCrank::new(150.0_f64, 60.0, 0.0, 0.0)?;
+    /// let q = linkage.assemble(0.0, Branch::Open)?;
+    /// // A = (60, 0) moves up at 60 mm/s per rad/s, 90 mm from O4: ω4 = -60/90.
+    /// let ma = linkage.mechanical_advantage(0.0, &q)?.finite().unwrap();
+    /// assert!((ma + 1.5).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn mechanical_advantage(
+        &self,
+        theta2: T,
+        position: &InvertedSliderCrankUnknowns<T>,
+    ) -> Result<MechanicalAdvantage<T>, Error<T>> {
+        let rates = self.velocity(theta2, position, T::one())?;
+        Ok(MechanicalAdvantage::from_rates(T::one(), rates.theta4))
+    }
+}

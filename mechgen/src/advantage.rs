@@ -1,0 +1,43 @@
+//! Mechanical advantage.
+
+use crate::Real;
+
+/// The ideal (frictionless, massless) mechanical advantage: output effort over input effort,
+/// which by conservation of power is the input rate over the output rate:
+/// `MA = T_out / T_in = ω_in / ω_out`.
+///
+/// ```
+/// use mechgen::MechanicalAdvantage;
+/// assert_eq!(MechanicalAdvantage::from_rates(10.0, 4.0), MechanicalAdvantage::Finite(2.5));
+/// // At a dead centre the output stops: any output load is held for no input effort.
+/// assert_eq!(MechanicalAdvantage::from_rates(10.0, 0.0), MechanicalAdvantage::Unbounded);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MechanicalAdvantage<T> {
+    /// `ω_in / ω_out`, signed: negative when the output turns against the input.
+    Finite(T),
+    /// The output is stationary (a dead centre): the ratio is unbounded.
+    Unbounded,
+}
+
+impl<T: Real> MechanicalAdvantage<T> {
+    /// `ω_in / ω_out`, or [`Unbounded`](Self::Unbounded) when the output rate is zero to
+    /// rounding (`|ω_out| ≤ 4ε·|ω_in|`) or the ratio overflows.
+    pub fn from_rates(input_rate: T, output_rate: T) -> Self {
+        let ratio = input_rate / output_rate;
+        let stationary = output_rate.abs() <= T::constant(4.0) * T::epsilon() * input_rate.abs();
+        if stationary || !ratio.is_finite() {
+            MechanicalAdvantage::Unbounded
+        } else {
+            MechanicalAdvantage::Finite(ratio)
+        }
+    }
+
+    /// The finite value, if any.
+    pub fn finite(self) -> Option<T> {
+        match self {
+            MechanicalAdvantage::Finite(value) => Some(value),
+            MechanicalAdvantage::Unbounded => None,
+        }
+    }
+}

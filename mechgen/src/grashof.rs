@@ -1,0 +1,165 @@
+//! Grashof's law: which links of a four-bar can turn fully, from their lengths alone.
+//!
+//! With `s` the shortest link, `l` the longest and `p`, `q` the other two:
+//! - `s + l < p + q`, class I (Grashof): the shortest link turns fully relative to all the
+//!   others. Ground adjacent to it: crank-rocker (or rocker-crank); ground = shortest:
+//!   double-crank; ground opposite it: Grashof double-rocker (the coupler turns fully).
+//! - `s + l > p + q`, class II (non-Grashof): no link turns fully; a triple-rocker.
+//! - `s + l = p + q`, class III (special Grashof, change point): the class I inversions, but
+//!   all four links can line up, where the linkage may change branch. The parallelogram
+//!   (opposite links equal) and the kite or deltoid (adjacent links equal) are such.
+//!
+//! Equality is decided within a tolerance relative to the links' total length, so that
+//! lengths that are equal up to rounding classify as the change point they are meant to be.
+
+use crate::Real;
+
+/// Grashof's class, from `s + l` against `p + q`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Class {
+    /// Class I, `s + l < p + q`: the shortest link turns fully.
+    Grashof,
+    /// Class II, `s + l > p + q`: no link turns fully.
+    NonGrashof,
+    /// Class III, `s + l = p + q`: as class I, but the links can all line up (change point).
+    ChangePoint,
+}
+
+/// What the input (crank) and output (rocker) links do, relative to the ground link.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Inversion {
+    /// The input turns fully, the output rocks (shortest link is the input).
+    CrankRocker,
+    /// The output turns fully, the input rocks (shortest link is the output).
+    RockerCrank,
+    /// Both turn fully (shortest link is the ground).
+    DoubleCrank,
+    /// Both rock, and the coupler turns fully (shortest link is the coupler): the Grashof
+    /// double-rocker.
+    DoubleRocker,
+    /// Non-Grashof: every link rocks.
+    TripleRocker,
+}
+
+/// Named special cases of class III.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Special {
+    /// Opposite links equal (ground = coupler, input = output); includes the rhombus.
+    Parallelogram,
+    /// Adjacent links equal in two pairs (deltoid), and not a parallelogram.
+    Kite,
+}
+
+/// A four-bar's Grashof classification.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Grashof {
+    /// Class I, II or III.
+    pub class: Class,
+    /// Which links turn fully. For class III this is the class I inversion the lengths give,
+    /// with every link of the shortest length counted as shortest (so a parallelogram with
+    /// equal cranks is a double-crank).
+    pub inversion: Inversion,
+    /// A parallelogram or kite, if it is one (always class III).
+    pub special: Option<Special>,
+}
+
+impl Grashof {
+    /// Whether the input link turns fully relative to the ground.
+    pub fn input_turns_fully(&self) -> bool {
+        matches!(
+            self.inversion,
+            Inversion::CrankRocker | Inversion::DoubleCrank
+        )
+    }
+
+    /// Whether the output link turns fully relative to the ground.
+    pub fn output_turns_fully(&self) -> bool {
+        matches!(
+            self.inversion,
+            Inversion::RockerCrank | Inversion::DoubleCrank
+        )
+    }
+}
+
+/// The default relative tolerance for equal lengths: 64 ε, a few units of rounding in the
+/// total length.
+pub fn default_tolerance<T: Real>() -> T {
+    T::constant(64.0) * T::epsilon()
+}
+
+/// Classifies the four-bar with these link lengths, with equal lengths decided within
+/// [`default_tolerance`] of the total length.
+///
+/// ```
+/// use mechgen::grashof::{classify, Class, Inversion};
+/// // The seeds' Example 1: s + l = 80 + 200 < 180 + 150, shortest link is the crank.
+/// let g = classify(180.0, 80.0, 200.0, 150.0);
+/// assert_eq!((g.class, g.inversion), (Class::Grashof, Inversion::CrankRocker));
+/// ```
+pub fn classify<T: Real>(ground: T, input: T, coupler: T, output: T) -> Grashof {
+    classify_with_tolerance(ground, input, coupler, output, default_tolerance())
+}
+
+/// [`classify`] with lengths counted equal when they differ by at most
+/// `relative_tolerance` times the total length.
+///
+/// ```
+/// use mechgen::grashof::{classify_with_tolerance, Class, Special};
+/// // A parallelogram measured to 0.01 mm.
+/// let g = classify_with_tolerance(200.0, 80.0, 200.004, 79.998, 1e-4);
+/// assert_eq!((g.class, g.special), (Class::ChangePoint, Some(Special::Parallelogram)));
+/// ```
+pub fn classify_with_tolerance<T: Real>(
+    ground: T,
+    input: T,
+    coupler: T,
+    output: T,
+    relative_tolerance: T,
+) -> Grashof {
+    let links = [ground, input, coupler, output];
+    let total = links.iter().fold(T::zero(), |sum, l| sum + *l);
+    let margin = relative_tolerance * total;
+    let equal = |a: T, b: T| (a - b).abs() <= margin;
+    let shortest = links.iter().fold(T::infinity(), |m, l| m.min(*l));
+    let longest = links.iter().fold(T::neg_infinity(), |m, l| m.max(*l));
+    // s + l against p + q, where p + q is the total less s and l.
+    let excess = (shortest + longest) - (total - shortest - longest);
+    let class = if excess.abs() <= margin {
+        Class::ChangePoint
+    } else if excess < T::zero() {
+        Class::Grashof
+    } else {
+        Class::NonGrashof
+    };
+    let is_shortest = |l: T| equal(l, shortest);
+    let inversion = if class == Class::NonGrashof {
+        Inversion::TripleRocker
+    } else {
+        // The shortest link turns fully relative to every other, so a link turns fully
+        // relative to the ground when it or the ground is a shortest link.
+        let ground_shortest = is_shortest(ground);
+        match (
+            ground_shortest || is_shortest(input),
+            ground_shortest || is_shortest(output),
+        ) {
+            (true, true) => Inversion::DoubleCrank,
+            (true, false) => Inversion::CrankRocker,
+            (false, true) => Inversion::RockerCrank,
+            (false, false) => Inversion::DoubleRocker,
+        }
+    };
+    let special = if equal(ground, coupler) && equal(input, output) {
+        Some(Special::Parallelogram)
+    } else if (equal(ground, input) && equal(coupler, output))
+        || (equal(ground, output) && equal(input, coupler))
+    {
+        Some(Special::Kite)
+    } else {
+        None
+    };
+    Grashof {
+        class,
+        inversion,
+        special,
+    }
+}

@@ -1,0 +1,22 @@
+use mechgen::mechanism;
+
+mechanism! {
+    pub struct FourBar {
+        params: pub l1, pub(crate) l2, l3, l4;
+        input: pub theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
+    }
+}
+
+mechanism! {
+    pub struct Documented {
+        params: l1, l2, l3, l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        /// Loops take no docs.
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
+    }
+}
+
+fn main() {}
