@@ -51,6 +51,15 @@ mechanism! {
 }
 
 /// The transmission angle's extremes over the motion (see [`FourBar::transmission_extremes`]).
+///
+/// ```
+/// use mechanisms::FourBar;
+/// // Example 1's extremes: acos(0.875) at θ2 = 0 (Z = 100), acos(-0.085) at θ2 = π (Z = 260).
+/// let extremes = FourBar::new(180.0, 80.0, 200.0, 150.0)?.transmission_extremes();
+/// assert!((extremes.min - 0.875f64.acos()).abs() < 1e-12);
+/// assert!((extremes.max - (-0.085f64).acos()).abs() < 1e-12);
+/// # Ok::<(), mechanisms::DimensionError<f64>>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TransmissionExtremes<T> {
     /// The smallest transmission angle, radians.
@@ -65,6 +74,14 @@ pub struct TransmissionExtremes<T> {
 
 impl<T: Real> TransmissionExtremes<T> {
     /// Whether the transmission angle stays within the 40° to 140° guideline throughout.
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// // A long coupler and rocker keep γ near 90°.
+    /// let extremes = FourBar::new(200.0, 40.0, 220.0, 210.0)?.transmission_extremes();
+    /// assert!(extremes.within_guideline());
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn within_guideline(&self) -> bool {
         self.min >= T::constant(40f64.to_radians()) && self.max <= T::constant(140f64.to_radians())
     }
@@ -73,6 +90,15 @@ impl<T: Real> TransmissionExtremes<T> {
 /// The input angles at which a crank that cannot turn fully stops (toggles), in (0, π); the
 /// linkage is symmetric, so each also stops at the negative angle. See
 /// [`FourBar::limit_angles`].
+///
+/// ```
+/// use mechanisms::FourBar;
+/// // A rocker-crank whose crank meets both toggles: it rocks between them.
+/// let limits = FourBar::new(180.0, 150.0, 200.0, 80.0)?.limit_angles();
+/// let (folded, extended) = (limits.folded.unwrap(), limits.extended.unwrap());
+/// assert!(folded < extended);
+/// # Ok::<(), mechanisms::DimensionError<f64>>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LimitAngles<T> {
     /// Where the coupler and rocker line up folded (`Z = |l3 − l4|`), if they can: the crank
@@ -85,12 +111,26 @@ pub struct LimitAngles<T> {
 
 impl<T: Real> LimitAngles<T> {
     /// Whether the crank turns fully (no toggle).
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// assert!(FourBar::new(180.0, 80.0, 200.0, 150.0)?.limit_angles().full_turn());
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn full_turn(&self) -> bool {
         self.folded.is_none() && self.extended.is_none()
     }
 
     /// Whether the linkage assembles at `theta2`: `|θ2|`, wrapped to [0, π], lies between the
     /// folded limit (or 0) and the extended limit (or π).
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// let limits = FourBar::new(180.0, 150.0, 200.0, 80.0)?.limit_angles();
+    /// assert!(limits.reaches(1.0) && limits.reaches(-1.0));
+    /// assert!(!limits.reaches(0.0) && !limits.reaches(std::f64::consts::PI));
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn reaches(&self, theta2: T) -> bool {
         let pi = T::constant(core::f64::consts::PI);
         let wrapped = (theta2 % (pi + pi)).abs();
@@ -105,6 +145,16 @@ impl<T: Real> LimitAngles<T> {
 
 /// A position where the rocker stops while the crank turns on (crank and coupler in line),
 /// see [`FourBar::dead_centres`].
+///
+/// ```
+/// use mechanisms::FourBar;
+/// use mechgen::Branch;
+/// let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+/// let [extended, folded] = linkage.dead_centres(Branch::Open).unwrap();
+/// // The rocker swings between the two.
+/// assert!(folded.theta4 > extended.theta4);
+/// # Ok::<(), mechanisms::DimensionError<f64>>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DeadCentre<T> {
     /// The crank angle θ2 there, radians.
@@ -165,11 +215,24 @@ impl<T: Real> FourBar<T> {
     }
 
     /// The link lengths `[ground, crank, coupler, rocker]`.
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// assert_eq!(FourBar::new(180.0, 80.0, 200.0, 150.0)?.lengths(), [180.0, 80.0, 200.0, 150.0]);
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn lengths(&self) -> [T; 4] {
         [self.l1, self.l2, self.l3, self.l4]
     }
 
-    /// The coupler point's `(distance from A, angle from A B)`.
+    /// The coupler point's `(distance from A, angle from A B)`; `(0, 0)` (the crank pin) unless
+    /// set by [`with_coupler_point`](Self::with_coupler_point).
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// assert_eq!(FourBar::new(180.0, 80.0, 200.0, 150.0)?.coupler_point(), (0.0, 0.0));
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn coupler_point(&self) -> (T, T) {
         (self.a, self.delta)
     }

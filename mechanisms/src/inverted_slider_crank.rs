@@ -88,6 +88,14 @@ impl<T: Real> InvertedSliderCrank<T> {
 
     /// The same linkage with its coupler point P on the block, at `distance` from A and
     /// `angle` (radians) from the slide.
+    ///
+    /// ```
+    /// use mechanisms::InvertedSliderCrank;
+    /// let linkage = InvertedSliderCrank::new(150.0, 60.0, 20.0, 0.3)?;
+    /// assert!(linkage.with_coupler_point(30.0, 1.0).is_ok());
+    /// assert!(linkage.with_coupler_point(f64::NAN, 1.0).is_err());
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn with_coupler_point(self, distance: T, angle: T) -> Result<Self, DimensionError<T>> {
         Ok(InvertedSliderCrank {
             a: non_negative("coupler point distance", distance)?,
@@ -97,6 +105,13 @@ impl<T: Real> InvertedSliderCrank<T> {
     }
 
     /// `[ground, crank, offset, angle]`.
+    ///
+    /// ```
+    /// use mechanisms::InvertedSliderCrank;
+    /// let linkage = InvertedSliderCrank::new(150.0, 60.0, 20.0, 0.3)?;
+    /// assert_eq!(linkage.dimensions(), [150.0, 60.0, 20.0, 0.3]);
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn dimensions(&self) -> [T; 4] {
         [self.l1, self.l2, self.c, self.gamma]
     }
@@ -158,6 +173,15 @@ impl<T: Real> InvertedSliderCrank<T> {
 
     /// The branch a position is on: open where `b + c·cos γ ≥ 0` (see
     /// [`assemble`](Self::assemble)).
+    ///
+    /// ```
+    /// use mechanisms::{InvertedSliderCrank, InvertedSliderCrankUnknowns};
+    /// use mechgen::Branch;
+    /// let linkage = InvertedSliderCrank::new(150.0, 60.0, 0.0, 0.0)?;
+    /// let q = InvertedSliderCrankUnknowns { theta4: 3.1, b: 90.0 };
+    /// assert_eq!(linkage.branch_of(&q), Branch::Open);
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn branch_of(&self, position: &InvertedSliderCrankUnknowns<T>) -> Branch {
         Branch::from_sign(position.b + self.c * self.gamma.cos())
     }

@@ -93,11 +93,24 @@ impl<T: Real> SliderCrank<T> {
     }
 
     /// `[crank, rod, offset]`.
+    ///
+    /// ```
+    /// use mechanisms::SliderCrank;
+    /// assert_eq!(SliderCrank::new(50.0, 150.0, 20.0)?.dimensions(), [50.0, 150.0, 20.0]);
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn dimensions(&self) -> [T; 3] {
         [self.l2, self.l3, self.c]
     }
 
-    /// The coupler point's `(distance from A, angle from A B)`.
+    /// The coupler point's `(distance from A, angle from A B)`; `(0, 0)` (the crank pin) unless
+    /// set by [`with_coupler_point`](Self::with_coupler_point).
+    ///
+    /// ```
+    /// use mechanisms::SliderCrank;
+    /// assert_eq!(SliderCrank::new(50.0, 150.0, 20.0)?.coupler_point(), (0.0, 0.0));
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn coupler_point(&self) -> (T, T) {
         (self.a, self.delta)
     }
@@ -199,6 +212,17 @@ impl<T: Real> SliderCrank<T> {
     /// The crank angles at the dead centres on the open branch, `[outer, inner]`: where crank
     /// and rod line up extended, `θ2 = asin(c/(l2 + l3))`, and folded,
     /// `θ2 = π + asin(c/(l3 − l2))`. `None` if the crank cannot turn fully.
+    ///
+    /// ```
+    /// use mechanisms::SliderCrank;
+    /// use mechgen::Branch;
+    /// let linkage = SliderCrank::new(50.0_f64, 150.0, 20.0)?;
+    /// for theta2 in linkage.dead_centres().unwrap() {
+    ///     let q = linkage.assemble(theta2, Branch::Open)?;
+    ///     assert!(linkage.velocity(theta2, &q, 1.0)?.d.abs() < 1e-12);
+    /// }
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn dead_centres(&self) -> Option<[T; 2]> {
         self.crank_turns_fully().then(|| {
             let pi = T::constant(core::f64::consts::PI);

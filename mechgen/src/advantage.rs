@@ -34,6 +34,12 @@ impl<T: Real> MechanicalAdvantage<T> {
     }
 
     /// The finite value, if any.
+    ///
+    /// ```
+    /// use mechgen::MechanicalAdvantage;
+    /// assert_eq!(MechanicalAdvantage::from_rates(3.0, 1.5).finite(), Some(2.0));
+    /// assert_eq!(MechanicalAdvantage::<f64>::Unbounded.finite(), None);
+    /// ```
     pub fn finite(self) -> Option<T> {
         match self {
             MechanicalAdvantage::Finite(value) => Some(value),

@@ -21,6 +21,11 @@ pub enum Branch {
 
 impl Branch {
     /// The other branch.
+    ///
+    /// ```
+    /// use mechgen::Branch;
+    /// assert_eq!(Branch::Crossed.other(), Branch::Open);
+    /// ```
     pub fn other(self) -> Self {
         match self {
             Branch::Open => Branch::Crossed,
@@ -28,7 +33,13 @@ impl Branch {
         }
     }
 
-    /// The branch whose defining sign is `sign` (positive: open).
+    /// The branch whose defining sign is `sign` (positive or zero: open).
+    ///
+    /// ```
+    /// use mechgen::Branch;
+    /// assert_eq!(Branch::from_sign(0.3), Branch::Open);
+    /// assert_eq!(Branch::from_sign(-0.3), Branch::Crossed);
+    /// ```
     pub fn from_sign<T: crate::Real>(sign: T) -> Self {
         if sign >= T::zero() {
             Branch::Open
@@ -38,6 +49,11 @@ impl Branch {
     }
 
     /// `+1` for open, `-1` for crossed.
+    ///
+    /// ```
+    /// use mechgen::Branch;
+    /// assert_eq!(Branch::Crossed.sign::<f64>(), -1.0);
+    /// ```
     pub fn sign<T: crate::Real>(self) -> T {
         match self {
             Branch::Open => T::one(),

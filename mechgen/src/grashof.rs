@@ -65,6 +65,12 @@ pub struct Grashof {
 
 impl Grashof {
     /// Whether the input link turns fully relative to the ground.
+    ///
+    /// ```
+    /// use mechgen::grashof::classify;
+    /// assert!(classify(180.0, 80.0, 200.0, 150.0).input_turns_fully());
+    /// assert!(!classify(100.0, 120.0, 90.0, 80.0).input_turns_fully());
+    /// ```
     pub fn input_turns_fully(&self) -> bool {
         matches!(
             self.inversion,
@@ -73,6 +79,12 @@ impl Grashof {
     }
 
     /// Whether the output link turns fully relative to the ground.
+    ///
+    /// ```
+    /// use mechgen::grashof::classify;
+    /// // Ground shortest: a double-crank.
+    /// assert!(classify(80.0, 180.0, 200.0, 150.0).output_turns_fully());
+    /// ```
     pub fn output_turns_fully(&self) -> bool {
         matches!(
             self.inversion,
@@ -83,6 +95,10 @@ impl Grashof {
 
 /// The default relative tolerance for equal lengths: 64 ε, a few units of rounding in the
 /// total length.
+///
+/// ```
+/// assert_eq!(mechgen::grashof::default_tolerance::<f64>(), 64.0 * f64::EPSILON);
+/// ```
 pub fn default_tolerance<T: Real>() -> T {
     T::constant(64.0) * T::epsilon()
 }
