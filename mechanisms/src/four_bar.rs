@@ -14,6 +14,13 @@ mechanism! {
     /// Loop: `l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0 = 0` (KINEMATICS.md).
     /// Build one with [`FourBar::new`], which checks the lengths.
     ///
+    /// The generated [`assemble`](Self::assemble) places B where the circle of radius `l3`
+    /// about A meets the circle of radius `l4` about O4. Its branches are told apart by
+    /// `sin(θ4 − θ3)`: positive on the open branch (the coupler A→B lies counter-clockwise of
+    /// the chord A→O4, and the rocker's direction O4→B is counter-clockwise of the coupler's),
+    /// negative on the crossed one. The sign changes only where coupler and rocker line up, so
+    /// a crank turning through a Grashof crank-rocker's full circle stays on its branch.
+    ///
     /// ```
     /// use mechanisms::FourBar;
     /// use mechgen::Branch;
@@ -237,78 +244,6 @@ impl<T: Real> FourBar<T> {
         (self.a, self.delta)
     }
 
-    /// The position at crank angle `theta2` on `branch`, in closed form: B is where the circle
-    /// of radius `l3` about A meets the circle of radius `l4` about O4.
-    ///
-    /// Branches are told apart by `sin(θ4 − θ3)`: positive on the open branch (the rocker's
-    /// direction O4→B is counter-clockwise from the coupler's A→B, so the transmission angle
-    /// opens the same way), negative on the crossed one. The sign changes only where coupler
-    /// and rocker line up, so a crank turning through a Grashof crank-rocker's full circle stays
-    /// on its branch.
-    ///
-    /// Errors: [`Error::CannotAssemble`] where the crank cannot reach (see
-    /// [`limit_angles`](Self::limit_angles)); a non-finite input.
-    ///
-    /// ```
-    /// use mechanisms::FourBar;
-    /// use mechgen::Branch;
-    /// let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
-    /// let open = linkage.assemble(60f64.to_radians(), Branch::Open)?;
-    /// let crossed = linkage.assemble(60f64.to_radians(), Branch::Crossed)?;
-    /// assert!((open.theta4.to_degrees() - 72.14).abs() < 0.005);
-    /// assert!((crossed.theta4.to_degrees().rem_euclid(360.0) - 235.20).abs() < 0.005);
-    /// assert_eq!(linkage.branch_of(&crossed), Branch::Crossed);
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    pub fn assemble(&self, theta2: T, branch: Branch) -> Result<FourBarUnknowns<T>, Error<T>> {
-        if !theta2.is_finite() {
-            return Err(Error::NonFinite {
-                quantity: "input `theta2`",
-            });
-        }
-        let (sin2, cos2) = theta2.sin_cos();
-        let (ax, ay) = (self.l2 * cos2, self.l2 * sin2);
-        // Unit vector from A to O4, and the distance Z between them.
-        let (dx, dy) = (self.l1 - ax, -ay);
-        let z = dx.hypot(dy);
-        if z == T::zero() {
-            // A on O4: the coupler and rocker can turn together to any angle.
-            return Err(Error::Singular {
-                determinant: T::zero(),
-                relative_determinant: T::zero(),
-            });
-        }
-        let (ux, uy) = (dx / z, dy / z);
-        let along = (self.l3 * self.l3 - self.l4 * self.l4 + z * z) / (z + z);
-        let height_squared = self.l3 * self.l3 - along * along;
-        // Within rounding of a toggle the height is zero, not a failure.
-        let rounding = T::constant(8.0) * T::epsilon() * self.l3 * self.l3;
-        if height_squared < -rounding {
-            return Err(Error::CannotAssemble { input: theta2 });
-        }
-        let height = branch.sign::<T>() * height_squared.max(T::zero()).sqrt();
-        let (bx, by) = (ax + along * ux - height * uy, ay + along * uy + height * ux);
-        Ok(FourBarUnknowns {
-            theta3: (by - ay).atan2(bx - ax),
-            theta4: by.atan2(bx - self.l1),
-        })
-    }
-
-    /// The branch a position is on: open where `sin(θ4 − θ3) ≥ 0` (see
-    /// [`assemble`](Self::assemble)).
-    ///
-    /// ```
-    /// use mechanisms::{FourBar, FourBarUnknowns};
-    /// use mechgen::Branch;
-    /// let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
-    /// let q = FourBarUnknowns { theta3: 0.38, theta4: 1.26 };
-    /// assert_eq!(linkage.branch_of(&q), Branch::Open);
-    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
-    /// ```
-    pub fn branch_of(&self, position: &FourBarUnknowns<T>) -> Branch {
-        Branch::from_sign((position.theta4 - position.theta3).sin())
-    }
-
     /// Grashof's classification (`s + l` against `p + q`) with the ground `l1`, input `l2`,
     /// coupler `l3` and output `l4`; see [`mechgen::grashof`].
     ///
@@ -432,7 +367,8 @@ impl<T: Real> FourBar<T> {
                 let theta3 = by.atan2(bx);
                 let theta2 = if folded { theta3 + pi } else { theta3 };
                 let position = FourBarUnknowns { theta3, theta4 };
-                (self.branch_of(&position) == branch).then_some(DeadCentre { theta2, theta4 })
+                (self.branch_of(theta2, &position) == branch)
+                    .then_some(DeadCentre { theta2, theta4 })
             })
         };
         Some([

@@ -1,6 +1,6 @@
 //! The inverted slider-crank (Norton's general form).
 
-use mechgen::{Branch, Error, MechanicalAdvantage, Real, mechanism};
+use mechgen::{Error, MechanicalAdvantage, Real, mechanism};
 
 use crate::dimensions::{DimensionError, finite, non_negative, positive};
 
@@ -14,6 +14,13 @@ mechanism! {
     ///
     /// Loop: `l2 @ theta2 - b @ (theta4 + gamma) - c @ theta4 - l1 @ 0 = 0` (KINEMATICS.md).
     /// Build one with [`InvertedSliderCrank::new`], which checks the dimensions.
+    ///
+    /// The generated [`assemble`](Self::assemble) uses `R = A − O4 = e^{iθ4}·(b·e^{iγ} + c)`:
+    /// `|R|² = b² + 2·b·c·cos γ + c²`, so `b = −c·cos γ ± √(|R|² − c²·sin² γ)` and
+    /// `θ4 = arg R − arg(b·e^{iγ} + c)`. Its branches are told apart by the sign of the root,
+    /// `b + c·cos γ`, A's distance along the slide from the foot of the perpendicular from O4:
+    /// positive on the open branch (A lies ahead of the rocker along the slide), negative on
+    /// the crossed one.
     ///
     /// ```
     /// use mechanisms::InvertedSliderCrank;
@@ -114,76 +121,6 @@ impl<T: Real> InvertedSliderCrank<T> {
     /// ```
     pub fn dimensions(&self) -> [T; 4] {
         [self.l1, self.l2, self.c, self.gamma]
-    }
-
-    /// The position at crank angle `theta2` on `branch`, in closed form. With
-    /// `R = A − O4 = e^{iθ4}·(b·e^{iγ} + c)`, `|R|² = b² + 2·b·c·cos γ + c²`, so
-    /// `b = −c·cos γ ± √(|R|² − c²·sin² γ)` and `θ4 = arg R − arg(b·e^{iγ} + c)`.
-    ///
-    /// Branches are told apart by the sign of the root, `b + c·cos γ`, which is A's distance
-    /// along the slide direction from the foot of the perpendicular from O4: positive on the
-    /// open branch (A lies ahead of the rocker along the slide), negative on the crossed one.
-    ///
-    /// Errors: [`Error::CannotAssemble`] where the slide cannot pass through A; a non-finite
-    /// input.
-    ///
-    /// ```
-    /// use mechanisms::InvertedSliderCrank;
-    /// use mechgen::Branch;
-    /// let linkage = InvertedSliderCrank::new(150.0_f64, 60.0, 20.0, 0.3)?;
-    /// let q = linkage.assemble(1.0, Branch::Crossed)?;
-    /// assert_eq!(linkage.branch_of(&q), Branch::Crossed);
-    /// assert!(linkage.residual(1.0, &q).iter().all(|f| f.abs() < 1e-12));
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    pub fn assemble(
-        &self,
-        theta2: T,
-        branch: Branch,
-    ) -> Result<InvertedSliderCrankUnknowns<T>, Error<T>> {
-        if !theta2.is_finite() {
-            return Err(Error::NonFinite {
-                quantity: "input `theta2`",
-            });
-        }
-        let (sin2, cos2) = theta2.sin_cos();
-        let (rx, ry) = (self.l2 * cos2 - self.l1, self.l2 * sin2);
-        let (sin_gamma, cos_gamma) = self.gamma.sin_cos();
-        let across = self.c * sin_gamma;
-        let discriminant = rx * rx + ry * ry - across * across;
-        let rounding = T::constant(8.0) * T::epsilon() * (rx * rx + ry * ry + across * across);
-        if discriminant < -rounding {
-            return Err(Error::CannotAssemble { input: theta2 });
-        }
-        let b = -self.c * cos_gamma + branch.sign::<T>() * discriminant.max(T::zero()).sqrt();
-        // The direction of b·e^{iγ} + c, which R makes with the rocker.
-        let (ux, uy) = (b * cos_gamma + self.c, b * sin_gamma);
-        if ux == T::zero() && uy == T::zero() {
-            // A on the slide's foot: the rocker's angle is not determined.
-            return Err(Error::Singular {
-                determinant: T::zero(),
-                relative_determinant: T::zero(),
-            });
-        }
-        Ok(InvertedSliderCrankUnknowns {
-            theta4: ry.atan2(rx) - uy.atan2(ux),
-            b,
-        })
-    }
-
-    /// The branch a position is on: open where `b + c·cos γ ≥ 0` (see
-    /// [`assemble`](Self::assemble)).
-    ///
-    /// ```
-    /// use mechanisms::{InvertedSliderCrank, InvertedSliderCrankUnknowns};
-    /// use mechgen::Branch;
-    /// let linkage = InvertedSliderCrank::new(150.0, 60.0, 0.0, 0.0)?;
-    /// let q = InvertedSliderCrankUnknowns { theta4: 3.1, b: 90.0 };
-    /// assert_eq!(linkage.branch_of(&q), Branch::Open);
-    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
-    /// ```
-    pub fn branch_of(&self, position: &InvertedSliderCrankUnknowns<T>) -> Branch {
-        Branch::from_sign(position.b + self.c * self.gamma.cos())
     }
 
     /// The ideal mechanical advantage at a position, rocker torque over crank torque:

@@ -1,6 +1,6 @@
 //! The slider-crank, with offset.
 
-use mechgen::{Branch, Error, MechanicalAdvantage, Real, mechanism};
+use mechgen::{Error, MechanicalAdvantage, Real, mechanism};
 
 use crate::dimensions::{DimensionError, finite, non_negative, positive};
 
@@ -12,6 +12,12 @@ mechanism! {
     ///
     /// Loop: `l2 @ theta2 + l3 @ theta3 - c @ pi / 2 - d @ 0 = 0` (KINEMATICS.md).
     /// Build one with [`SliderCrank::new`], which checks the dimensions.
+    ///
+    /// The generated [`assemble`](Self::assemble) places B where the circle of radius `l3`
+    /// about A meets the slider line, so `sin θ3 = (c − l2·sin θ2)/l3` and
+    /// `d = l2·cos θ2 + l3·cos θ3`. Its branches are told apart by `cos θ3`: positive on the
+    /// open branch (the slider pin B is on the +x side of the crank pin A), negative on the
+    /// crossed one.
     ///
     /// ```
     /// use mechanisms::SliderCrank;
@@ -113,59 +119,6 @@ impl<T: Real> SliderCrank<T> {
     /// ```
     pub fn coupler_point(&self) -> (T, T) {
         (self.a, self.delta)
-    }
-
-    /// The position at crank angle `theta2` on `branch`, in closed form: B is where the
-    /// circle of radius `l3` about A meets the slider line, so
-    /// `sin θ3 = (c − l2·sin θ2)/l3` and `d = l2·cos θ2 + l3·cos θ3`.
-    ///
-    /// Branches are told apart by `cos θ3`: positive on the open branch (the slider pin B is on
-    /// the +x side of the crank pin A), negative on the crossed one.
-    ///
-    /// Errors: [`Error::CannotAssemble`] where the rod cannot reach the line; a non-finite
-    /// input.
-    ///
-    /// ```
-    /// use mechanisms::SliderCrank;
-    /// use mechgen::Branch;
-    /// let linkage = SliderCrank::new(50.0, 150.0, 20.0)?;
-    /// let open = linkage.assemble(1.0, Branch::Open)?;
-    /// let crossed = linkage.assemble(1.0, Branch::Crossed)?;
-    /// assert!(open.d > 0.0 && crossed.d < 0.0);
-    /// assert_eq!(linkage.branch_of(&crossed), Branch::Crossed);
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    pub fn assemble(&self, theta2: T, branch: Branch) -> Result<SliderCrankUnknowns<T>, Error<T>> {
-        if !theta2.is_finite() {
-            return Err(Error::NonFinite {
-                quantity: "input `theta2`",
-            });
-        }
-        let (sin2, cos2) = theta2.sin_cos();
-        let sine = (self.c - self.l2 * sin2) / self.l3;
-        let rounding = T::constant(8.0) * T::epsilon();
-        if sine.abs() > T::one() + rounding {
-            return Err(Error::CannotAssemble { input: theta2 });
-        }
-        let sine = sine.max(-T::one()).min(T::one());
-        let cosine = branch.sign::<T>() * (T::one() - sine * sine).sqrt();
-        Ok(SliderCrankUnknowns {
-            theta3: sine.atan2(cosine),
-            d: self.l2 * cos2 + self.l3 * cosine,
-        })
-    }
-
-    /// The branch a position is on: open where `cos θ3 ≥ 0` (see [`assemble`](Self::assemble)).
-    ///
-    /// ```
-    /// use mechanisms::{SliderCrank, SliderCrankUnknowns};
-    /// use mechgen::Branch;
-    /// let linkage = SliderCrank::new(50.0, 150.0, 20.0)?;
-    /// assert_eq!(linkage.branch_of(&SliderCrankUnknowns { theta3: 0.1, d: 190.0 }), Branch::Open);
-    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
-    /// ```
-    pub fn branch_of(&self, position: &SliderCrankUnknowns<T>) -> Branch {
-        Branch::from_sign(position.theta3.cos())
     }
 
     /// The transmission angle μ at a position: the complement of the pressure angle between

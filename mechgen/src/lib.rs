@@ -4,11 +4,13 @@
 
 mod advantage;
 mod branch;
+pub mod closed;
 mod error;
 pub mod grashof;
 mod linear;
 mod newton;
 mod real;
+pub mod sweep;
 mod vec2;
 
 pub use advantage::MechanicalAdvantage;
@@ -16,6 +18,7 @@ pub use branch::Branch;
 pub use error::Error;
 pub use newton::{NewtonOptions, Solved};
 pub use real::Real;
+pub use sweep::Kinematics;
 pub use vec2::{AccelerationParts, Vec2};
 
 /// Declares a planar mechanism by its vector loops and generates its kinematics.

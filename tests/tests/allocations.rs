@@ -91,6 +91,14 @@ fn kinematics_calls_do_not_allocate() {
             let v = inverted.velocity(theta2, &q, 10.0).unwrap();
             inverted.acceleration(theta2, &q, 10.0, &v, 1.0).unwrap();
 
+            // Closed forms and a sweep of a few steps.
+            let q = four_bar.assemble(theta2, mechgen::Branch::Open).unwrap();
+            let sweep =
+                mechgen::sweep::Sweep::new(&four_bar, theta2, q.to_array(), 0.01, 5, options);
+            assert_eq!(sweep.filter(Result::is_ok).count(), 6);
+            slider.assemble(theta2, mechgen::Branch::Crossed).unwrap();
+            inverted.assemble(theta2, mechgen::Branch::Open).unwrap();
+
             // Errors are values too: a singular or non-finite case allocates nothing either.
             assert!(
                 four_bar

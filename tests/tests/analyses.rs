@@ -29,8 +29,8 @@ fn seeds_worked_values_on_both_branches() {
     assert_eq!(rounded(normalised_deg(open.theta4), 2), 72.14);
     assert_eq!(rounded(normalised_deg(crossed.theta4), 2), 235.20);
     assert_eq!(rounded(normalised_deg(open.theta3), 4), 21.5576);
-    assert_eq!(example_1.branch_of(&open), Branch::Open);
-    assert_eq!(example_1.branch_of(&crossed), Branch::Crossed);
+    assert_eq!(example_1.branch_of(theta2, &open), Branch::Open);
+    assert_eq!(example_1.branch_of(theta2, &crossed), Branch::Crossed);
 
     let exercise_3 = FourBar::new(300.0, 100.0, 250.0, 200.0).unwrap();
     let open = exercise_3.assemble(rad(45.0), Branch::Open).unwrap();
@@ -71,7 +71,7 @@ fn closed_form_branches_agree_with_newton_started_nearby() {
                 (newton.theta4 - q.theta4).abs() < 1e-12,
                 "{branch:?} {degree}°"
             );
-            assert_eq!(linkage.branch_of(&newton), branch);
+            assert_eq!(linkage.branch_of(theta2, &newton), branch);
         }
     }
 }

@@ -162,3 +162,22 @@ fn generated_names_never_shadow_each_other() {
     let pin = linkage.points(theta2, &q).unwrap().r#loop;
     assert!((pin.x - 80.0 * theta2.cos()).abs() < 1e-12);
 }
+
+mechanism! {
+    /// A cross-slide table: the arm `r @ theta` is reached by sliding `x` along x and then
+    /// `y` along y, two unknown lengths in one loop (Chace's linear case).
+    pub struct CrossSlide {
+        params: r;
+        input: theta: angle;
+        unknowns: x: length, y: length;
+        loop: r @ theta - x @ 0 - y @ pi / 2;
+    }
+}
+
+#[test]
+fn two_unknown_lengths_solve_linearly_without_a_branch() {
+    let table = CrossSlide { r: 2.0 };
+    let q = table.assemble(0.5).unwrap();
+    assert!((q.x - 2.0 * 0.5f64.cos()).abs() < 1e-15);
+    assert!((q.y - 2.0 * 0.5f64.sin()).abs() < 1e-15);
+}

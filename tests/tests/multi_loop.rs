@@ -2,7 +2,7 @@
 //! dyad) exercises four unknowns, the stack LU solve, and loops that share an unknown.
 //! Checked against successive circle intersections and finite differences.
 
-use mechgen::{NewtonOptions, mechanism};
+use mechgen::{Branch, NewtonOptions, mechanism};
 
 mechanism! {
     /// Four-bar O2 A B O4 whose rocker, extended by `l4b` at `beta` to C, drives the dyad
@@ -133,6 +133,18 @@ fn six_bar_matches_circle_intersections_and_finite_differences() {
                 (estimate - a).abs() < 1e-5 * omega * omega,
                 "{degree}°: {a} vs {estimate}"
             );
+        }
+
+        // Both loops close in closed form, one after the other: the four-bar, then the dyad.
+        let closed = linkage()
+            .assemble(theta2, [Branch::Open, Branch::Open])
+            .unwrap();
+        assert_eq!(
+            linkage().branch_of(theta2, &q),
+            [Branch::Open, Branch::Open]
+        );
+        for (got, want) in closed.to_array().iter().zip(q.to_array()) {
+            assert!(wrapped_difference(*got, want).abs() < 1e-10, "{degree}°");
         }
 
         let d = linkage().points(theta2, &q).unwrap().d;

@@ -9,7 +9,7 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
 use crate::model::{Kind, Model, Symbol, SymbolRef};
-use crate::symbolic::{Equations, ExprId, Var};
+use crate::symbolic::{Case, Equations, ExprId, Step, Var};
 use emit::{Block, Emitted, emit, local};
 use syn::ext::IdentExt;
 
@@ -19,11 +19,13 @@ pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
     let unknowns = generator.unknowns_struct();
     let points = generator.points_struct();
     let functions = generator.functions();
+    let kinematics = generator.kinematics_impl();
     let name = &model.name;
     quote! {
         #mechanism
         #unknowns
         #points
+        #kinematics
         // Spans of generated tokens all point at the macro call, which misleads
         // `possible_missing_comma`; generated argument lists follow the declaration.
         #[allow(clippy::possible_missing_comma, clippy::too_many_arguments)]
@@ -52,7 +54,10 @@ const RAW_EVALUATION: &str = "A raw evaluation: it does not check its arguments,
      in gives NaN out. The solvers check theirs.";
 
 /// The generated functions' own argument and local names, besides derived ones.
-const ARGUMENT_NAMES: [&str; 10] = [
+const ARGUMENT_NAMES: [&str; 13] = [
+    "branch",
+    "branches",
+    "failure",
     "position",
     "velocity",
     "acceleration",
@@ -129,6 +134,16 @@ impl<'a> Generator<'a> {
     /// Some outputs do not depend on the input (a Jacobian often does not); then the
     /// prologue marks the input argument as deliberately unused.
     fn block(&self, outputs: &[ExprId]) -> (TokenStream, Vec<Emitted>) {
+        self.block_in(outputs, false)
+    }
+
+    /// [`Self::block`] for code where the unknowns already are locals (a closed-form solve,
+    /// one loop after another) and the input is used elsewhere.
+    fn block_in(
+        &self,
+        outputs: &[ExprId],
+        unknowns_are_locals: bool,
+    ) -> (TokenStream, Vec<Emitted>) {
         let Block {
             statements,
             outputs,
@@ -149,6 +164,7 @@ impl<'a> Generator<'a> {
                     let field = &self.model.params[i].name;
                     return Some(quote!(let #name = self.#field;));
                 }
+                Var::Value(SymbolRef::Unknown(_)) if unknowns_are_locals => return None,
                 Var::Value(SymbolRef::Unknown(i)) => (&position, i),
                 Var::Rate(SymbolRef::Unknown(i)) => (&velocity, i),
                 Var::Accel(SymbolRef::Unknown(i)) => (&acceleration, i),
@@ -159,8 +175,8 @@ impl<'a> Generator<'a> {
             Some(quote!(let #name = #source.#field;))
         });
         let input = &self.model.input.name;
-        let unused_input =
-            (!used.contains(&Var::Value(SymbolRef::Input))).then(|| quote!(let _ = #input;));
+        let unused_input = (!unknowns_are_locals && !used.contains(&Var::Value(SymbolRef::Input)))
+            .then(|| quote!(let _ = #input;));
         let prologue = quote! {
             #unused_input
             #(#bindings)*
@@ -283,6 +299,10 @@ impl<'a> Generator<'a> {
             self.linearise(),
             self.position(),
         ];
+        if let Some(steps) = &self.equations.closed_form {
+            functions.push(self.assemble(steps));
+            functions.push(self.branch_of(steps));
+        }
         let outputs = self.model.outputs;
         if outputs.velocity {
             functions.extend([self.input_jacobian(), self.velocity()]);
@@ -669,6 +689,282 @@ impl<'a> Generator<'a> {
              [`Self::point_accelerations`].";
         let output = quote!(#ty<::mechgen::AccelerationParts<T>>);
         self.checked_function("point_acceleration_parts", docs, 6, &output, body)
+    }
+
+    /// The branch choice each branching step of a closed-form plan reads: `branch` when there
+    /// is one, `branches[i]` when there are several.
+    fn branch_choices(&self, steps: &[Step]) -> Vec<TokenStream> {
+        let branching = steps.iter().filter(|s| s.case.has_branches()).count();
+        (0..branching)
+            .map(|i| {
+                if branching == 1 {
+                    let branch = arg("branch");
+                    quote!(#branch)
+                } else {
+                    let branches = arg("branches");
+                    let i = Literal::usize_unsuffixed(i);
+                    quote!(#branches[#i])
+                }
+            })
+            .collect()
+    }
+
+    /// `assemble(input, branch)`: every loop in closed form, in the planned order.
+    fn assemble(&self, steps: &[Step]) -> TokenStream {
+        let input = &self.model.input.name;
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let mut choices = self.branch_choices(steps).into_iter();
+        let branch_parameter = match choices.len() {
+            0 => TokenStream::new(),
+            1 => {
+                let branch = arg("branch");
+                quote!(, #branch: ::mechgen::Branch)
+            }
+            n => {
+                let branches = arg("branches");
+                let n = Literal::usize_unsuffixed(n);
+                quote!(, #branches: [::mechgen::Branch; #n])
+            }
+        };
+        let solves = steps.iter().map(|step| {
+            let (prologue, coefficients) = self.block_in(&coefficients(&step.case), true);
+            let vectors = complex_values(&coefficients);
+            let solver = solver_name(&step.case);
+            let sign = step.case.has_branches().then(|| {
+                let choice = choices.next();
+                quote!(, #choice.sign::<T>())
+            });
+            let [a, b] = step.unknowns.map(|u| &self.model.unknowns[u].name);
+            let failure = arg("failure");
+            let call = quote! {
+                ::mechgen::closed::#solver(#(#vectors),* #sign)
+                    .map_err(|#failure| #failure.at(#input))?
+            };
+            let pattern = match step.case {
+                Case::TwoLengths { .. } => quote!([#a, #b]),
+                _ => quote!((#a, #b)),
+            };
+            quote! {
+                let #pattern = {
+                    #prologue
+                    #call
+                };
+            }
+        });
+        let names = self.model.unknowns.iter().map(|u| &u.name);
+        let mut docs = format!(
+            "The position at `{input}` in closed form, loop by loop, on the chosen assembly \
+             branch{}:",
+            if steps.iter().filter(|s| s.case.has_branches()).count() > 1 {
+                "es"
+            } else {
+                ""
+            }
+        );
+        for step in steps {
+            let [a, b] = step
+                .unknowns
+                .map(|u| self.model.unknowns[u].name.unraw().to_string());
+            docs.push_str(&format!(
+                "\n- loop {} (`{}`): {}, for `{a}` and `{b}`{}",
+                step.loop_index + 1,
+                self.model.loops[step.loop_index].source,
+                step.case.description(),
+                branch_rule(&step.case, &a, &b),
+            ));
+        }
+        docs.push_str(
+            "\n\nErrors: [`mechgen::Error::CannotAssemble`] where a loop cannot close (outside \
+             the range of motion); a degenerate configuration; a non-finite parameter or input.",
+        );
+        let docs = doc(&docs);
+        quote! {
+            #docs
+            pub fn assemble(
+                &self,
+                #input: T #branch_parameter
+            ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                #(#solves)*
+                ::core::result::Result::Ok(#ty { #(#names),* })
+            }
+        }
+    }
+
+    /// `branch_of(input, position)`: the branch each branching loop is on, by the sign its
+    /// closed form documents.
+    fn branch_of(&self, steps: &[Step]) -> TokenStream {
+        let branching: Vec<&Step> = steps.iter().filter(|s| s.case.has_branches()).collect();
+        if branching.is_empty() {
+            return TokenStream::new();
+        }
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, _, _) = self.signature_types();
+        let signs: Vec<TokenStream> = branching
+            .iter()
+            .map(|step| {
+                // Only the coefficients the sign reads, so no unused locals are bound.
+                let (needed, function) = match &step.case {
+                    Case::LengthAndOwnAngle { w0, w1, .. } => {
+                        ([w0, w1], "length_and_own_angle_sign")
+                    }
+                    Case::LengthAndOtherAngle { k, v, .. } => {
+                        ([k, v], "length_and_other_angle_sign")
+                    }
+                    Case::TwoAngles { k, w1, .. } => ([k, w1], "two_angles_sign"),
+                    Case::TwoLengths { .. } => unreachable!("filtered out above"),
+                };
+                let needed: Vec<ExprId> = needed.into_iter().flatten().copied().collect();
+                let (prologue, coefficients) = self.block(&needed);
+                let vectors = complex_values(&coefficients);
+                let first = &self.model.unknowns[step.unknowns[0]].name;
+                let function = Ident::new(function, proc_macro2::Span::call_site());
+                let sign = quote!(::mechgen::closed::#function(#(#vectors),*, #position.#first));
+                quote! {
+                    {
+                        #prologue
+                        ::mechgen::Branch::from_sign(#sign)
+                    }
+                }
+            })
+            .collect();
+        let (output, value) = match &signs[..] {
+            [sign] => (quote!(::mechgen::Branch), sign.clone()),
+            _ => {
+                let n = Literal::usize_unsuffixed(signs.len());
+                (quote!([::mechgen::Branch; #n]), quote!([#(#signs),*]))
+            }
+        };
+        let docs = doc(&format!(
+            "The assembly branch a solved position at `{input}` is on, by the signs \
+             [`Self::assemble`] documents. A raw evaluation: it does not check its arguments."
+        ));
+        quote! {
+            #docs
+            pub fn branch_of(&self, #input: T, #position: &#unknowns) -> #output {
+                #value
+            }
+        }
+    }
+
+    /// `impl mechgen::Kinematics`, which lets the runtime's sweep walk the mechanism. Needs
+    /// the velocity for its predictor.
+    fn kinematics_impl(&self) -> TokenStream {
+        if !self.model.outputs.velocity {
+            return TokenStream::new();
+        }
+        let name = &self.model.name;
+        let ty = &self.unknowns_type;
+        let count = Literal::usize_unsuffixed(self.model.unknowns.len());
+        let (input, guess, options, position) = (
+            local("input"),
+            arg("guess"),
+            arg("options"),
+            arg("position"),
+        );
+        let (a, b, input_a, input_b) = (local("a"), local("b"), local("input_a"), local("input_b"));
+        let same_branch = if self
+            .equations
+            .closed_form
+            .as_ref()
+            .is_some_and(|steps| steps.iter().any(|s| s.case.has_branches()))
+        {
+            quote! {
+                self.branch_of(#input_a, &#ty::from_array(#a))
+                    == self.branch_of(#input_b, &#ty::from_array(#b))
+            }
+        } else {
+            // No closed form defines branches: the sweep relies on its other checks.
+            quote! {
+                let _ = (#input_a, #a, #input_b, #b);
+                true
+            }
+        };
+        quote! {
+            impl<T: ::mechgen::Real> ::mechgen::Kinematics<T, #count> for #name<T> {
+                fn solve_near(
+                    &self,
+                    #input: T,
+                    #guess: [T; #count],
+                    #options: &::mechgen::NewtonOptions<T>,
+                ) -> ::core::result::Result<::mechgen::Solved<[T; #count], T>, ::mechgen::Error<T>> {
+                    self.position(#input, &#ty::from_array(#guess), #options)
+                        .map(|solved| solved.map(|value| value.to_array()))
+                }
+
+                fn slope(
+                    &self,
+                    #input: T,
+                    #position: [T; #count],
+                ) -> ::core::result::Result<[T; #count], ::mechgen::Error<T>> {
+                    self.velocity(#input, &#ty::from_array(#position), T::one())
+                        .map(|rates| rates.to_array())
+                }
+
+                fn same_branch(
+                    &self,
+                    #input_a: T,
+                    #a: [T; #count],
+                    #input_b: T,
+                    #b: [T; #count],
+                ) -> bool {
+                    #same_branch
+                }
+            }
+        }
+    }
+}
+
+/// A closed-form case's complex coefficients, in the order its runtime solver takes them.
+fn coefficients(case: &Case) -> Vec<ExprId> {
+    let vectors = match case {
+        Case::TwoLengths { k, v1, v2 } => [k, v1, v2],
+        Case::LengthAndOwnAngle { k, w0, w1 } => [k, w0, w1],
+        Case::LengthAndOtherAngle { k, v, w0 } => [k, v, w0],
+        Case::TwoAngles { k, w1, w2 } => [k, w1, w2],
+    };
+    vectors.into_iter().flatten().copied().collect()
+}
+
+/// `(x, y)` pairs of emitted coefficients as `mechgen::Vec2` values.
+fn complex_values(components: &[Emitted]) -> Vec<TokenStream> {
+    components
+        .chunks(2)
+        .map(|pair| {
+            let (x, y) = (&pair[0], &pair[1]);
+            quote!(::mechgen::Vec2::new(#x, #y))
+        })
+        .collect()
+}
+
+fn solver_name(case: &Case) -> Ident {
+    let name = match case {
+        Case::TwoLengths { .. } => "two_lengths",
+        Case::LengthAndOwnAngle { .. } => "length_and_own_angle",
+        Case::LengthAndOtherAngle { .. } => "length_and_other_angle",
+        Case::TwoAngles { .. } => "two_angles",
+    };
+    Ident::new(name, proc_macro2::Span::call_site())
+}
+
+/// How a case's two branches are told apart, for the docs, with the unknowns' names.
+fn branch_rule(case: &Case, a: &str, b: &str) -> String {
+    match case {
+        Case::TwoLengths { .. } => String::new(),
+        Case::LengthAndOwnAngle { .. } => format!(
+            "; open where `{a}` makes the vector that turns with `{b}` longer along its own \
+             direction (`Re(conj(w1)·({a}·w1 + w0)) ≥ 0`)"
+        ),
+        Case::LengthAndOtherAngle { .. } => format!(
+            "; open where the intersection is the one farther along `{a}`'s direction \
+             (`Re(conj(v)·(K + {a}·v)) ≥ 0`)"
+        ),
+        Case::TwoAngles { .. } => format!(
+            "; open where the vector turning with `{a}` lies counter-clockwise of the chord it \
+             spans with the one turning with `{b}` (`cross(−K, e^{{i·{a}}}·w1) ≥ 0`)"
+        ),
     }
 }
 

@@ -35,6 +35,8 @@ pub struct Equations {
     /// The magnitude of every loop term, whose absolute sum scales the residual's rounding.
     pub magnitudes: Vec<ExprId>,
     pub points: Vec<PointExprs>,
+    /// The loops in the order they solve in closed form, if every one does.
+    pub closed_form: Option<Vec<super::closed_form::Step>>,
 }
 
 impl Equations {
@@ -108,7 +110,9 @@ impl Equations {
             })
             .collect();
 
+        let closed_form = super::closed_form::plan(model, &mut graph);
         Equations {
+            closed_form,
             graph,
             residual,
             jacobian,
@@ -191,7 +195,7 @@ fn acceleration_parts(
     parts
 }
 
-fn linear(graph: &mut Graph, linear: &Linear) -> ExprId {
+pub(super) fn linear(graph: &mut Graph, linear: &Linear) -> ExprId {
     let mut sum = graph.constant(0.0);
     for (&symbol, &coefficient) in &linear.coefficients {
         let var = graph.var(Var::Value(symbol));

@@ -1,0 +1,222 @@
+//! Closed-form solutions of one vector loop in two unknowns (Chace's cases).
+//!
+//! The generated `assemble` writes each loop it can solve this way as known complex
+//! coefficients (as [`Vec2`]s) and calls one of these. With `K` the sum of the loop's known
+//! vectors, `l` an unknown length and `q` an unknown angle:
+//! - [`two_lengths`]: `K + l1·v1 + l2·v2 = 0`, a 2×2 linear solve;
+//! - [`length_and_own_angle`]: `K + e^{iq}·(l·w1 + w0) = 0`, the length and angle of one
+//!   (compound) vector;
+//! - [`length_and_other_angle`]: `K + l·v + e^{iq}·w0 = 0`, a line meeting a circle;
+//! - [`two_angles`]: `K + e^{iq1}·w1 + e^{iq2}·w2 = 0`, two circles meeting.
+//!
+//! The last three have two solutions, told apart by a sign `σ = ±1` that each function
+//! documents geometrically; the matching `*_sign` function computes that sign at a position,
+//! which is how a position's branch is known.
+
+use crate::{Real, Vec2};
+
+/// Why a loop could not be closed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Failure {
+    /// The vectors cannot meet: the input is outside the range of motion.
+    CannotClose,
+    /// The solution is not determined (a zero-length chord, parallel directions).
+    Degenerate,
+}
+
+impl Failure {
+    /// The error to report for a loop that failed at `input`.
+    pub fn at<T: Real>(self, input: T) -> crate::Error<T> {
+        match self {
+            Failure::CannotClose => crate::Error::CannotAssemble { input },
+            Failure::Degenerate => crate::Error::Singular {
+                determinant: T::zero(),
+                relative_determinant: T::zero(),
+            },
+        }
+    }
+}
+
+fn cross<T: Real>(a: Vec2<T>, b: Vec2<T>) -> T {
+    a.x * b.y - a.y * b.x
+}
+
+fn dot<T: Real>(a: Vec2<T>, b: Vec2<T>) -> T {
+    a.x * b.x + a.y * b.y
+}
+
+/// `a·b` as complex numbers.
+fn times<T: Real>(a: Vec2<T>, b: Vec2<T>) -> Vec2<T> {
+    Vec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
+}
+
+fn scaled<T: Real>(a: Vec2<T>, s: T) -> Vec2<T> {
+    Vec2::new(a.x * s, a.y * s)
+}
+
+/// `a − b` for two angles in (−π, π], wrapped back into (−π, π].
+fn angle_between<T: Real>(a: T, b: T) -> T {
+    let pi = T::constant(core::f64::consts::PI);
+    let difference = a - b;
+    if difference > pi {
+        difference - (pi + pi)
+    } else if difference <= -pi {
+        difference + (pi + pi)
+    } else {
+        difference
+    }
+}
+
+/// A square root that treats a slightly negative argument, within rounding of `scale`, as a
+/// tangency (zero) rather than a failure.
+fn rooted<T: Real>(discriminant: T, scale: T) -> Result<T, Failure> {
+    if discriminant >= T::zero() {
+        Ok(discriminant.sqrt())
+    } else if discriminant >= -T::constant(16.0) * T::epsilon() * scale {
+        Ok(T::zero())
+    } else {
+        Err(Failure::CannotClose)
+    }
+}
+
+/// `K + l1·v1 + l2·v2 = 0` for the lengths `[l1, l2]`: unique, unless `v1 ∥ v2`.
+///
+/// ```
+/// use mechgen::{closed, Vec2};
+/// // 3·(1, 0) + 2·(0, 1) closes (−3, −2).
+/// let l = closed::two_lengths(Vec2::new(-3.0, -2.0), Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0));
+/// assert_eq!(l, Ok([3.0, 2.0]));
+/// ```
+pub fn two_lengths<T: Real>(k: Vec2<T>, v1: Vec2<T>, v2: Vec2<T>) -> Result<[T; 2], Failure> {
+    let determinant = cross(v1, v2);
+    let scale = v1.norm() * v2.norm();
+    if determinant.abs() <= T::constant(8.0) * T::epsilon() * scale {
+        return Err(Failure::Degenerate);
+    }
+    Ok([cross(v2, k) / determinant, cross(k, v1) / determinant])
+}
+
+/// `K + e^{iq}·(l·w1 + w0) = 0` for `(l, q)`: the vector `l·w1 + w0`, turned by `q`, must be
+/// `−K`, so `|l·w1 + w0| = |K|`, a quadratic in `l`. The branch sign `σ` is that of
+/// `Re(conj(w1)·(l·w1 + w0))`: positive when the solved vector points along `w1` (the
+/// length grows the vector).
+///
+/// ```
+/// use mechgen::{closed, Vec2};
+/// // A slide of length l from the origin must reach (3, 4): l = 5 on the + branch.
+/// let (l, q) = closed::length_and_own_angle(
+///     Vec2::new(-3.0, -4.0), Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), 1.0,
+/// ).unwrap();
+/// assert_eq!(l, 5.0);
+/// assert!((q - (4.0f64).atan2(3.0)).abs() < 1e-15);
+/// ```
+pub fn length_and_own_angle<T: Real>(
+    k: Vec2<T>,
+    w0: Vec2<T>,
+    w1: Vec2<T>,
+    sign: T,
+) -> Result<(T, T), Failure> {
+    let a = dot(w1, w1);
+    if a == T::zero() {
+        return Err(Failure::Degenerate);
+    }
+    let half_b = dot(w1, w0);
+    let c = dot(w0, w0) - dot(k, k);
+    let discriminant = half_b * half_b - a * c;
+    let scale = half_b * half_b + (a * c).abs();
+    let l = (-half_b + sign * rooted(discriminant, scale)?) / a;
+    let vector = scaled(w1, l) + w0;
+    if vector.x == T::zero() && vector.y == T::zero() {
+        return Err(Failure::Degenerate);
+    }
+    let target = scaled(k, -T::one());
+    Ok((l, angle_between(target.angle(), vector.angle())))
+}
+
+/// The branch sign of a solution of [`length_and_own_angle`].
+pub fn length_and_own_angle_sign<T: Real>(w0: Vec2<T>, w1: Vec2<T>, l: T) -> T {
+    dot(w1, scaled(w1, l) + w0)
+}
+
+/// `K + l·v + e^{iq}·w0 = 0` for `(l, q)`: the point `K + l·v` moves along a line and must lie
+/// on the circle of radius `|w0|`, a quadratic in `l`. The branch sign `σ` is that of
+/// `Re(conj(v)·(K + l·v))`: positive for the intersection farther along `v`.
+///
+/// ```
+/// use mechgen::{closed, Vec2};
+/// // The point (l, 3) moving along x must be 5 from the origin: l = ±4, and the + branch is
+/// // the one farther along v = (1, 0).
+/// let k = Vec2::new(0.0, 3.0);
+/// let (l, _) = closed::length_and_other_angle(k, Vec2::new(1.0, 0.0), Vec2::new(5.0, 0.0), 1.0).unwrap();
+/// assert_eq!(l, 4.0);
+/// ```
+pub fn length_and_other_angle<T: Real>(
+    k: Vec2<T>,
+    v: Vec2<T>,
+    w0: Vec2<T>,
+    sign: T,
+) -> Result<(T, T), Failure> {
+    let a = dot(v, v);
+    let radius_squared = dot(w0, w0);
+    if a == T::zero() || radius_squared == T::zero() {
+        return Err(Failure::Degenerate);
+    }
+    let half_b = dot(v, k);
+    let c = dot(k, k) - radius_squared;
+    let discriminant = half_b * half_b - a * c;
+    let scale = half_b * half_b + (a * c).abs();
+    let l = (-half_b + sign * rooted(discriminant, scale)?) / a;
+    let target = scaled(k + scaled(v, l), -T::one());
+    Ok((l, angle_between(target.angle(), w0.angle())))
+}
+
+/// The branch sign of a solution of [`length_and_other_angle`].
+pub fn length_and_other_angle_sign<T: Real>(k: Vec2<T>, v: Vec2<T>, l: T) -> T {
+    dot(v, k + scaled(v, l))
+}
+
+/// `K + e^{iq1}·w1 + e^{iq2}·w2 = 0` for `(q1, q2)`: the vectors `P1 = e^{iq1}·w1` and
+/// `P2 = e^{iq2}·w2` must span the chord `−K`, so P1's tip is where the circles of radii
+/// `|w1|` (about the chord's start) and `|w2|` (about its end) meet. The branch sign `σ` is
+/// that of `cross(−K, P1)`: positive when P1 lies counter-clockwise of (to the left of) the
+/// chord.
+///
+/// ```
+/// use mechgen::{closed, Vec2};
+/// // Two links of 5 spanning the chord (6, 0): they meet at (3, ±4).
+/// let (q1, q2) = closed::two_angles(
+///     Vec2::new(-6.0, 0.0), Vec2::new(5.0, 0.0), Vec2::new(5.0, 0.0), 1.0,
+/// ).unwrap();
+/// assert!((q1 - (4.0f64).atan2(3.0)).abs() < 1e-15);
+/// assert!((q2 - (-4.0f64).atan2(3.0)).abs() < 1e-15);
+/// ```
+pub fn two_angles<T: Real>(
+    k: Vec2<T>,
+    w1: Vec2<T>,
+    w2: Vec2<T>,
+    sign: T,
+) -> Result<(T, T), Failure> {
+    let chord = scaled(k, -T::one());
+    let length = chord.norm();
+    if length == T::zero() {
+        return Err(Failure::Degenerate);
+    }
+    let (r1, r2) = (w1.norm(), w2.norm());
+    let along = (r1 * r1 - r2 * r2 + length * length) / (length + length);
+    let height = sign * rooted(r1 * r1 - along * along, r1 * r1)?;
+    let unit = scaled(chord, T::one() / length);
+    let normal = Vec2::new(-unit.y, unit.x);
+    let p1 = scaled(unit, along) + scaled(normal, height);
+    let p2 = chord - p1;
+    Ok((
+        angle_between(p1.angle(), w1.angle()),
+        angle_between(p2.angle(), w2.angle()),
+    ))
+}
+
+/// The branch sign of a solution of [`two_angles`].
+pub fn two_angles_sign<T: Real>(k: Vec2<T>, w1: Vec2<T>, q1: T) -> T {
+    let (sin, cos) = q1.sin_cos();
+    let p1 = times(Vec2::new(cos, sin), w1);
+    cross(scaled(k, -T::one()), p1)
+}

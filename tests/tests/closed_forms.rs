@@ -1,0 +1,242 @@
+//! Closed forms found by the macro: against Newton on random mechanisms, branch by branch, and
+//! sweeps that keep to their branch or say why they stop.
+
+use mechanisms::{
+    FourBar, FourBarUnknowns, InvertedSliderCrank, InvertedSliderCrankUnknowns, SliderCrank,
+    SliderCrankUnknowns,
+};
+use mechgen::sweep::{Stop, Sweep};
+use mechgen::{Branch, NewtonOptions, Solved};
+use proptest::prelude::*;
+
+const BRANCHES: [Branch; 2] = [Branch::Open, Branch::Crossed];
+
+/// Newton, started a little off the closed form, must come back to it, on the same branch.
+fn agree(closed: [f64; 2], newton: Solved<[f64; 2], f64>, scale: f64) -> Result<(), TestCaseError> {
+    for (c, n) in closed.iter().zip(newton.value) {
+        prop_assert!(
+            (c - n).abs() <= 1e-12 * c.abs().max(1.0),
+            "{closed:?} vs {:?}",
+            newton.value
+        );
+    }
+    prop_assert!(newton.residual_norm <= 1e-13 * scale);
+    Ok(())
+}
+
+fn nudged(q: [f64; 2]) -> [f64; 2] {
+    [
+        q[0] + 1e-3 * q[0].abs().max(1.0),
+        q[1] - 1e-3 * q[1].abs().max(1.0),
+    ]
+}
+
+fn residual_is_rounding(residual: [f64; 2], scale: f64) -> Result<(), TestCaseError> {
+    for f in residual {
+        prop_assert!(
+            f.abs() <= 16.0 * f64::EPSILON * scale,
+            "residual {residual:?}"
+        );
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    #[test]
+    fn four_bar_closed_form_agrees_with_newton(
+        l in [1.0f64..100.0, 1.0f64..100.0, 1.0f64..100.0, 1.0f64..100.0],
+        theta2 in -3.1f64..3.1,
+    ) {
+        let linkage = FourBar::new(l[0], l[1], l[2], l[3]);
+        prop_assume!(linkage.is_ok());
+        let linkage = linkage.unwrap();
+        let scale: f64 = l.iter().sum();
+        for branch in BRANCHES {
+            let Ok(q) = linkage.assemble(theta2, branch) else { continue };
+            residual_is_rounding(linkage.residual(theta2, &q), scale)?;
+            // Away from toggles, where the two branches are distinct solutions.
+            let j = linkage.jacobian(theta2, &q);
+            let relative = (j[0][0] * j[1][1] - j[0][1] * j[1][0]) / (l[2] * l[3]);
+            prop_assume!(relative.abs() > 1e-3);
+            prop_assert_eq!(linkage.branch_of(theta2, &q), branch);
+            let guess = FourBarUnknowns::from_array(nudged(q.to_array()));
+            let newton = linkage.position(theta2, &guess, &NewtonOptions::default()).unwrap();
+            prop_assert_eq!(linkage.branch_of(theta2, &newton.value), branch);
+            agree(q.to_array(), newton.map(|v| v.to_array()), scale)?;
+        }
+    }
+
+    #[test]
+    fn slider_crank_closed_form_agrees_with_newton(
+        l in [1.0f64..100.0, 1.0f64..100.0],
+        offset in -50.0f64..50.0,
+        theta2 in -3.1f64..3.1,
+    ) {
+        let linkage = SliderCrank::new(l[0], l[1], offset);
+        prop_assume!(linkage.is_ok());
+        let linkage = linkage.unwrap();
+        for branch in BRANCHES {
+            let Ok(q) = linkage.assemble(theta2, branch) else { continue };
+            let scale = l[0] + l[1] + offset.abs() + q.d.abs();
+            residual_is_rounding(linkage.residual(theta2, &q), scale)?;
+            prop_assume!(q.theta3.cos().abs() > 1e-3);
+            prop_assert_eq!(linkage.branch_of(theta2, &q), branch);
+            let guess = SliderCrankUnknowns::from_array(nudged(q.to_array()));
+            let newton = linkage.position(theta2, &guess, &NewtonOptions::default()).unwrap();
+            prop_assert_eq!(linkage.branch_of(theta2, &newton.value), branch);
+            agree(q.to_array(), newton.map(|v| v.to_array()), scale)?;
+        }
+    }
+
+    #[test]
+    fn inverted_slider_crank_closed_form_agrees_with_newton(
+        l in [1.0f64..100.0, 1.0f64..100.0],
+        offset in -50.0f64..50.0,
+        gamma in -1.5f64..1.5,
+        theta2 in -3.1f64..3.1,
+    ) {
+        let linkage = InvertedSliderCrank::new(l[0], l[1], offset, gamma);
+        prop_assume!(linkage.is_ok());
+        let linkage = linkage.unwrap();
+        for branch in BRANCHES {
+            let Ok(q) = linkage.assemble(theta2, branch) else { continue };
+            let scale = l[0] + l[1] + offset.abs() + q.b.abs();
+            residual_is_rounding(linkage.residual(theta2, &q), scale)?;
+            prop_assume!((q.b + offset * gamma.cos()).abs() > 1e-3 * scale);
+            prop_assert_eq!(linkage.branch_of(theta2, &q), branch);
+            let guess = InvertedSliderCrankUnknowns::from_array(nudged(q.to_array()));
+            let newton = linkage.position(theta2, &guess, &NewtonOptions::default()).unwrap();
+            prop_assert_eq!(linkage.branch_of(theta2, &newton.value), branch);
+            agree(q.to_array(), newton.map(|v| v.to_array()), scale)?;
+        }
+    }
+}
+
+/// A full turn in 0.1° steps: every sample on the branch, matching the closed form there, and
+/// the last position back at the first.
+#[test]
+fn grashof_cranks_turn_fully_on_their_branch() {
+    let crank_rocker = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+    let double_crank = FourBar::new(80.0, 180.0, 200.0, 150.0).unwrap();
+    let step = std::f64::consts::TAU / 3600.0;
+    for linkage in [crank_rocker, double_crank] {
+        for branch in BRANCHES {
+            let start = linkage.assemble(0.0, branch).unwrap().to_array();
+            let sweep = Sweep::new(&linkage, 0.0, start, step, 3600, NewtonOptions::default());
+            let samples: Vec<_> = sweep.collect::<Result<_, _>>().unwrap();
+            assert_eq!(samples.len(), 3601);
+            for sample in &samples {
+                let q = FourBarUnknowns::from_array(sample.position);
+                assert_eq!(linkage.branch_of(sample.input, &q), branch);
+                let closed = linkage.assemble(sample.input, branch).unwrap();
+                let wrapped = |a: f64, b: f64| {
+                    (a - b + 3.0 * std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+                        - std::f64::consts::PI
+                };
+                assert!(wrapped(q.theta3, closed.theta3).abs() < 1e-9);
+                assert!(wrapped(q.theta4, closed.theta4).abs() < 1e-9);
+            }
+            let (first, last) = (samples[0].position, samples[3600].position);
+            // The rocker comes back where it was; the crank-rocker's coupler too, while a
+            // double-crank's coupler and rocker have turned once more.
+            for (a, b) in first.iter().zip(last) {
+                let turns = (b - a) / std::f64::consts::TAU;
+                assert!((turns - turns.round()).abs() < 1e-9, "{first:?} → {last:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn sweeps_stop_at_toggles_instead_of_crossing_them() {
+    // A triple-rocker: the crank stops at ±acos((l1² + l2² − (l3 + l4)²)/(2·l1·l2)).
+    let linkage = FourBar::new(100.0, 120.0, 90.0, 80.0).unwrap();
+    let limit = linkage.limit_angles().extended.unwrap();
+    let step = 0.1f64.to_radians();
+    for branch in BRANCHES {
+        let start = linkage.assemble(0.0, branch).unwrap().to_array();
+        let sweep = Sweep::new(&linkage, 0.0, start, step, 3600, NewtonOptions::default());
+        let mut last_input = 0.0;
+        let mut stop = None;
+        for item in sweep {
+            match item {
+                Ok(sample) => {
+                    let q = FourBarUnknowns::from_array(sample.position);
+                    assert_eq!(linkage.branch_of(sample.input, &q), branch);
+                    assert!(sample.input <= limit);
+                    last_input = sample.input;
+                }
+                Err(event) => stop = Some(event),
+            }
+        }
+        let (reported_last, next) = match stop.expect("the sweep stops at the toggle") {
+            Stop::Toggle {
+                last_input,
+                next_input,
+                ..
+            } => (last_input, next_input),
+            Stop::BranchChange {
+                last_input,
+                next_input,
+            } => (last_input, next_input),
+        };
+        assert_eq!(reported_last, last_input);
+        // The toggle lies within the step where the sweep stopped, or the one before it
+        // (where the rate was already too large to predict across).
+        assert!(
+            reported_last <= limit && limit < next + step,
+            "{reported_last} {limit} {next}"
+        );
+        assert!(
+            limit - reported_last < 2.0 * step,
+            "stopped early at {reported_last}"
+        );
+    }
+}
+
+#[test]
+fn change_point_linkages_report_the_flat_position() {
+    // A parallelogram with equal cranks lies flat at θ2 = 0 and π, where it can switch to the
+    // antiparallelogram: the sweep says so rather than choosing silently.
+    let linkage = FourBar::new(100.0, 50.0, 100.0, 50.0).unwrap();
+    let start = linkage.assemble(0.3, Branch::Open).unwrap().to_array();
+    let step = 0.1f64.to_radians();
+    let sweep = Sweep::new(&linkage, 0.3, start, step, 3600, NewtonOptions::default());
+    let stop = sweep
+        .filter_map(Result::err)
+        .next()
+        .expect("the sweep stops at the flat position");
+    let (last, next) = match stop {
+        Stop::Toggle {
+            last_input,
+            next_input,
+            ..
+        } => (last_input, next_input),
+        Stop::BranchChange {
+            last_input,
+            next_input,
+        } => (last_input, next_input),
+    };
+    let pi = std::f64::consts::PI;
+    assert!(
+        last <= pi + 1e-9 && pi - last < 2.0 * step && next >= pi - step,
+        "{last} {next}"
+    );
+}
+
+#[test]
+fn sweeps_work_in_f32() {
+    let linkage = FourBar::new(180.0f32, 80.0, 200.0, 150.0).unwrap();
+    let start = linkage.assemble(0.0, Branch::Open).unwrap().to_array();
+    let step = std::f32::consts::TAU / 360.0;
+    let mut count = 0;
+    for sample in Sweep::new(&linkage, 0.0, start, step, 360, NewtonOptions::default()) {
+        let sample = sample.unwrap();
+        let closed = linkage.assemble(sample.input, Branch::Open).unwrap();
+        assert!((sample.position[1] - closed.theta4).abs() < 1e-4);
+        count += 1;
+    }
+    assert_eq!(count, 361);
+}
