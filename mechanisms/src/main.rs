@@ -72,6 +72,7 @@ fn newton(
         value,
         iterations,
         residual_norm,
+        ..
     } = linkage.position(
         theta2_deg.to_radians(),
         &guess,

@@ -30,6 +30,9 @@ pub enum Error<T> {
         /// estimate, independent of the mechanism's scale.
         relative_determinant: T,
     },
+    /// Newton-Raphson converged, but on the other assembly branch than its guess was on (by
+    /// the generated `branch_of`): the guess was too far from the branch it started on.
+    OtherBranch,
     /// Newton-Raphson did not bring the residual below the tolerance within the
     /// iteration cap.
     NoConvergence {
@@ -57,6 +60,10 @@ impl<T: fmt::Display> fmt::Display for Error<T> {
                 "the loop Jacobian is singular (determinant {determinant}, relative \
                  determinant {relative_determinant}): the mechanism is at a toggle or \
                  change point"
+            ),
+            Error::OtherBranch => write!(
+                f,
+                "Newton-Raphson converged on the other assembly branch than its guess's"
             ),
             Error::NoConvergence {
                 iterations,

@@ -16,6 +16,7 @@ mod vec2;
 pub use advantage::MechanicalAdvantage;
 pub use branch::Branch;
 pub use error::Error;
+pub use linear::{condition, singular_threshold};
 pub use newton::{NewtonOptions, Solved};
 pub use real::Real;
 pub use sweep::Kinematics;

@@ -11,10 +11,17 @@
 use crate::Error;
 use crate::Real;
 
-/// The relative determinant below which a matrix counts as singular: a few units of
-/// rounding per row, so only matrices singular to working precision are rejected.
-fn singular_threshold<T: Real>(rows: usize) -> T {
-    T::constant(4.0 * rows as f64) * T::epsilon()
+/// The relative determinant (the determinant of the row-normalised matrix, in [0, 1]) at or
+/// below which a Jacobian counts as singular: `√ε`. Within about one unit of rounding in the
+/// input from a toggle, a position is itself only determined to `√ε` relative, so rates
+/// computed from it would carry no correct digits; there the solvers say
+/// [`Error::Singular`] instead.
+///
+/// ```
+/// assert_eq!(mechgen::singular_threshold::<f64>(), f64::EPSILON.sqrt());
+/// ```
+pub fn singular_threshold<T: Real>() -> T {
+    T::epsilon().sqrt()
 }
 
 /// Scales each row of `a` and entry of `b` by the row's Euclidean norm. Returns the product
@@ -45,9 +52,10 @@ fn equilibrate<T: Real, const N: usize>(
     Ok(scale)
 }
 
-/// Rejects a scaled matrix whose determinant (`relative`, in [0, 1]) is at rounding level.
-fn check_determinant<T: Real>(relative: T, rows: usize, row_norms: T) -> Result<(), Error<T>> {
-    if relative.abs() <= singular_threshold::<T>(rows) {
+/// Rejects a scaled matrix whose determinant (`relative`, in [0, 1]) is at or below
+/// [`singular_threshold`].
+fn check_determinant<T: Real>(relative: T, row_norms: T) -> Result<(), Error<T>> {
+    if relative.abs() <= singular_threshold::<T>() {
         return Err(Error::Singular {
             determinant: relative * row_norms,
             relative_determinant: relative.abs(),
@@ -56,26 +64,30 @@ fn check_determinant<T: Real>(relative: T, rows: usize, row_norms: T) -> Result<
     Ok(())
 }
 
-/// Solves the 2×2 system `a·x = b` by Cramer's rule.
+/// Solves the 2×2 system `a·x = b` by Cramer's rule; returns `x` and the relative
+/// determinant `|det|/(‖row 0‖·‖row 1‖)`.
 #[inline]
-pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<[T; 2], Error<T>> {
+pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<([T; 2], T), Error<T>> {
     let row_norms = equilibrate(&mut a, &mut b)?;
     let [[a00, a01], [a10, a11]] = a;
     let determinant = a00 * a11 - a01 * a10;
-    check_determinant(determinant, 2, row_norms)?;
+    check_determinant(determinant, row_norms)?;
     let inverse = T::one() / determinant;
-    Ok([
-        (b[0] * a11 - a01 * b[1]) * inverse,
-        (a00 * b[1] - b[0] * a10) * inverse,
-    ])
+    Ok((
+        [
+            (b[0] * a11 - a01 * b[1]) * inverse,
+            (a00 * b[1] - b[0] * a10) * inverse,
+        ],
+        determinant.abs(),
+    ))
 }
 
 /// Solves the N×N system `a·x = b` by LU factorisation with partial pivoting, in place on
-/// stack copies.
+/// stack copies; returns `x` and the relative determinant.
 pub fn solve_lu<T: Real, const N: usize>(
     mut a: [[T; N]; N],
     mut b: [T; N],
-) -> Result<[T; N], Error<T>> {
+) -> Result<([T; N], T), Error<T>> {
     let row_norms = equilibrate(&mut a, &mut b)?;
     let (mut lu, mut x) = (a, b);
     let mut determinant = T::one();
@@ -108,12 +120,55 @@ pub fn solve_lu<T: Real, const N: usize>(
             *xi = *xi - factor * x_k;
         }
     }
-    check_determinant(determinant, N, row_norms)?;
+    check_determinant(determinant, row_norms)?;
     for k in (0..N).rev() {
         let sum = ((k + 1)..N).fold(x[k], |acc, j| acc - lu[k][j] * x[j]);
         x[k] = sum / lu[k][k];
     }
-    Ok(x)
+    Ok((x, determinant.abs()))
+}
+
+/// The condition estimate of a Jacobian, `1 / relative determinant`: 1 for orthogonal rows,
+/// growing without bound toward a singular matrix (infinite at one).
+///
+/// ```
+/// let orthogonal = [[2.0, 0.0], [0.0, 3.0]];
+/// assert_eq!(mechgen::condition(orthogonal), 1.0);
+/// assert_eq!(mechgen::condition([[1.0, 2.0], [2.0, 4.0]]), f64::INFINITY);
+/// ```
+pub fn condition<T: Real, const N: usize>(jacobian: [[T; N]; N]) -> T {
+    let mut a = jacobian;
+    let mut b = [T::zero(); N];
+    if equilibrate(&mut a, &mut b).is_err() {
+        return T::infinity();
+    }
+    // The determinant of the row-normalised matrix, by elimination with partial pivoting.
+    let mut determinant = T::one();
+    for k in 0..N {
+        let pivot_row = (k..N).fold(k, |best, i| {
+            if a[i][k].abs() > a[best][k].abs() {
+                i
+            } else {
+                best
+            }
+        });
+        if pivot_row != k {
+            a.swap(k, pivot_row);
+        }
+        let pivot = a[k][k];
+        determinant = determinant * pivot;
+        if pivot == T::zero() {
+            return T::infinity();
+        }
+        let (upper, lower) = a.split_at_mut(k + 1);
+        for row in lower.iter_mut() {
+            let factor = row[k] / pivot;
+            for (entry, above) in row.iter_mut().zip(&upper[k]).skip(k + 1) {
+                *entry = *entry - factor * *above;
+            }
+        }
+    }
+    T::one() / determinant.abs()
 }
 
 #[cfg(test)]
@@ -141,16 +196,16 @@ mod tests {
     fn solve2_recovers_known_solution() {
         let a = [[3.0, 1.0], [-2.0, 4.0]];
         let x = [0.5, -1.5];
-        assert_close(solve2(a, multiply(&a, &x)).unwrap(), x);
+        assert_close(solve2(a, multiply(&a, &x)).unwrap().0, x);
     }
 
     #[test]
     fn lu_recovers_known_solution() {
         let b = multiply(&A3, &X3);
-        assert_close(solve_lu(A3, b).unwrap(), X3);
+        assert_close(solve_lu(A3, b).unwrap().0, X3);
         let a2 = [[3.0, 1.0], [-2.0, 4.0]];
         let x2 = [0.5, -1.5];
-        assert_close(solve_lu(a2, multiply(&a2, &x2)).unwrap(), x2);
+        assert_close(solve_lu(a2, multiply(&a2, &x2)).unwrap().0, x2);
     }
 
     #[test]
@@ -159,7 +214,7 @@ mod tests {
         // matrix: the scaled determinant is 1, so both solve.
         for scale in [1e25f32, 1e-25] {
             let a = [[scale, 0.0], [0.0, scale]];
-            let x = solve2(a, [scale, 2.0 * scale]).unwrap();
+            let (x, _) = solve2(a, [scale, 2.0 * scale]).unwrap();
             assert_eq!(x, [1.0, 2.0]);
             let a4 = [
                 [scale, 0.0, 0.0, 0.0],
@@ -167,7 +222,7 @@ mod tests {
                 [0.0, 0.0, scale, 0.0],
                 [0.0, 0.0, 0.0, scale],
             ];
-            let x = solve_lu(a4, [scale; 4]).unwrap();
+            let (x, _) = solve_lu(a4, [scale; 4]).unwrap();
             assert_eq!(x, [1.0; 4]);
         }
     }
@@ -181,7 +236,7 @@ mod tests {
             [0.0, 2.0, 1.0, 1.0],
         ];
         let x = [1.0, 2.0, -1.0, 0.5];
-        assert_close(solve_lu(a, multiply(&a, &x)).unwrap(), x);
+        assert_close(solve_lu(a, multiply(&a, &x)).unwrap().0, x);
     }
 
     #[test]

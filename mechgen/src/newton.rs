@@ -45,6 +45,10 @@ pub struct Solved<S, T> {
     pub iterations: u32,
     /// Largest absolute loop residual at the solution, in length units.
     pub residual_norm: T,
+    /// The Jacobian's condition estimate at the solution: `1 / relative determinant` (the
+    /// determinant of the row-normalised Jacobian), from 1 for orthogonal rows up to about
+    /// `1/√ε` at a toggle. Errors in the position grow with it; see the accuracy contract.
+    pub condition: T,
 }
 
 impl<S, T> Solved<S, T> {
@@ -54,6 +58,7 @@ impl<S, T> Solved<S, T> {
             value: f(self.value),
             iterations: self.iterations,
             residual_norm: self.residual_norm,
+            condition: self.condition,
         }
     }
 }
@@ -70,15 +75,29 @@ pub struct Linearisation<T, const N: usize> {
     pub scale: T,
 }
 
-/// Solves `f(x) = 0` by Newton-Raphson from `guess`.
+/// How many times a Newton step is halved, at most, looking for a smaller residual.
+const MAX_HALVINGS: u32 = 10;
+
+/// Solves `f(x) = 0` by a safeguarded Newton-Raphson from `guess`.
 ///
-/// `linearise` evaluates the residual and Jacobian; `solve` solves `J·dx = f` (the generator
-/// passes the closed-form 2×2 solver, or the LU one).
+/// `linearise` evaluates the residual and Jacobian; `solve` solves `J·dx = f` and returns the
+/// relative determinant with the step (the generator passes the closed-form 2×2 solver, or
+/// the LU one). The safeguards:
+/// - a step that does not reduce the largest residual component is halved, up to
+///   10 times; if none does, the iteration has stagnated;
+/// - a point is accepted when its residual is at most the tolerance (raised to the rounding
+///   floor `16 ε Σ|r|`) and, unless it is at that floor, a root is certain to lie near it:
+///   `(‖f‖/Σ|r|)·κ² ≤ 1/4` with `κ` the condition estimate, a Kantorovich-style bound, so a
+///   loose tolerance cannot accept a point past a toggle where the loops do not close;
+/// - stagnation where the Jacobian is ill-conditioned is [`Error::CannotAssemble`] at `input`
+///   (the iterates press against a toggle the loops cannot pass), elsewhere
+///   [`Error::NoConvergence`].
 pub fn newton<T: Real, const N: usize>(
+    input: T,
     guess: [T; N],
     options: &NewtonOptions<T>,
     mut linearise: impl FnMut(&[T; N]) -> Linearisation<T, N>,
-    solve: impl Fn([[T; N]; N], [T; N]) -> Result<[T; N], Error<T>>,
+    solve: impl Fn([[T; N]; N], [T; N]) -> Result<([T; N], T), Error<T>>,
 ) -> Result<Solved<[T; N], T>, Error<T>> {
     if !options.tolerance.is_finite() || options.tolerance < T::zero() {
         return Err(Error::NonFinite {
@@ -91,25 +110,28 @@ pub fn newton<T: Real, const N: usize>(
         });
     }
     let rounding_floor = T::constant(16.0) * T::epsilon();
+    let quarter = T::constant(0.25);
     let mut x = guess;
+    let mut here = linearise(&x);
     let mut iterations = 0;
     loop {
-        let Linearisation {
-            residual,
-            jacobian,
-            scale,
-        } = linearise(&x);
-        let residual_norm = max_abs(&residual);
+        let residual_norm = max_abs(&here.residual);
         if !residual_norm.is_finite() {
             return Err(Error::NonFinite {
                 quantity: "loop residual",
             });
         }
-        if residual_norm <= options.tolerance.max(rounding_floor * scale) {
+        let (step, relative_determinant) = solve(here.jacobian, here.residual)?;
+        let condition = T::one() / relative_determinant;
+        let floor = rounding_floor * here.scale;
+        let certified =
+            residual_norm <= floor || residual_norm / here.scale * condition * condition <= quarter;
+        if residual_norm <= options.tolerance.max(floor) && certified {
             return Ok(Solved {
                 value: x,
                 iterations,
                 residual_norm,
+                condition,
             });
         }
         if iterations >= options.max_iterations {
@@ -118,15 +140,42 @@ pub fn newton<T: Real, const N: usize>(
                 residual_norm,
             });
         }
-        let step = solve(jacobian, residual)?;
         if !all_finite(&step) {
             return Err(Error::NonFinite {
                 quantity: "Newton step",
             });
         }
-        for (xi, di) in x.iter_mut().zip(step) {
-            *xi = *xi - di;
+        // Take the largest of 1, 1/2, 1/4, ... times the step that lowers the residual.
+        let mut fraction = T::one();
+        let mut accepted = None;
+        for _ in 0..=MAX_HALVINGS {
+            let mut trial = x;
+            for (t, d) in trial.iter_mut().zip(step) {
+                *t = *t - fraction * d;
+            }
+            let there = linearise(&trial);
+            if max_abs(&there.residual) < residual_norm {
+                accepted = Some((trial, there));
+                break;
+            }
+            fraction = fraction * T::constant(0.5);
         }
+        let Some((next, there)) = accepted else {
+            // No step lowers the residual: a local minimum of |f| that is not a root. Near a
+            // singular Jacobian that is a toggle the loops cannot pass.
+            return Err(
+                if residual_norm / here.scale * condition * condition > quarter {
+                    Error::CannotAssemble { input }
+                } else {
+                    Error::NoConvergence {
+                        iterations,
+                        residual_norm,
+                    }
+                },
+            );
+        };
+        x = next;
+        here = there;
         iterations += 1;
     }
 }

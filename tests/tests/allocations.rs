@@ -60,9 +60,10 @@ fn kinematics_calls_do_not_allocate() {
             let theta2 = f64::from(degree).to_radians();
 
             let four_bar = example_1::<f64>();
+            let near = four_bar.assemble(theta2, mechgen::Branch::Open).unwrap();
             let guess = FourBarUnknowns {
-                theta3: 0.4,
-                theta4: 1.2,
+                theta3: near.theta3 + 0.05,
+                theta4: near.theta4 - 0.05,
             };
             let q = four_bar.position(theta2, &guess, &options).unwrap().value;
             let v = four_bar.velocity(theta2, &q, 10.0).unwrap();

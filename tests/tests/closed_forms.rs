@@ -11,11 +11,19 @@ use proptest::prelude::*;
 
 const BRANCHES: [Branch; 2] = [Branch::Open, Branch::Crossed];
 
-/// Newton, started a little off the closed form, must come back to it, on the same branch.
-fn agree(closed: [f64; 2], newton: Solved<[f64; 2], f64>, scale: f64) -> Result<(), TestCaseError> {
-    for (c, n) in closed.iter().zip(newton.value) {
+/// Newton, started a little off the closed form, must come back to it, on the same branch:
+/// to 1e-12 relative, angles relative to a radian and lengths to the mechanism's size
+/// (`units`: 1 for an angle, the size for a length).
+fn agree(
+    closed: [f64; 2],
+    newton: Solved<[f64; 2], f64>,
+    units: [f64; 2],
+    scale: f64,
+) -> Result<(), TestCaseError> {
+    for ((c, n), unit) in closed.iter().zip(newton.value).zip(units) {
+        let tolerance = 1e-12 * c.abs().max(unit);
         prop_assert!(
-            (c - n).abs() <= 1e-12 * c.abs().max(1.0),
+            (c - n).abs() <= tolerance,
             "{closed:?} vs {:?}",
             newton.value
         );
@@ -64,7 +72,7 @@ proptest! {
             let guess = FourBarUnknowns::from_array(nudged(q.to_array()));
             let newton = linkage.position(theta2, &guess, &NewtonOptions::default()).unwrap();
             prop_assert_eq!(linkage.branch_of(theta2, &newton.value), branch);
-            agree(q.to_array(), newton.map(|v| v.to_array()), scale)?;
+            agree(q.to_array(), newton.map(|v| v.to_array()), [1.0, 1.0], scale)?;
         }
     }
 
@@ -86,7 +94,7 @@ proptest! {
             let guess = SliderCrankUnknowns::from_array(nudged(q.to_array()));
             let newton = linkage.position(theta2, &guess, &NewtonOptions::default()).unwrap();
             prop_assert_eq!(linkage.branch_of(theta2, &newton.value), branch);
-            agree(q.to_array(), newton.map(|v| v.to_array()), scale)?;
+            agree(q.to_array(), newton.map(|v| v.to_array()), [1.0, scale], scale)?;
         }
     }
 
@@ -109,7 +117,7 @@ proptest! {
             let guess = InvertedSliderCrankUnknowns::from_array(nudged(q.to_array()));
             let newton = linkage.position(theta2, &guess, &NewtonOptions::default()).unwrap();
             prop_assert_eq!(linkage.branch_of(theta2, &newton.value), branch);
-            agree(q.to_array(), newton.map(|v| v.to_array()), scale)?;
+            agree(q.to_array(), newton.map(|v| v.to_array()), [1.0, scale], scale)?;
         }
     }
 }

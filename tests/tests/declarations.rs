@@ -3,7 +3,7 @@
 //! position-only declaration. Each generated solver is checked against geometry or finite
 //! differences.
 
-use mechgen::{NewtonOptions, mechanism};
+use mechgen::{Branch, NewtonOptions, mechanism};
 
 mechanism! {
     /// A slider-crank driven by its slider: `d` is pushed, the crank angle follows.
@@ -116,14 +116,7 @@ mechanism! {
 /// Example 1's open position and rates, from the shipped four-bar.
 fn example_1_reference(theta2: f64) -> ([f64; 2], [f64; 2]) {
     let shipped = mechanisms::FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
-    let guess = mechanisms::FourBarUnknowns {
-        theta3: 0.4,
-        theta4: 1.2,
-    };
-    let q = shipped
-        .position(theta2, &guess, &NewtonOptions::default())
-        .unwrap()
-        .value;
+    let q = shipped.assemble(theta2, Branch::Open).unwrap();
     let v = shipped.velocity(theta2, &q, 10.0).unwrap();
     (q.to_array(), v.to_array())
 }

@@ -54,7 +54,8 @@ const RAW_EVALUATION: &str = "A raw evaluation: it does not check its arguments,
      in gives NaN out. The solvers check theirs.";
 
 /// The generated functions' own argument and local names, besides derived ones.
-const ARGUMENT_NAMES: [&str; 13] = [
+const ARGUMENT_NAMES: [&str; 14] = [
+    "solved",
     "branch",
     "branches",
     "failure",
@@ -450,20 +451,39 @@ impl<'a> Generator<'a> {
 
     fn position(&self) -> TokenStream {
         let input = &self.model.input.name;
-        let (guess, options, x) = (arg("guess"), arg("options"), arg("x"));
+        let (guess, options, x, solved) = (arg("guess"), arg("options"), arg("x"), arg("solved"));
+        let position = arg("position");
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
         let solver = self.solver();
+        let has_branches = self
+            .equations
+            .closed_form
+            .as_ref()
+            .is_some_and(|steps| steps.iter().any(|s| s.case.has_branches()));
+        let branch_check = has_branches.then(|| {
+            quote! {
+                if self.branch_of(#input, &#solved.value) != self.branch_of(#input, #guess) {
+                    return ::core::result::Result::Err(::mechgen::Error::OtherBranch);
+                }
+            }
+        });
+        let branch_doc = if has_branches {
+            " It keeps to the guess's assembly branch (by [`Self::branch_of`]): landing on the \
+             other one is the error [`mechgen::Error::OtherBranch`], never a silent switch."
+        } else {
+            ""
+        };
         let doc = doc(&format!(
-            "Solves the loops for the unknowns at `{input}` by Newton-Raphson from `guess`."
+            "Solves the loops for the unknowns at `{input}` by a safeguarded Newton-Raphson from \
+             `guess` (see `mechgen::__private::newton`: halved steps, a certified root, \
+             stagnation reported).{branch_doc}\n\n\
+             Errors: a non-finite parameter, input or guess; a singular Jacobian on the way; \
+             [`mechgen::Error::CannotAssemble`] where the iterates press against a toggle the \
+             loops cannot pass; no convergence within `options.max_iterations`."
         ));
         quote! {
             #doc
-            ///
-            /// The solution is the one Newton's iteration reaches from the guess: start near the
-            /// assembly branch you want. Errors: a non-finite parameter, input or guess; a
-            /// singular Jacobian on the way (a toggle); no convergence within
-            /// `options.max_iterations`.
             pub fn position(
                 &self,
                 #input: T,
@@ -471,13 +491,24 @@ impl<'a> Generator<'a> {
                 #options: &::mechgen::NewtonOptions<T>,
             ) -> ::core::result::Result<::mechgen::Solved<#unknowns, T>, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
-                let solved = ::mechgen::__private::newton(
+                let #solved = ::mechgen::__private::newton(
+                    #input,
                     #guess.to_array(),
                     #options,
                     |#x| self.mechgen_linearise(#input, &#ty::from_array(*#x)),
                     #solver,
-                )?;
-                ::core::result::Result::Ok(solved.map(#ty::from_array))
+                )?
+                .map(#ty::from_array);
+                #branch_check
+                ::core::result::Result::Ok(#solved)
+            }
+
+            /// The Jacobian's condition estimate at a position, `1 / relative determinant`
+            /// (see [`mechgen::condition`]): 1 at best, about `1/√ε` at a toggle, where the
+            /// solvers return [`mechgen::Error::Singular`]. Errors in positions and rates grow
+            /// with it (the accuracy contract in the `mechgen` docs).
+            pub fn condition(&self, #input: T, #position: &#unknowns) -> T {
+                ::mechgen::condition(self.jacobian(#input, #position))
             }
         }
     }
@@ -520,7 +551,7 @@ impl<'a> Generator<'a> {
             #prologue
             let #jacobian_name = #jacobian;
             let #rhs_name = [#(#rhs),*];
-            let #solution = #solver(#jacobian_name, #rhs_name)?;
+            let (#solution, _) = #solver(#jacobian_name, #rhs_name)?;
             ::mechgen::__private::finite(#solution, #quantity).map(#ty::from_array)
         }
     }
