@@ -23,11 +23,12 @@ pub enum Error<T> {
     /// configuration (a toggle or change point), so the unknowns are not determined by the
     /// input there and their rates are unbounded.
     Singular {
-        /// The determinant of the Jacobian.
+        /// The determinant of the row-normalised Jacobian.
         determinant: T,
-        /// The determinant divided by the product of the Jacobian's row norms (Hadamard's
-        /// bound): 1 for orthogonal rows, 0 for a singular matrix. A cheap inverse condition
-        /// estimate, independent of the mechanism's scale.
+        /// The determinant divided by the product of the Jacobian's column norms (Hadamard's
+        /// bound): 1 when the unknowns move the loops in orthogonal directions, 0 for a
+        /// singular matrix; singular means at most `mechgen::singular_threshold()` (`√ε`).
+        /// The inverse of the condition estimate.
         relative_determinant: T,
     },
     /// Newton-Raphson converged, but on the other assembly branch than its guess was on (by

@@ -3,16 +3,21 @@
 //! Generated code calls [`solve2`] (closed form, Cramer's rule) for a single loop's 2×2
 //! system and [`solve_lu`] (partial pivoting) for larger ones. Loops give two equations each,
 //! so systems always have an even size. Each solver first scales every row (and its
-//! right-hand side) to unit length: that leaves the solution unchanged, makes the
-//! determinant of the scaled matrix a scale-free singularity measure in [0, 1] (Hadamard's
-//! bound), and keeps it from overflowing or underflowing for very large or small mechanisms.
-//! A matrix singular to working precision is reported as [`Error::Singular`].
+//! right-hand side) to unit length, which leaves the solution unchanged and keeps the
+//! arithmetic from overflowing or underflowing for very large or small mechanisms.
+//!
+//! Singularity is measured on the columns, one per unknown: the relative determinant is
+//! `|det J| / Π‖column‖`, in [0, 1] by Hadamard's bound, 1 when the unknowns move the loop in
+//! independent (orthogonal) directions and 0 when two of them move it the same way. It does
+//! not depend on the frame (a rotation of x and y) or on the units of the unknowns, and its
+//! inverse is the condition estimate κ of the accuracy contract. For a four-bar it is
+//! `|sin(θ4 − θ3)|`, the sine of the transmission angle.
 
 use crate::Error;
 use crate::Real;
 
-/// The relative determinant (the determinant of the row-normalised matrix, in [0, 1]) at or
-/// below which a Jacobian counts as singular: `√ε`. Within about one unit of rounding in the
+/// The relative determinant (`|det| / Π‖column‖`, in [0, 1]) at or below which a Jacobian
+/// counts as singular: `√ε`. Within about one unit of rounding in the
 /// input from a toggle, a position is itself only determined to `√ε` relative, so rates
 /// computed from it would carry no correct digits; there the solvers say
 /// [`Error::Singular`] instead.
@@ -24,61 +29,71 @@ pub fn singular_threshold<T: Real>() -> T {
     T::epsilon().sqrt()
 }
 
-/// Scales each row of `a` and entry of `b` by the row's Euclidean norm. Returns the product
-/// of the norms (the scale the determinant is divided by), or an error for a zero row or a
-/// non-finite entry.
+/// Scales each row of `a` and entry of `b` by the row's Euclidean norm, and returns the
+/// ratio `Π‖row‖ / Π‖column‖` of the original matrix, by which the scaled matrix's
+/// determinant becomes the relative determinant. Errors: a zero row or column, a non-finite
+/// entry.
 fn equilibrate<T: Real, const N: usize>(
     a: &mut [[T; N]; N],
     b: &mut [T; N],
 ) -> Result<T, Error<T>> {
-    let mut scale = T::one();
-    for (row, bi) in a.iter_mut().zip(b.iter_mut()) {
+    let singular = Error::Singular {
+        determinant: T::zero(),
+        relative_determinant: T::zero(),
+    };
+    let mut column_norms = [T::zero(); N];
+    for row in a.iter() {
+        for (norm, v) in column_norms.iter_mut().zip(row) {
+            *norm = norm.hypot(*v);
+        }
+    }
+    let mut ratio = T::one();
+    for ((row, bi), column_norm) in a.iter_mut().zip(b.iter_mut()).zip(column_norms) {
         let norm = row.iter().fold(T::zero(), |acc, v| acc.hypot(*v));
         if !norm.is_finite() || !bi.is_finite() {
             return Err(Error::NonFinite {
                 quantity: "linear system",
             });
         }
-        if norm == T::zero() {
-            return Err(Error::Singular {
-                determinant: T::zero(),
-                relative_determinant: T::zero(),
-            });
+        if norm == T::zero() || column_norm == T::zero() {
+            return Err(singular);
         }
         row.iter_mut().for_each(|v| *v = *v / norm);
         *bi = *bi / norm;
-        scale = scale * norm;
+        ratio = ratio * (norm / column_norm);
     }
-    Ok(scale)
+    Ok(ratio)
 }
 
-/// Rejects a scaled matrix whose determinant (`relative`, in [0, 1]) is at or below
-/// [`singular_threshold`].
-fn check_determinant<T: Real>(relative: T, row_norms: T) -> Result<(), Error<T>> {
-    if relative.abs() <= singular_threshold::<T>() {
+/// The relative determinant from the row-scaled determinant and [`equilibrate`]'s ratio;
+/// an error at or below [`singular_threshold`].
+fn check_determinant<T: Real>(scaled_determinant: T, ratio: T) -> Result<T, Error<T>> {
+    let relative = (scaled_determinant * ratio).abs();
+    // NaN (a non-finite determinant) is singular too.
+    if relative.is_nan() || relative <= singular_threshold::<T>() {
         return Err(Error::Singular {
-            determinant: relative * row_norms,
-            relative_determinant: relative.abs(),
+            determinant: scaled_determinant,
+            relative_determinant: relative,
         });
     }
-    Ok(())
+    Ok(relative)
 }
 
 /// Solves the 2×2 system `a·x = b` by Cramer's rule; returns `x` and the relative
-/// determinant `|det|/(‖row 0‖·‖row 1‖)`.
+/// determinant `|det| / (‖column 0‖·‖column 1‖)`.
 #[inline]
 pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<([T; 2], T), Error<T>> {
-    let row_norms = equilibrate(&mut a, &mut b)?;
+    let ratio = equilibrate(&mut a, &mut b)?;
     let [[a00, a01], [a10, a11]] = a;
     let determinant = a00 * a11 - a01 * a10;
-    check_determinant(determinant, row_norms)?;
+    let relative = check_determinant(determinant, ratio)?;
     let inverse = T::one() / determinant;
     Ok((
         [
             (b[0] * a11 - a01 * b[1]) * inverse,
             (a00 * b[1] - b[0] * a10) * inverse,
         ],
-        determinant.abs(),
+        relative,
     ))
 }
 
@@ -88,7 +103,7 @@ pub fn solve_lu<T: Real, const N: usize>(
     mut a: [[T; N]; N],
     mut b: [T; N],
 ) -> Result<([T; N], T), Error<T>> {
-    let row_norms = equilibrate(&mut a, &mut b)?;
+    let ratio = equilibrate(&mut a, &mut b)?;
     let (mut lu, mut x) = (a, b);
     let mut determinant = T::one();
     for k in 0..N {
@@ -120,29 +135,32 @@ pub fn solve_lu<T: Real, const N: usize>(
             *xi = *xi - factor * x_k;
         }
     }
-    check_determinant(determinant, row_norms)?;
+    let relative = check_determinant(determinant, ratio)?;
     for k in (0..N).rev() {
         let sum = ((k + 1)..N).fold(x[k], |acc, j| acc - lu[k][j] * x[j]);
         x[k] = sum / lu[k][k];
     }
-    Ok((x, determinant.abs()))
+    Ok((x, relative))
 }
 
-/// The condition estimate of a Jacobian, `1 / relative determinant`: 1 for orthogonal rows,
-/// growing without bound toward a singular matrix (infinite at one).
+/// The condition estimate of a Jacobian, `κ = Π‖column‖ / |det|`: 1 when the unknowns move
+/// the loops in orthogonal directions, growing without bound toward a singular matrix
+/// (infinite at one).
 ///
 /// ```
-/// let orthogonal = [[2.0, 0.0], [0.0, 3.0]];
-/// assert_eq!(mechgen::condition(orthogonal), 1.0);
+/// assert_eq!(mechgen::condition([[2.0, 0.0], [0.0, 3.0]]), 1.0);
+/// // Columns at 30°: κ = 1/sin(30°).
+/// let (s, c) = 30f64.to_radians().sin_cos();
+/// assert!((mechgen::condition([[1.0, c], [0.0, s]]) - 2.0).abs() < 1e-12);
 /// assert_eq!(mechgen::condition([[1.0, 2.0], [2.0, 4.0]]), f64::INFINITY);
 /// ```
 pub fn condition<T: Real, const N: usize>(jacobian: [[T; N]; N]) -> T {
     let mut a = jacobian;
     let mut b = [T::zero(); N];
-    if equilibrate(&mut a, &mut b).is_err() {
+    let Ok(ratio) = equilibrate(&mut a, &mut b) else {
         return T::infinity();
-    }
-    // The determinant of the row-normalised matrix, by elimination with partial pivoting.
+    };
+    // The determinant of the row-scaled matrix, by elimination with partial pivoting.
     let mut determinant = T::one();
     for k in 0..N {
         let pivot_row = (k..N).fold(k, |best, i| {
@@ -168,7 +186,7 @@ pub fn condition<T: Real, const N: usize>(jacobian: [[T; N]; N]) -> T {
             }
         }
     }
-    T::one() / determinant.abs()
+    T::one() / (determinant * ratio).abs()
 }
 
 #[cfg(test)]

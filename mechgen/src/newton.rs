@@ -45,9 +45,9 @@ pub struct Solved<S, T> {
     pub iterations: u32,
     /// Largest absolute loop residual at the solution, in length units.
     pub residual_norm: T,
-    /// The Jacobian's condition estimate at the solution: `1 / relative determinant` (the
-    /// determinant of the row-normalised Jacobian), from 1 for orthogonal rows up to about
-    /// `1/√ε` at a toggle. Errors in the position grow with it; see the accuracy contract.
+    /// The Jacobian's condition estimate at the solution, `κ = Π‖column‖ / |det|` (see
+    /// [`crate::condition`]), from 1 up to `1/√ε` near a toggle. Errors in the position grow
+    /// with it; see the accuracy contract.
     pub condition: T,
 }
 
@@ -86,9 +86,10 @@ const MAX_HALVINGS: u32 = 10;
 /// - a step that does not reduce the largest residual component is halved, up to
 ///   10 times; if none does, the iteration has stagnated;
 /// - a point is accepted when its residual is at most the tolerance (raised to the rounding
-///   floor `16 ε Σ|r|`) and, unless it is at that floor, a root is certain to lie near it:
-///   `(‖f‖/Σ|r|)·κ² ≤ 1/4` with `κ` the condition estimate, a Kantorovich-style bound, so a
-///   loose tolerance cannot accept a point past a toggle where the loops do not close;
+///   floor `16 ε Σ|r|`) and, unless it is at that floor, a root is certain to lie near it
+///   (Kantorovich's `‖J⁻¹‖²·L·‖f‖ ≤ 1/4`, estimated from the condition `κ` and the
+///   Jacobian's columns), so a loose tolerance cannot accept a point past a toggle where the
+///   loops do not close;
 /// - stagnation where the Jacobian is ill-conditioned is [`Error::CannotAssemble`] at `input`
 ///   (the iterates press against a toggle the loops cannot pass), elsewhere
 ///   [`Error::NoConvergence`].
@@ -124,8 +125,7 @@ pub fn newton<T: Real, const N: usize>(
         let (step, relative_determinant) = solve(here.jacobian, here.residual)?;
         let condition = T::one() / relative_determinant;
         let floor = rounding_floor * here.scale;
-        let certified =
-            residual_norm <= floor || residual_norm / here.scale * condition * condition <= quarter;
+        let certified = residual_norm <= floor || kantorovich(&here, condition) <= quarter;
         if residual_norm <= options.tolerance.max(floor) && certified {
             return Ok(Solved {
                 value: x,
@@ -163,21 +163,35 @@ pub fn newton<T: Real, const N: usize>(
         let Some((next, there)) = accepted else {
             // No step lowers the residual: a local minimum of |f| that is not a root. Near a
             // singular Jacobian that is a toggle the loops cannot pass.
-            return Err(
-                if residual_norm / here.scale * condition * condition > quarter {
-                    Error::CannotAssemble { input }
-                } else {
-                    Error::NoConvergence {
-                        iterations,
-                        residual_norm,
-                    }
-                },
-            );
+            return Err(if kantorovich(&here, condition) > quarter {
+                Error::CannotAssemble { input }
+            } else {
+                Error::NoConvergence {
+                    iterations,
+                    residual_norm,
+                }
+            });
         };
         x = next;
         here = there;
         iterations += 1;
     }
+}
+
+/// Kantorovich's `h = ‖J⁻¹‖²·L·‖f‖` at an iterate, estimated from the Jacobian's columns:
+/// `‖J⁻¹‖ ≈ κ / min‖column‖` and, the loops being sums of `r·e^{iθ}`, `L ≈ max‖column‖`.
+/// Below 1/2 a root is certain to lie near the iterate.
+fn kantorovich<T: Real, const N: usize>(at: &Linearisation<T, N>, condition: T) -> T {
+    let mut columns = [T::zero(); N];
+    for row in &at.jacobian {
+        for (norm, v) in columns.iter_mut().zip(row) {
+            *norm = norm.hypot(*v);
+        }
+    }
+    let shortest = columns.iter().fold(T::infinity(), |m, c| m.min(*c));
+    let longest = columns.iter().fold(T::zero(), |m, c| m.max(*c));
+    let residual = at.residual.iter().fold(T::zero(), |acc, f| acc.hypot(*f));
+    condition * condition * residual * longest / (shortest * shortest)
 }
 
 /// The largest absolute component (NaN if any component is NaN).

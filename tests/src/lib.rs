@@ -1,1 +1,4 @@
-//! Integration tests only; see `tests/`.
+//! Shared by the integration tests and the accuracy table: the high-precision reference
+//! cases of `tests/reference/cases.csv` and how mechgen's answers compare with them.
+
+pub mod reference;

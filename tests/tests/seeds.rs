@@ -78,17 +78,11 @@ fn example_2_newton_from_the_seed_guess() {
         .unwrap();
     assert_eq!(iterations, 3);
     assert!(residual_norm < 1e-4);
-    // The condition estimate is the Jacobian's row norms over its determinant,
-    // ‖(l3 sin θ3, l4 sin θ4)‖·‖(l3 cos θ3, l4 cos θ4)‖ / (l3·l4·|sin(θ3 − θ4)|): well
-    // conditioned, with coupler and rocker at 50.58°.
-    let (t3, t4) = (value.theta3, value.theta4);
-    let rows =
-        (200.0 * t3.sin()).hypot(150.0 * t4.sin()) * (200.0 * t3.cos()).hypot(150.0 * t4.cos());
-    let expected = rows / (200.0 * 150.0 * (t3 - t4).sin().abs());
-    assert!(
-        (condition - expected).abs() < 1e-3 * expected,
-        "{condition} vs {expected}"
-    );
+    // The condition estimate is the Jacobian's column norms over its determinant: for a
+    // four-bar, 1/sin of the transmission angle, here 50.58°.
+    let expected = 1.0 / (value.theta4 - value.theta3).sin().abs();
+    assert!((condition - expected).abs() < 1e-9 * expected, "{condition} vs {expected}");
+    assert_eq!(rounded(1.0 / condition, 4), rounded(50.58f64.to_radians().sin(), 4));
     assert!(condition < 2.0);
     assert_eq!(rounded(deg(value.theta3), 4), 21.5576);
     assert_eq!(rounded(deg(value.theta4), 4), 72.1377);
