@@ -151,9 +151,9 @@ def cases():
     out.append(("four_bar", "change point flat", ["150", "100", "200", "250"],
                 [(mp.mpf(d), d) for d in DELTAS] + [(mp.mpf(0), "0")]))
     out.append(("four_bar", "parallelogram flat", ["100", "50", "100", "50"],
-                [(mp.mpf(d), d) for d in DELTAS]))
+                [(mp.mpf(d), d) for d in DELTAS] + [(mp.mpf(0), "0")]))
     out.append(("four_bar", "kite flat", ["100", "50", "50", "100"],
-                [(mp.pi - mp.mpf(d), d) for d in DELTAS]))
+                [(mp.pi - mp.mpf(d), d) for d in DELTAS] + [(mp.pi, "0")]))
     for name, scale in [("tiny (1e-6)", "1e-6"), ("huge (1e6)", "1e6")]:
         params = [str(mp.mpf(x) * mp.mpf(scale)) for x in cr]
         out.append(("four_bar", f"Example 1 scaled {name}", params, [(mp.pi / 3, "none")]))
