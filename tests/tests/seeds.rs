@@ -81,8 +81,14 @@ fn example_2_newton_from_the_seed_guess() {
     // The condition estimate is the Jacobian's column norms over its determinant: for a
     // four-bar, 1/sin of the transmission angle, here 50.58°.
     let expected = 1.0 / (value.theta4 - value.theta3).sin().abs();
-    assert!((condition - expected).abs() < 1e-9 * expected, "{condition} vs {expected}");
-    assert_eq!(rounded(1.0 / condition, 4), rounded(50.58f64.to_radians().sin(), 4));
+    assert!(
+        (condition - expected).abs() < 1e-9 * expected,
+        "{condition} vs {expected}"
+    );
+    assert_eq!(
+        rounded(1.0 / condition, 4),
+        rounded(50.58f64.to_radians().sin(), 4)
+    );
     assert!(condition < 2.0);
     assert_eq!(rounded(deg(value.theta3), 4), 21.5576);
     assert_eq!(rounded(deg(value.theta4), 4), 72.1377);

@@ -27,11 +27,11 @@ fn every_reference_case_keeps_the_contract() {
 
 #[test]
 fn the_published_accuracy_table_is_current() {
-    let published = include_str!("../reference/ACCURACY.md");
+    let published = include_str!("../../docs/ACCURACY.md");
     assert!(
         published == reference::table(),
-        "tests/reference/ACCURACY.md is stale: run \
-         `cargo run -p mechgen-tests --bin accuracy > tests/reference/ACCURACY.md`"
+        "docs/ACCURACY.md is stale: run \
+         `cargo run -p mechgen-tests --bin accuracy > docs/ACCURACY.md`"
     );
 }
 
