@@ -54,17 +54,15 @@ fn scaled<T: Real>(a: Vec2<T>, s: T) -> Vec2<T> {
     Vec2::new(a.x * s, a.y * s)
 }
 
-/// `a − b` for two angles in (−π, π], wrapped back into (−π, π].
-fn angle_between<T: Real>(a: T, b: T) -> T {
-    let pi = T::constant(core::f64::consts::PI);
-    let difference = a - b;
-    if difference > pi {
-        difference - (pi + pi)
-    } else if difference <= -pi {
-        difference + (pi + pi)
-    } else {
-        difference
-    }
+/// The turn `e^{iq}` that carries `from` onto `to`'s direction, and `q` in (−π, π]: one
+/// `atan2`, and the unit vector `(cos q, sin q)` exactly as generated code wants it, so no
+/// `sin_cos` of the solved angle is needed after.
+fn turn<T: Real>(to: Vec2<T>, from: Vec2<T>) -> (T, Vec2<T>) {
+    // to·conj(from), normalised.
+    let product = Vec2::new(dot(to, from), cross(from, to));
+    let length = product.norm();
+    let unit = scaled(product, T::one() / length);
+    (product.angle(), unit)
 }
 
 /// A square root that treats a slightly negative argument, within rounding of `scale`, as a
@@ -96,7 +94,7 @@ pub fn two_lengths<T: Real>(k: Vec2<T>, v1: Vec2<T>, v2: Vec2<T>) -> Result<[T; 
     Ok([cross(v2, k) / determinant, cross(k, v1) / determinant])
 }
 
-/// `K + e^{iq}·(l·w1 + w0) = 0` for `(l, q)`: the vector `l·w1 + w0`, turned by `q`, must be
+/// `K + e^{iq}·(l·w1 + w0) = 0` for `(l, q, (cos q, sin q))`: the vector `l·w1 + w0`, turned by `q`, must be
 /// `−K`, so `|l·w1 + w0| = |K|`, a quadratic in `l`. The branch sign `σ` is that of
 /// `Re(conj(w1)·(l·w1 + w0))`: positive when the solved vector points along `w1` (the
 /// length grows the vector).
@@ -104,18 +102,19 @@ pub fn two_lengths<T: Real>(k: Vec2<T>, v1: Vec2<T>, v2: Vec2<T>) -> Result<[T; 
 /// ```
 /// use mechgen::{closed, Vec2};
 /// // A slide of length l from the origin must reach (3, 4): l = 5 on the + branch.
-/// let (l, q) = closed::length_and_own_angle(
+/// let (l, q, direction) = closed::length_and_own_angle(
 ///     Vec2::new(-3.0, -4.0), Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), 1.0,
 /// ).unwrap();
 /// assert_eq!(l, 5.0);
 /// assert!((q - (4.0f64).atan2(3.0)).abs() < 1e-15);
+/// assert!((direction.x - 0.6).abs() < 1e-15 && (direction.y - 0.8).abs() < 1e-15);
 /// ```
 pub fn length_and_own_angle<T: Real>(
     k: Vec2<T>,
     w0: Vec2<T>,
     w1: Vec2<T>,
     sign: T,
-) -> Result<(T, T), Failure> {
+) -> Result<(T, T, Vec2<T>), Failure> {
     let a = dot(w1, w1);
     if a == T::zero() {
         return Err(Failure::Degenerate);
@@ -129,8 +128,8 @@ pub fn length_and_own_angle<T: Real>(
     if vector.x == T::zero() && vector.y == T::zero() {
         return Err(Failure::Degenerate);
     }
-    let target = scaled(k, -T::one());
-    Ok((l, angle_between(target.angle(), vector.angle())))
+    let (q, direction) = turn(scaled(k, -T::one()), vector);
+    Ok((l, q, direction))
 }
 
 /// The branch sign of a solution of [`length_and_own_angle`].
@@ -138,7 +137,7 @@ pub fn length_and_own_angle_sign<T: Real>(w0: Vec2<T>, w1: Vec2<T>, l: T) -> T {
     dot(w1, scaled(w1, l) + w0)
 }
 
-/// `K + l·v + e^{iq}·w0 = 0` for `(l, q)`: the point `K + l·v` moves along a line and must lie
+/// `K + l·v + e^{iq}·w0 = 0` for `(l, q, (cos q, sin q))`: the point `K + l·v` moves along a line and must lie
 /// on the circle of radius `|w0|`, a quadratic in `l`. The branch sign `σ` is that of
 /// `Re(conj(v)·(K + l·v))`: positive for the intersection farther along `v`.
 ///
@@ -147,7 +146,7 @@ pub fn length_and_own_angle_sign<T: Real>(w0: Vec2<T>, w1: Vec2<T>, l: T) -> T {
 /// // The point (l, 3) moving along x must be 5 from the origin: l = ±4, and the + branch is
 /// // the one farther along v = (1, 0).
 /// let k = Vec2::new(0.0, 3.0);
-/// let (l, _) = closed::length_and_other_angle(k, Vec2::new(1.0, 0.0), Vec2::new(5.0, 0.0), 1.0).unwrap();
+/// let (l, _, _) = closed::length_and_other_angle(k, Vec2::new(1.0, 0.0), Vec2::new(5.0, 0.0), 1.0).unwrap();
 /// assert_eq!(l, 4.0);
 /// ```
 pub fn length_and_other_angle<T: Real>(
@@ -155,7 +154,7 @@ pub fn length_and_other_angle<T: Real>(
     v: Vec2<T>,
     w0: Vec2<T>,
     sign: T,
-) -> Result<(T, T), Failure> {
+) -> Result<(T, T, Vec2<T>), Failure> {
     let a = dot(v, v);
     let radius_squared = dot(w0, w0);
     if a == T::zero() || radius_squared == T::zero() {
@@ -166,8 +165,8 @@ pub fn length_and_other_angle<T: Real>(
     let discriminant = half_b * half_b - a * c;
     let scale = half_b * half_b + (a * c).abs();
     let l = (-half_b + sign * rooted(discriminant, scale)?) / a;
-    let target = scaled(k + scaled(v, l), -T::one());
-    Ok((l, angle_between(target.angle(), w0.angle())))
+    let (q, direction) = turn(scaled(k + scaled(v, l), -T::one()), w0);
+    Ok((l, q, direction))
 }
 
 /// The branch sign of a solution of [`length_and_other_angle`].
@@ -175,7 +174,7 @@ pub fn length_and_other_angle_sign<T: Real>(k: Vec2<T>, v: Vec2<T>, l: T) -> T {
     dot(v, k + scaled(v, l))
 }
 
-/// `K + e^{iq1}·w1 + e^{iq2}·w2 = 0` for `(q1, q2)`: the vectors `P1 = e^{iq1}·w1` and
+/// `K + e^{iq1}·w1 + e^{iq2}·w2 = 0` for `(q1, q2, (cos q1, sin q1), (cos q2, sin q2))`: the vectors `P1 = e^{iq1}·w1` and
 /// `P2 = e^{iq2}·w2` must span the chord `−K`, so P1's tip is where the circles of radii
 /// `|w1|` (about the chord's start) and `|w2|` (about its end) meet. The branch sign `σ` is
 /// that of `cross(−K, P1)`: positive when P1 lies counter-clockwise of (to the left of) the
@@ -184,7 +183,7 @@ pub fn length_and_other_angle_sign<T: Real>(k: Vec2<T>, v: Vec2<T>, l: T) -> T {
 /// ```
 /// use mechgen::{closed, Vec2};
 /// // Two links of 5 spanning the chord (6, 0): they meet at (3, ±4).
-/// let (q1, q2) = closed::two_angles(
+/// let (q1, q2, _, _) = closed::two_angles(
 ///     Vec2::new(-6.0, 0.0), Vec2::new(5.0, 0.0), Vec2::new(5.0, 0.0), 1.0,
 /// ).unwrap();
 /// assert!((q1 - (4.0f64).atan2(3.0)).abs() < 1e-15);
@@ -195,7 +194,7 @@ pub fn two_angles<T: Real>(
     w1: Vec2<T>,
     w2: Vec2<T>,
     sign: T,
-) -> Result<(T, T), Failure> {
+) -> Result<(T, T, Vec2<T>, Vec2<T>), Failure> {
     let chord = scaled(k, -T::one());
     let length = chord.norm();
     if length == T::zero() {
@@ -208,10 +207,9 @@ pub fn two_angles<T: Real>(
     let normal = Vec2::new(-unit.y, unit.x);
     let p1 = scaled(unit, along) + scaled(normal, height);
     let p2 = chord - p1;
-    Ok((
-        angle_between(p1.angle(), w1.angle()),
-        angle_between(p2.angle(), w2.angle()),
-    ))
+    let (q1, direction1) = turn(p1, w1);
+    let (q2, direction2) = turn(p2, w2);
+    Ok((q1, q2, direction1, direction2))
 }
 
 /// The branch sign of a solution of [`two_angles`].

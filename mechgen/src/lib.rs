@@ -17,7 +17,7 @@ pub use advantage::MechanicalAdvantage;
 pub use branch::Branch;
 pub use error::Error;
 pub use linear::{condition, singular_threshold};
-pub use newton::{NewtonOptions, Solved};
+pub use newton::{Motion, NewtonOptions, Solved};
 pub use real::Real;
 pub use sweep::Kinematics;
 pub use vec2::{AccelerationParts, Vec2};

@@ -231,3 +231,14 @@ pub fn finite<T: Real, const N: usize>(
         Err(Error::NonFinite { quantity })
     }
 }
+
+/// A position with its velocity and acceleration, as the generated `motion` returns them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Motion<U> {
+    /// The unknowns' values.
+    pub position: U,
+    /// Their rates.
+    pub velocity: U,
+    /// Their accelerations.
+    pub acceleration: U,
+}

@@ -248,3 +248,45 @@ fn sweeps_work_in_f32() {
     }
     assert_eq!(count, 361);
 }
+
+/// `motion` is `assemble`, `velocity` and `acceleration` in one pass: the same numbers, to
+/// rounding (it takes the solved angles' sines and cosines from the closed form).
+#[test]
+fn motion_is_assemble_velocity_and_acceleration_in_one() {
+    let four_bar = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+    let slider = SliderCrank::new(50.0, 150.0, 20.0).unwrap();
+    let inverted = InvertedSliderCrank::new(150.0, 60.0, 20.0, 0.3).unwrap();
+    let close = |a: [f64; 2], b: [f64; 2], scale: f64| {
+        a.iter()
+            .zip(b)
+            .all(|(x, y)| (x - y).abs() <= 1e-12 * scale.max(y.abs()))
+    };
+    for degree in (0..360).step_by(5) {
+        let theta2 = f64::from(degree).to_radians();
+        for branch in BRANCHES {
+            let m = four_bar.motion(theta2, branch, 7.0, -3.0).unwrap();
+            let q = four_bar.assemble(theta2, branch).unwrap();
+            let v = four_bar.velocity(theta2, &q, 7.0).unwrap();
+            let a = four_bar.acceleration(theta2, &q, 7.0, &v, -3.0).unwrap();
+            assert!(close(m.position.to_array(), q.to_array(), 1.0));
+            assert!(close(m.velocity.to_array(), v.to_array(), 1.0));
+            assert!(close(m.acceleration.to_array(), a.to_array(), 1.0));
+
+            let m = slider.motion(theta2, branch, 7.0, -3.0).unwrap();
+            let q = slider.assemble(theta2, branch).unwrap();
+            let v = slider.velocity(theta2, &q, 7.0).unwrap();
+            let a = slider.acceleration(theta2, &q, 7.0, &v, -3.0).unwrap();
+            assert!(close(m.position.to_array(), q.to_array(), 200.0));
+            assert!(close(m.velocity.to_array(), v.to_array(), 200.0));
+            assert!(close(m.acceleration.to_array(), a.to_array(), 200.0));
+
+            let m = inverted.motion(theta2, branch, 7.0, -3.0).unwrap();
+            let q = inverted.assemble(theta2, branch).unwrap();
+            let v = inverted.velocity(theta2, &q, 7.0).unwrap();
+            let a = inverted.acceleration(theta2, &q, 7.0, &v, -3.0).unwrap();
+            assert!(close(m.position.to_array(), q.to_array(), 230.0));
+            assert!(close(m.velocity.to_array(), v.to_array(), 230.0));
+            assert!(close(m.acceleration.to_array(), a.to_array(), 230.0));
+        }
+    }
+}

@@ -15,7 +15,9 @@ use crate::symbolic::{ExprId, Graph, Node, Var};
 
 /// The statements that compute some outputs, and the expression for each output.
 pub struct Block {
-    pub statements: Vec<TokenStream>,
+    /// The statements, by stage (see [`Context::stage`]): those of stage `k` read variables
+    /// known by stage `k` at the latest.
+    pub statements: Vec<Vec<TokenStream>>,
     pub outputs: Vec<Emitted>,
     /// The variables the block reads, so the caller binds only those.
     pub used: BTreeSet<Var>,
@@ -59,22 +61,40 @@ pub fn local(name: &str) -> Ident {
     Ident::new(name, Span::mixed_site())
 }
 
-/// Emits `outputs`. `reserved` holds the other generated names in scope (arguments, rates),
-/// which the block's own locals must not shadow.
+/// What a block can assume about the code around it.
+pub struct Context<'a> {
+    /// The other generated names in scope (arguments, rates), which the block's own locals
+    /// must not shadow.
+    pub reserved: &'a BTreeSet<String>,
+    /// Nodes whose values are already in locals, such as the sine and cosine of an angle a
+    /// closed form produced directly, with the stage they are known from.
+    pub presets: &'a [(ExprId, Ident, usize)],
+    /// The stage from which each variable is known. A function that solves as it goes
+    /// (loop by loop in closed form, then the rates, then the accelerations) computes a
+    /// value in the first stage at which everything it reads is known; plain blocks have one
+    /// stage, 0.
+    pub stage: &'a dyn Fn(Var) -> usize,
+}
+
+/// Emits `outputs` with shared work done once.
 pub fn emit(
     graph: &Graph,
     outputs: &[ExprId],
     var_name: &dyn Fn(Var) -> Ident,
-    reserved: &BTreeSet<String>,
+    context: &Context,
 ) -> Block {
+    let mut names = vec![None; graph.len()];
+    for (id, name, _) in context.presets {
+        names[id.index()] = Some(name.clone());
+    }
     let mut emitter = Emitter {
         graph,
         var_name,
-        names: vec![None; graph.len()],
+        names,
         used: BTreeSet::new(),
-        taken: reserved.clone(),
+        taken: context.reserved.clone(),
     };
-    let statements = emitter.schedule(outputs);
+    let statements = emitter.schedule(outputs, context);
     let outputs = outputs
         .iter()
         .map(|&o| {
@@ -100,7 +120,8 @@ struct Emitter<'a> {
 }
 
 impl Emitter<'_> {
-    fn schedule(&mut self, outputs: &[ExprId]) -> Vec<TokenStream> {
+    /// The statements for `outputs`, by stage.
+    fn schedule(&mut self, outputs: &[ExprId], context: &Context) -> Vec<Vec<TokenStream>> {
         let graph = self.graph;
         let n = graph.len();
         let mut reachable = vec![false; n];
@@ -109,8 +130,22 @@ impl Emitter<'_> {
             if std::mem::replace(&mut reachable[id.index()], true) {
                 continue;
             }
-            stack.extend(children(graph.node(id)));
+            // A preset node is a leaf: its value is already in a local.
+            if self.names[id.index()].is_none() {
+                stack.extend(children(graph.node(id)));
+            }
         }
+        let mut stage = vec![0usize; n];
+        for (id, _, known) in context.presets {
+            stage[id.index()] = *known;
+        }
+        for i in (0..n).filter(|&i| reachable[i] && self.names[i].is_none()) {
+            stage[i] = match graph.node(id_at(i)) {
+                Node::Var(var) => (context.stage)(var),
+                node => children(node).map(|c| stage[c.index()]).max().unwrap_or(0),
+            };
+        }
+        let stages = stage.iter().copied().max().unwrap_or(0) + 1;
 
         // Angles whose sine and cosine are both needed get one `sin_cos`.
         let mut has_sin = vec![false; n];
@@ -129,7 +164,10 @@ impl Emitter<'_> {
         for output in outputs {
             uses[output.index()] += 1;
         }
-        for i in (0..n).rev().filter(|&i| reachable[i]) {
+        for i in (0..n)
+            .rev()
+            .filter(|&i| reachable[i] && self.names[i].is_none())
+        {
             match graph.node(id_at(i)) {
                 Node::Neg(a) => uses[a.index()] += uses[i],
                 Node::Sin(a) if has_cos[a.index()] => {}
@@ -137,7 +175,7 @@ impl Emitter<'_> {
             }
         }
 
-        let mut statements = Vec::new();
+        let mut statements = vec![Vec::new(); stages];
         let mut temporaries = 0;
         let mut angles = 0;
         for i in (0..n).filter(|&i| reachable[i]) {
@@ -159,7 +197,8 @@ impl Emitter<'_> {
                             }
                         },
                     };
-                    statements.push(self.trig(a, &stem, has_sin[a.index()], has_cos[a.index()]));
+                    let statement = self.trig(a, &stem, has_sin[a.index()], has_cos[a.index()]);
+                    statements[stage[i]].push(statement);
                 }
                 Node::Add(..) | Node::Mul(..) if uses[i] > 1 => {
                     let value = self.expr(id).0;
@@ -171,7 +210,7 @@ impl Emitter<'_> {
                         }
                     };
                     let name = local(&name);
-                    statements.push(quote!(let #name = #value;));
+                    statements[stage[i]].push(quote!(let #name = #value;));
                     self.names[i] = Some(name);
                 }
                 _ => {}

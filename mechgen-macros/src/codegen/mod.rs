@@ -9,8 +9,8 @@ use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
 use crate::model::{Kind, Model, Symbol, SymbolRef};
-use crate::symbolic::{Case, Equations, ExprId, Step, Var};
-use emit::{Block, Emitted, emit, local};
+use crate::symbolic::{Case, Equations, ExprId, Node, Step, Var};
+use emit::{Block, Context, Emitted, emit, local};
 use syn::ext::IdentExt;
 
 pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
@@ -54,7 +54,9 @@ const RAW_EVALUATION: &str = "A raw evaluation: it does not check its arguments,
      in gives NaN out. The solvers check theirs.";
 
 /// The generated functions' own argument and local names, besides derived ones.
-const ARGUMENT_NAMES: [&str; 14] = [
+const ARGUMENT_NAMES: [&str; 16] = [
+    "rates",
+    "accelerations",
     "solved",
     "branch",
     "branches",
@@ -103,6 +105,12 @@ impl<'a> Generator<'a> {
                     .map(Ident::to_string),
             )
             .chain(point_components)
+            .chain(
+                model
+                    .unknowns
+                    .iter()
+                    .map(|u| format!("direction_{}", u.name.unraw())),
+            )
             .collect();
         Generator {
             model,
@@ -145,6 +153,27 @@ impl<'a> Generator<'a> {
         outputs: &[ExprId],
         unknowns_are_locals: bool,
     ) -> (TokenStream, Vec<Emitted>) {
+        let (bindings, mut statements, outputs) =
+            self.block_with(outputs, unknowns_are_locals, &[], &|_| 0);
+        let statements = statements.pop().unwrap_or_default();
+        (quote!(#bindings #(#statements)*), outputs)
+    }
+
+    /// Emits `outputs`, with the `let`s that bind the parameters and unknowns they read, and
+    /// the statements by stage (see [`Context::stage`]). With `unknowns_are_locals`, only the
+    /// parameters are bound: the unknowns (and rates) are the caller's locals.
+    fn block_with(
+        &self,
+        outputs: &[ExprId],
+        unknowns_are_locals: bool,
+        presets: &[(ExprId, Ident, usize)],
+        stage: &dyn Fn(Var) -> usize,
+    ) -> (TokenStream, Vec<Vec<TokenStream>>, Vec<Emitted>) {
+        let context = Context {
+            reserved: &self.reserved,
+            presets,
+            stage,
+        };
         let Block {
             statements,
             outputs,
@@ -153,7 +182,7 @@ impl<'a> Generator<'a> {
             &self.equations.graph,
             outputs,
             &|var| self.var_name(var),
-            &self.reserved,
+            &context,
         );
         let position = arg("position");
         let velocity = arg("velocity");
@@ -165,7 +194,7 @@ impl<'a> Generator<'a> {
                     let field = &self.model.params[i].name;
                     return Some(quote!(let #name = self.#field;));
                 }
-                Var::Value(SymbolRef::Unknown(_)) if unknowns_are_locals => return None,
+                _ if unknowns_are_locals => return None,
                 Var::Value(SymbolRef::Unknown(i)) => (&position, i),
                 Var::Rate(SymbolRef::Unknown(i)) => (&velocity, i),
                 Var::Accel(SymbolRef::Unknown(i)) => (&acceleration, i),
@@ -178,12 +207,11 @@ impl<'a> Generator<'a> {
         let input = &self.model.input.name;
         let unused_input = (!unknowns_are_locals && !used.contains(&Var::Value(SymbolRef::Input)))
             .then(|| quote!(let _ = #input;));
-        let prologue = quote! {
+        let bindings = quote! {
             #unused_input
             #(#bindings)*
-            #(#statements)*
         };
-        (prologue, outputs)
+        (bindings, statements, outputs)
     }
 
     fn mechanism_struct(&self) -> TokenStream {
@@ -303,6 +331,9 @@ impl<'a> Generator<'a> {
         if let Some(steps) = &self.equations.closed_form {
             functions.push(self.assemble(steps));
             functions.push(self.branch_of(steps));
+            if self.model.outputs.acceleration {
+                functions.push(self.motion(steps));
+            }
         }
         let outputs = self.model.outputs;
         if outputs.velocity {
@@ -740,13 +771,9 @@ impl<'a> Generator<'a> {
             .collect()
     }
 
-    /// `assemble(input, branch)`: every loop in closed form, in the planned order.
-    fn assemble(&self, steps: &[Step]) -> TokenStream {
-        let input = &self.model.input.name;
-        let (unknowns, _, _) = self.signature_types();
-        let ty = &self.unknowns_type;
-        let mut choices = self.branch_choices(steps).into_iter();
-        let branch_parameter = match choices.len() {
+    /// The `branch` or `branches` parameter of a closed-form function.
+    fn branch_parameter(&self, steps: &[Step]) -> TokenStream {
+        match steps.iter().filter(|s| s.case.has_branches()).count() {
             0 => TokenStream::new(),
             1 => {
                 let branch = arg("branch");
@@ -757,7 +784,15 @@ impl<'a> Generator<'a> {
                 let n = Literal::usize_unsuffixed(n);
                 quote!(, #branches: [::mechgen::Branch; #n])
             }
-        };
+        }
+    }
+
+    /// The statements that solve every loop in closed form, binding each unknown to a local
+    /// of its own name and, with `directions`, each solved angle's `(cos, sin)` to
+    /// `direction_{angle}`.
+    fn closed_form_solve(&self, steps: &[Step], directions: bool) -> TokenStream {
+        let input = &self.model.input.name;
+        let mut choices = self.branch_choices(steps).into_iter();
         let solves = steps.iter().map(|step| {
             let (prologue, coefficients) = self.block_in(&coefficients(&step.case), true);
             let vectors = complex_values(&coefficients);
@@ -767,6 +802,14 @@ impl<'a> Generator<'a> {
                 quote!(, #choice.sign::<T>())
             });
             let [a, b] = step.unknowns.map(|u| &self.model.unknowns[u].name);
+            let [direction_a, direction_b] = step.unknowns.map(|u| {
+                if directions {
+                    let direction = self.direction(u);
+                    quote!(#direction)
+                } else {
+                    quote!(_)
+                }
+            });
             let failure = arg("failure");
             let call = quote! {
                 ::mechgen::closed::#solver(#(#vectors),* #sign)
@@ -774,7 +817,9 @@ impl<'a> Generator<'a> {
             };
             let pattern = match step.case {
                 Case::TwoLengths { .. } => quote!([#a, #b]),
-                _ => quote!((#a, #b)),
+                Case::TwoAngles { .. } => quote!((#a, #b, #direction_a, #direction_b)),
+                // (length, angle, the angle's direction)
+                _ => quote!((#a, #b, #direction_b)),
             };
             quote! {
                 let #pattern = {
@@ -783,6 +828,36 @@ impl<'a> Generator<'a> {
                 };
             }
         });
+        quote!(#(#solves)*)
+    }
+
+    /// The local holding an unknown angle's `(cos, sin)` from a closed form.
+    fn direction(&self, unknown: usize) -> Ident {
+        local(&format!(
+            "direction_{}",
+            self.model.unknowns[unknown].name.unraw()
+        ))
+    }
+
+    /// The unknown angles a closed-form plan gives directions for.
+    fn solved_angles(&self, steps: &[Step]) -> Vec<usize> {
+        steps
+            .iter()
+            .flat_map(|step| match step.case {
+                Case::TwoLengths { .. } => vec![],
+                Case::TwoAngles { .. } => step.unknowns.to_vec(),
+                _ => vec![step.unknowns[1]],
+            })
+            .collect()
+    }
+
+    /// `assemble(input, branch)`: every loop in closed form, in the planned order.
+    fn assemble(&self, steps: &[Step]) -> TokenStream {
+        let input = &self.model.input.name;
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let branch_parameter = self.branch_parameter(steps);
+        let solve = self.closed_form_solve(steps, false);
         let names = self.model.unknowns.iter().map(|u| &u.name);
         let mut docs = format!(
             "The position at `{input}` in closed form, loop by loop, on the chosen assembly \
@@ -817,8 +892,143 @@ impl<'a> Generator<'a> {
                 #input: T #branch_parameter
             ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
-                #(#solves)*
+                #solve
                 ::core::result::Result::Ok(#ty { #(#names),* })
+            }
+        }
+    }
+
+    /// `motion(input, branch, rate, acceleration)`: position, velocity and acceleration in one
+    /// pass. It is staged: stage `s` solves loop step `s` in closed form, so each sine,
+    /// product or sum is computed once, as soon as what it reads is known; the solved angles'
+    /// sines and cosines come from the closed form's directions, with no `sin_cos`.
+    fn motion(&self, steps: &[Step]) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let n = self.model.unknowns.len();
+        let last = steps.len();
+        let graph = &self.equations.graph;
+        // Stage of each unknown: the step (1-based) that solves it; the rates come after all.
+        let mut solved_at = vec![0; n];
+        for (s, step) in steps.iter().enumerate() {
+            step.unknowns.iter().for_each(|&u| solved_at[u] = s + 1);
+        }
+        let stage = |var: Var| match var {
+            Var::Value(SymbolRef::Unknown(u)) => solved_at[u],
+            Var::Rate(SymbolRef::Unknown(_)) | Var::Accel(SymbolRef::Unknown(_)) => last + 1,
+            // Parameters, the input and its rate and acceleration are known from the start.
+            _ => 0,
+        };
+        let mut presets = Vec::new();
+        let mut direction_bindings = vec![Vec::new(); last + 1];
+        for u in self.solved_angles(steps) {
+            let direction = self.direction(u);
+            let stem = self.model.unknowns[u].name.unraw().to_string();
+            let (sin, cos) = (local(&format!("sin_{stem}")), local(&format!("cos_{stem}")));
+            direction_bindings[solved_at[u]]
+                .push(quote!(let (#sin, #cos) = (#direction.y, #direction.x);));
+            if let Some(var) = graph.lookup(Node::Var(Var::Value(SymbolRef::Unknown(u)))) {
+                for (node, name) in [(Node::Sin(var), &sin), (Node::Cos(var), &cos)] {
+                    if let Some(id) = graph.lookup(node) {
+                        presets.push((id, name.clone(), solved_at[u]));
+                    }
+                }
+            }
+        }
+        let eq = self.equations;
+        let step_coefficients: Vec<Vec<ExprId>> =
+            steps.iter().map(|step| coefficients(&step.case)).collect();
+        let entries: Vec<ExprId> = step_coefficients
+            .iter()
+            .flatten()
+            .chain(eq.jacobian.iter().flatten())
+            .chain(&eq.velocity_rhs)
+            .chain(&eq.acceleration_rhs)
+            .copied()
+            .collect();
+        let (bindings, mut statements, outputs) = self.block_with(&entries, true, &presets, &stage);
+        statements.resize(last + 2, Vec::new());
+        let mut outputs = outputs.into_iter();
+        let mut choices = self.branch_choices(steps).into_iter();
+        let failure = arg("failure");
+        let solves: Vec<TokenStream> = steps
+            .iter()
+            .zip(&step_coefficients)
+            .enumerate()
+            .map(|(s, (step, coefficients))| {
+                let computed = &statements[s];
+                let values: Vec<Emitted> = outputs.by_ref().take(coefficients.len()).collect();
+                let vectors = complex_values(&values);
+                let solver = solver_name(&step.case);
+                let sign = step.case.has_branches().then(|| {
+                    let choice = choices.next();
+                    quote!(, #choice.sign::<T>())
+                });
+                let [a, b] = step.unknowns.map(|u| &self.model.unknowns[u].name);
+                let [direction_a, direction_b] = step.unknowns.map(|u| self.direction(u));
+                let pattern = match step.case {
+                    Case::TwoLengths { .. } => quote!([#a, #b]),
+                    Case::TwoAngles { .. } => quote!((#a, #b, #direction_a, #direction_b)),
+                    _ => quote!((#a, #b, #direction_b)),
+                };
+                let directions = &direction_bindings[s + 1];
+                quote! {
+                    #(#computed)*
+                    let #pattern = ::mechgen::closed::#solver(#(#vectors),* #sign)
+                        .map_err(|#failure| #failure.at(#input))?;
+                    #(#directions)*
+                }
+            })
+            .collect();
+        let rest: Vec<Emitted> = outputs.collect();
+        let (jacobian, rest) = rest.split_at(n * n);
+        let (velocity_rhs, acceleration_rhs) = rest.split_at(n);
+        let jacobian = matrix(jacobian, n);
+        let (before_rates, after_rates) = (&statements[last], &statements[last + 1]);
+        let solver = self.solver();
+        let (jacobian_name, rates, accelerations) =
+            (arg("jacobian"), local("rates"), local("accelerations"));
+        let rate_names = &self.unknown_dots;
+        let names = self.model.unknowns.iter().map(|u| &u.name);
+        let branch_parameter = self.branch_parameter(steps);
+        let labels = [
+            format!("input rate `{input_dot}`"),
+            format!("input acceleration `{input_ddot}`"),
+        ];
+        let [dot_label, ddot_label] = &labels;
+        let docs = doc(&format!(
+            "Position (as [`Self::assemble`]), velocity and acceleration at `{input}` in one \
+             pass, for the input moving at `{input_dot}` and accelerating at `{input_ddot}`: \
+             the fastest way to all three, sharing every sine, cosine and product between \
+             them.\n\nErrors: as [`Self::assemble`], [`Self::velocity`] and \
+             [`Self::acceleration`]."
+        ));
+        quote! {
+            #docs
+            pub fn motion(
+                &self,
+                #input: T #branch_parameter,
+                #input_dot: T,
+                #input_ddot: T,
+            ) -> ::core::result::Result<::mechgen::Motion<#unknowns>, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                #bindings
+                #(#solves)*
+                #(#before_rates)*
+                let #jacobian_name = #jacobian;
+                let (#rates, _) = #solver(#jacobian_name, [#(#velocity_rhs),*])?;
+                let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
+                #(#after_rates)*
+                let (#accelerations, _) = #solver(#jacobian_name, [#(#acceleration_rhs),*])?;
+                let #accelerations = ::mechgen::__private::finite(#accelerations, "acceleration")?;
+                ::core::result::Result::Ok(::mechgen::Motion {
+                    position: #ty { #(#names),* },
+                    velocity: #ty::from_array(#rates),
+                    acceleration: #ty::from_array(#accelerations),
+                })
             }
         }
     }
