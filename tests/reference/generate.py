@@ -2,7 +2,11 @@
 """Reference values for mechgen's accuracy tests, computed independently at 60 significant
 digits with mpmath.
 
-Run from the repository root:  python3 tests/reference/generate.py > tests/reference/cases.csv
+Run from the repository root:
+    python3 tests/reference/generate.py > tests/reference/cases.csv
+    python3 tests/reference/generate.py sweeps > tests/reference/sweeps.csv
+The second is the benchmarks' sweep (360 angles, one degree apart, omega2 = 10, alpha2 = 2,
+open branch) for the performance report's accuracy column.
 
 Every position comes from a closed form written here (circle-circle, line-circle,
 length-and-angle), every rate from the velocity and acceleration relations of KINEMATICS.md
@@ -204,5 +208,28 @@ def main():
                     writer.writerow(row)
 
 
+def sweeps():
+    global OMEGA2, ALPHA2
+    OMEGA2, ALPHA2 = mp.mpf(10), mp.mpf(2)
+    writer = csv.writer(sys.stdout, lineterminator="\n")
+    writer.writerow(["mechanism", "degree", "input", "q1", "q2", "q1_dot", "q2_dot", "q1_ddot",
+                     "q2_ddot"])
+    mechanisms = [
+        ("four_bar", ["180", "80", "200", "150"]),
+        ("slider_crank", ["50", "150", "20"]),
+        ("inverted_slider_crank", ["150", "60", "20", "0.3"]),
+    ]
+    for mechanism, params in mechanisms:
+        p = [rounded(mp.mpf(x), "f64") for x in params]
+        for degree in range(360):
+            t2 = rounded(mp.radians(degree), "f64")
+            result = SOLVERS[mechanism](p, t2, 1)
+            writer.writerow([mechanism, degree, repr(float(t2))]
+                            + [mp.nstr(x, 25) for x in result[:6]])
+
+
 if __name__ == "__main__":
-    main()
+    if sys.argv[1:] == ["sweeps"]:
+        sweeps()
+    else:
+        main()

@@ -1,4 +1,6 @@
 //! Shared by the integration tests and the accuracy table: the high-precision reference
 //! cases of `tests/reference/cases.csv` and how mechgen's answers compare with them.
 
+pub mod baselines;
 pub mod reference;
+pub mod scenes;

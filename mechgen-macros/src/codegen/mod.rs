@@ -283,6 +283,18 @@ impl<'a> Generator<'a> {
                     [#(self.#names),*]
                 }
             }
+
+            impl<T: Copy> ::core::convert::From<[T; #count]> for #ty<T> {
+                fn from(#values: [T; #count]) -> Self {
+                    Self::from_array(#values)
+                }
+            }
+
+            impl<T: Copy> ::core::convert::From<#ty<T>> for [T; #count] {
+                fn from(#values: #ty<T>) -> Self {
+                    #values.to_array()
+                }
+            }
         }
     }
 
