@@ -2,9 +2,9 @@
 //!
 //! Generated code calls [`solve2`] (closed form, Cramer's rule) for a single loop's 2×2
 //! system and [`solve_lu`] (partial pivoting) for larger ones. Loops give two equations each,
-//! so systems always have an even size. Each solver first scales every row (and its
-//! right-hand side) to unit length, which leaves the solution unchanged and keeps the
-//! arithmetic from overflowing or underflowing for very large or small mechanisms.
+//! so systems always have an even size. Each solver first scales the system by one factor
+//! (its largest entry), which leaves the solution unchanged and keeps the arithmetic from
+//! overflowing or underflowing for very large or small mechanisms.
 //!
 //! Singularity is measured on the columns, one per unknown: the relative determinant is
 //! `|det J| / Π‖column‖`, in [0, 1] by Hadamard's bound, 1 when the unknowns move the loop in
@@ -29,46 +29,56 @@ pub fn singular_threshold<T: Real>() -> T {
     T::epsilon().sqrt()
 }
 
-/// Scales each row of `a` and entry of `b` by the row's Euclidean norm, and returns the
-/// ratio `Π‖row‖ / Π‖column‖` of the original matrix, by which the scaled matrix's
-/// determinant becomes the relative determinant. Errors: a zero row or column, a non-finite
-/// entry.
-fn equilibrate<T: Real, const N: usize>(
-    a: &mut [[T; N]; N],
-    b: &mut [T; N],
-) -> Result<T, Error<T>> {
+/// Scales `a` and `b` by one factor, `1 / max|a_ij|`, which leaves the solution and the
+/// relative determinant unchanged and keeps the products below from overflowing or
+/// underflowing for very large or small mechanisms; returns the product of the scaled
+/// matrix's column norms, which divides its determinant into the relative determinant.
+/// Errors: a zero matrix or column, a non-finite entry.
+fn normalise<T: Real, const N: usize>(a: &mut [[T; N]; N], b: &mut [T; N]) -> Result<T, Error<T>> {
+    let mut largest = T::zero();
+    for row in a.iter() {
+        for v in row {
+            largest = largest.max(v.abs());
+        }
+    }
+    if !largest.is_finite()
+        || !crate::newton::all_finite(b)
+        || a.iter().flatten().any(|v| v.is_nan())
+    {
+        return Err(Error::NonFinite {
+            quantity: "linear system",
+        });
+    }
     let singular = Error::Singular {
         determinant: T::zero(),
         relative_determinant: T::zero(),
     };
-    let mut column_norms = [T::zero(); N];
-    for row in a.iter() {
-        for (norm, v) in column_norms.iter_mut().zip(row) {
-            *norm = norm.hypot(*v);
-        }
+    if largest == T::zero() {
+        return Err(singular);
     }
-    let mut ratio = T::one();
-    for ((row, bi), column_norm) in a.iter_mut().zip(b.iter_mut()).zip(column_norms) {
-        let norm = row.iter().fold(T::zero(), |acc, v| acc.hypot(*v));
-        if !norm.is_finite() || !bi.is_finite() {
-            return Err(Error::NonFinite {
-                quantity: "linear system",
-            });
+    let scale = T::one() / largest;
+    let mut column_squares = [T::zero(); N];
+    for (row, bi) in a.iter_mut().zip(b.iter_mut()) {
+        for (v, square) in row.iter_mut().zip(column_squares.iter_mut()) {
+            *v = *v * scale;
+            *square = *square + *v * *v;
         }
-        if norm == T::zero() || column_norm == T::zero() {
+        *bi = *bi * scale;
+    }
+    let mut product = T::one();
+    for square in column_squares {
+        if square == T::zero() {
             return Err(singular);
         }
-        row.iter_mut().for_each(|v| *v = *v / norm);
-        *bi = *bi / norm;
-        ratio = ratio * (norm / column_norm);
+        product = product * square.sqrt();
     }
-    Ok(ratio)
+    Ok(product)
 }
 
-/// The relative determinant from the row-scaled determinant and [`equilibrate`]'s ratio;
+/// The relative determinant from the scaled determinant and [`normalise`]'s column norms;
 /// an error at or below [`singular_threshold`].
-fn check_determinant<T: Real>(scaled_determinant: T, ratio: T) -> Result<T, Error<T>> {
-    let relative = (scaled_determinant * ratio).abs();
+fn check_determinant<T: Real>(scaled_determinant: T, column_norms: T) -> Result<T, Error<T>> {
+    let relative = (scaled_determinant / column_norms).abs();
     // NaN (a non-finite determinant) is singular too.
     if relative.is_nan() || relative <= singular_threshold::<T>() {
         return Err(Error::Singular {
@@ -83,10 +93,10 @@ fn check_determinant<T: Real>(scaled_determinant: T, ratio: T) -> Result<T, Erro
 /// determinant `|det| / (‖column 0‖·‖column 1‖)`.
 #[inline]
 pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<([T; 2], T), Error<T>> {
-    let ratio = equilibrate(&mut a, &mut b)?;
+    let columns = normalise(&mut a, &mut b)?;
     let [[a00, a01], [a10, a11]] = a;
     let determinant = a00 * a11 - a01 * a10;
-    let relative = check_determinant(determinant, ratio)?;
+    let relative = check_determinant(determinant, columns)?;
     let inverse = T::one() / determinant;
     Ok((
         [
@@ -103,7 +113,7 @@ pub fn solve_lu<T: Real, const N: usize>(
     mut a: [[T; N]; N],
     mut b: [T; N],
 ) -> Result<([T; N], T), Error<T>> {
-    let ratio = equilibrate(&mut a, &mut b)?;
+    let columns = normalise(&mut a, &mut b)?;
     let (mut lu, mut x) = (a, b);
     let mut determinant = T::one();
     for k in 0..N {
@@ -135,7 +145,7 @@ pub fn solve_lu<T: Real, const N: usize>(
             *xi = *xi - factor * x_k;
         }
     }
-    let relative = check_determinant(determinant, ratio)?;
+    let relative = check_determinant(determinant, columns)?;
     for k in (0..N).rev() {
         let sum = ((k + 1)..N).fold(x[k], |acc, j| acc - lu[k][j] * x[j]);
         x[k] = sum / lu[k][k];
@@ -157,7 +167,7 @@ pub fn solve_lu<T: Real, const N: usize>(
 pub fn condition<T: Real, const N: usize>(jacobian: [[T; N]; N]) -> T {
     let mut a = jacobian;
     let mut b = [T::zero(); N];
-    let Ok(ratio) = equilibrate(&mut a, &mut b) else {
+    let Ok(columns) = normalise(&mut a, &mut b) else {
         return T::infinity();
     };
     // The determinant of the row-scaled matrix, by elimination with partial pivoting.
@@ -186,7 +196,7 @@ pub fn condition<T: Real, const N: usize>(jacobian: [[T; N]; N]) -> T {
             }
         }
     }
-    T::one() / (determinant * ratio).abs()
+    columns / determinant.abs()
 }
 
 #[cfg(test)]

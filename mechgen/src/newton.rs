@@ -125,8 +125,10 @@ pub fn newton<T: Real, const N: usize>(
         let (step, relative_determinant) = solve(here.jacobian, here.residual)?;
         let condition = T::one() / relative_determinant;
         let floor = rounding_floor * here.scale;
-        let certified = residual_norm <= floor || kantorovich(&here, condition) <= quarter;
-        if residual_norm <= options.tolerance.max(floor) && certified {
+        // Only a point within the tolerance, but above the rounding floor, needs the test.
+        if residual_norm <= options.tolerance.max(floor)
+            && (residual_norm <= floor || kantorovich(&here, condition) <= quarter)
+        {
             return Ok(Solved {
                 value: x,
                 iterations,
@@ -182,16 +184,20 @@ pub fn newton<T: Real, const N: usize>(
 /// `‖J⁻¹‖ ≈ κ / min‖column‖` and, the loops being sums of `r·e^{iθ}`, `L ≈ max‖column‖`.
 /// Below 1/2 a root is certain to lie near the iterate.
 fn kantorovich<T: Real, const N: usize>(at: &Linearisation<T, N>, condition: T) -> T {
-    let mut columns = [T::zero(); N];
+    let mut squares = [T::zero(); N];
     for row in &at.jacobian {
-        for (norm, v) in columns.iter_mut().zip(row) {
-            *norm = norm.hypot(*v);
+        for (square, v) in squares.iter_mut().zip(row) {
+            *square = *square + *v * *v;
         }
     }
-    let shortest = columns.iter().fold(T::infinity(), |m, c| m.min(*c));
-    let longest = columns.iter().fold(T::zero(), |m, c| m.max(*c));
-    let residual = at.residual.iter().fold(T::zero(), |acc, f| acc.hypot(*f));
-    condition * condition * residual * longest / (shortest * shortest)
+    let shortest = squares.iter().fold(T::infinity(), |m, c| m.min(*c));
+    let longest = squares.iter().fold(T::zero(), |m, c| m.max(*c)).sqrt();
+    let residual = at
+        .residual
+        .iter()
+        .fold(T::zero(), |acc, f| acc + *f * *f)
+        .sqrt();
+    condition * condition * residual * longest / shortest
 }
 
 /// The largest absolute component (NaN if any component is NaN).

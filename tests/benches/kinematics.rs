@@ -58,9 +58,8 @@ fn four_bar(c: &mut Criterion) {
             b.iter(|| {
                 total(angles().map(|t| {
                     let q = linkage.assemble(black_box(t), Branch::Open).unwrap();
-                    let v = linkage.velocity(t, &q, OMEGA).unwrap();
-                    let a = linkage.acceleration(t, &q, OMEGA, &v, ALPHA).unwrap();
-                    state(q, v, a)
+                    let m = linkage.motion_at(t, &q, OMEGA, ALPHA).unwrap();
+                    state(m.position, m.velocity, m.acceleration)
                 }))
             })
         },
@@ -76,9 +75,8 @@ fn four_bar(c: &mut Criterion) {
                         .unwrap()
                         .value;
                     guess = q;
-                    let v = linkage.velocity(t, &q, OMEGA).unwrap();
-                    let a = linkage.acceleration(t, &q, OMEGA, &v, ALPHA).unwrap();
-                    state(q, v, a)
+                    let m = linkage.motion_at(t, &q, OMEGA, ALPHA).unwrap();
+                    state(m.position, m.velocity, m.acceleration)
                 }))
             })
         });
@@ -90,9 +88,8 @@ fn four_bar(c: &mut Criterion) {
                         .position(black_box(t), &guess, &options)
                         .unwrap()
                         .value;
-                    let v = linkage.velocity(t, &q, OMEGA).unwrap();
-                    let a = linkage.acceleration(t, &q, OMEGA, &v, ALPHA).unwrap();
-                    state(q, v, a)
+                    let m = linkage.motion_at(t, &q, OMEGA, ALPHA).unwrap();
+                    state(m.position, m.velocity, m.acceleration)
                 }))
             })
         });
@@ -120,9 +117,8 @@ fn four_bar(c: &mut Criterion) {
                     let t = black_box(t as f32);
                     let q = single.position(t, &guess, &options).unwrap().value;
                     guess = q;
-                    let v = single.velocity(t, &q, 10.0).unwrap();
-                    let a = single.acceleration(t, &q, 10.0, &v, 2.0).unwrap();
-                    q.theta4 + v.theta4 + a.theta4
+                    let m = single.motion_at(t, &q, 10.0, 2.0).unwrap();
+                    m.position.theta4 + m.velocity.theta4 + m.acceleration.theta4
                 })
                 .sum();
             sum
@@ -201,9 +197,8 @@ fn slider_crank(c: &mut Criterion) {
                     .unwrap()
                     .value;
                 guess = q;
-                let v = linkage.velocity(t, &q, OMEGA).unwrap();
-                let a = linkage.acceleration(t, &q, OMEGA, &v, ALPHA).unwrap();
-                state(q, v, a)
+                let m = linkage.motion_at(t, &q, OMEGA, ALPHA).unwrap();
+                state(m.position, m.velocity, m.acceleration)
             }))
         })
     });
@@ -241,9 +236,8 @@ fn inverted_slider_crank(c: &mut Criterion) {
                     .unwrap()
                     .value;
                 guess = q;
-                let v = linkage.velocity(t, &q, OMEGA).unwrap();
-                let a = linkage.acceleration(t, &q, OMEGA, &v, ALPHA).unwrap();
-                state(q, v, a)
+                let m = linkage.motion_at(t, &q, OMEGA, ALPHA).unwrap();
+                state(m.position, m.velocity, m.acceleration)
             }))
         })
     });

@@ -271,6 +271,11 @@ fn motion_is_assemble_velocity_and_acceleration_in_one() {
             assert!(close(m.position.to_array(), q.to_array(), 1.0));
             assert!(close(m.velocity.to_array(), v.to_array(), 1.0));
             assert!(close(m.acceleration.to_array(), a.to_array(), 1.0));
+            // motion_at, from a position, is velocity and acceleration in one.
+            let at = four_bar.motion_at(theta2, &q, 7.0, -3.0).unwrap();
+            assert_eq!(at.position, q);
+            assert!(close(at.velocity.to_array(), v.to_array(), 1.0));
+            assert!(close(at.acceleration.to_array(), a.to_array(), 1.0));
 
             let m = slider.motion(theta2, branch, 7.0, -3.0).unwrap();
             let q = slider.assemble(theta2, branch).unwrap();

@@ -53,6 +53,19 @@ struct Generator<'a> {
 const RAW_EVALUATION: &str = "A raw evaluation: it does not check its arguments, so a NaN \
      in gives NaN out. The solvers check theirs.";
 
+/// Which variables a block binds from `self` and the arguments, and which it leaves to the
+/// caller's locals.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Bindings {
+    /// Parameters from `self`; unknowns, rates and accelerations from the `position`,
+    /// `velocity` and `acceleration` arguments.
+    Arguments,
+    /// Parameters and the unknowns from `position`; rates are locals.
+    Position,
+    /// Parameters only; unknowns and rates are locals.
+    ParametersOnly,
+}
+
 /// The generated functions' own argument and local names, besides derived ones.
 const ARGUMENT_NAMES: [&str; 16] = [
     "rates",
@@ -153,22 +166,26 @@ impl<'a> Generator<'a> {
         outputs: &[ExprId],
         unknowns_are_locals: bool,
     ) -> (TokenStream, Vec<Emitted>) {
-        let (bindings, mut statements, outputs) =
-            self.block_with(outputs, unknowns_are_locals, &[], &|_| 0);
+        let bindings = if unknowns_are_locals {
+            Bindings::ParametersOnly
+        } else {
+            Bindings::Arguments
+        };
+        let (bindings, mut statements, outputs) = self.block_with(outputs, bindings, &[], &|_| 0);
         let statements = statements.pop().unwrap_or_default();
         (quote!(#bindings #(#statements)*), outputs)
     }
 
-    /// Emits `outputs`, with the `let`s that bind the parameters and unknowns they read, and
-    /// the statements by stage (see [`Context::stage`]). With `unknowns_are_locals`, only the
-    /// parameters are bound: the unknowns (and rates) are the caller's locals.
+    /// Emits `outputs`, with the `let`s that bind the parameters and unknowns they read (as
+    /// `bindings` says), and the statements by stage (see [`Context::stage`]).
     fn block_with(
         &self,
         outputs: &[ExprId],
-        unknowns_are_locals: bool,
+        bindings: Bindings,
         presets: &[(ExprId, Ident, usize)],
         stage: &dyn Fn(Var) -> usize,
     ) -> (TokenStream, Vec<Vec<TokenStream>>, Vec<Emitted>) {
+        let mode = bindings;
         let context = Context {
             reserved: &self.reserved,
             presets,
@@ -194,8 +211,9 @@ impl<'a> Generator<'a> {
                     let field = &self.model.params[i].name;
                     return Some(quote!(let #name = self.#field;));
                 }
-                _ if unknowns_are_locals => return None,
+                _ if mode == Bindings::ParametersOnly => return None,
                 Var::Value(SymbolRef::Unknown(i)) => (&position, i),
+                _ if mode == Bindings::Position => return None,
                 Var::Rate(SymbolRef::Unknown(i)) => (&velocity, i),
                 Var::Accel(SymbolRef::Unknown(i)) => (&acceleration, i),
                 // The input and its derivatives are function arguments.
@@ -205,8 +223,9 @@ impl<'a> Generator<'a> {
             Some(quote!(let #name = #source.#field;))
         });
         let input = &self.model.input.name;
-        let unused_input = (!unknowns_are_locals && !used.contains(&Var::Value(SymbolRef::Input)))
-            .then(|| quote!(let _ = #input;));
+        let unused_input = (mode == Bindings::Arguments
+            && !used.contains(&Var::Value(SymbolRef::Input)))
+        .then(|| quote!(let _ = #input;));
         let bindings = quote! {
             #unused_input
             #(#bindings)*
@@ -337,7 +356,6 @@ impl<'a> Generator<'a> {
             self.check_finite(),
             self.residual(),
             self.jacobian(),
-            self.linearise(),
             self.position(),
         ];
         if let Some(steps) = &self.equations.closed_form {
@@ -352,7 +370,7 @@ impl<'a> Generator<'a> {
             functions.extend([self.input_jacobian(), self.velocity()]);
         }
         if outputs.acceleration {
-            functions.push(self.acceleration());
+            functions.extend([self.acceleration(), self.motion_at()]);
         }
         if !self.model.points.is_empty() {
             functions.push(self.points());
@@ -445,11 +463,10 @@ impl<'a> Generator<'a> {
         }
     }
 
-    /// The residual, Jacobian and rounding scale in one pass, for Newton-Raphson.
-    fn linearise(&self) -> TokenStream {
-        let input = &self.model.input.name;
-        let position = arg("position");
-        let (unknowns, _, count) = self.signature_types();
+    /// The Newton iteration's evaluation as a closure over the iterate `x`, with everything
+    /// that depends only on the parameters and input computed once, before the closure:
+    /// `(hoisted statements, closure)`.
+    fn linearisation(&self, x: &Ident) -> (TokenStream, TokenStream) {
         let n = self.model.unknowns.len();
         let eq = self.equations;
         let entries: Vec<ExprId> = eq
@@ -459,7 +476,11 @@ impl<'a> Generator<'a> {
             .chain(&eq.magnitudes)
             .copied()
             .collect();
-        let (prologue, outputs) = self.block(&entries);
+        let stage = |var: Var| usize::from(matches!(var, Var::Value(SymbolRef::Unknown(_))));
+        let (bindings, mut statements, outputs) =
+            self.block_with(&entries, Bindings::ParametersOnly, &[], &stage);
+        statements.resize(2, Vec::new());
+        let (hoisted, per_iterate) = (&statements[0], &statements[1]);
         let (residual, rest) = outputs.split_at(n);
         let (jacobian, magnitudes) = rest.split_at(n * n);
         let jacobian = matrix(jacobian, n);
@@ -467,21 +488,25 @@ impl<'a> Generator<'a> {
             let m = m.receiver();
             quote!(#m.abs())
         });
-        quote! {
-            #[inline]
-            fn mechgen_linearise(
-                &self,
-                #input: T,
-                #position: &#unknowns,
-            ) -> ::mechgen::__private::Linearisation<T, #count> {
-                #prologue
-                ::mechgen::__private::Linearisation {
-                    residual: [#(#residual),*],
-                    jacobian: #jacobian,
-                    scale: #(#scale)+*,
+        let names = self.model.unknowns.iter().map(|u| &u.name);
+        let count = Literal::usize_unsuffixed(n);
+        (
+            quote! {
+                #bindings
+                #(#hoisted)*
+            },
+            quote! {
+                |#x: &[T; #count]| {
+                    let [#(#names),*] = *#x;
+                    #(#per_iterate)*
+                    ::mechgen::__private::Linearisation {
+                        residual: [#(#residual),*],
+                        jacobian: #jacobian,
+                        scale: #(#scale)+*,
+                    }
                 }
-            }
-        }
+            },
+        )
     }
 
     fn solver(&self) -> TokenStream {
@@ -517,6 +542,7 @@ impl<'a> Generator<'a> {
         } else {
             ""
         };
+        let (hoisted, linearise) = self.linearisation(&x);
         let doc = doc(&format!(
             "Solves the loops for the unknowns at `{input}` by a safeguarded Newton-Raphson from \
              `guess` (see `mechgen::__private::newton`: halved steps, a certified root, \
@@ -534,11 +560,12 @@ impl<'a> Generator<'a> {
                 #options: &::mechgen::NewtonOptions<T>,
             ) -> ::core::result::Result<::mechgen::Solved<#unknowns, T>, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
+                #hoisted
                 let #solved = ::mechgen::__private::newton(
                     #input,
                     #guess.to_array(),
                     #options,
-                    |#x| self.mechgen_linearise(#input, &#ty::from_array(*#x)),
+                    #linearise,
                     #solver,
                 )?
                 .map(#ty::from_array);
@@ -960,7 +987,8 @@ impl<'a> Generator<'a> {
             .chain(&eq.acceleration_rhs)
             .copied()
             .collect();
-        let (bindings, mut statements, outputs) = self.block_with(&entries, true, &presets, &stage);
+        let (bindings, mut statements, outputs) =
+            self.block_with(&entries, Bindings::ParametersOnly, &presets, &stage);
         statements.resize(last + 2, Vec::new());
         let mut outputs = outputs.into_iter();
         let mut choices = self.branch_choices(steps).into_iter();
@@ -995,16 +1023,10 @@ impl<'a> Generator<'a> {
             })
             .collect();
         let rest: Vec<Emitted> = outputs.collect();
-        let (jacobian, rest) = rest.split_at(n * n);
-        let (velocity_rhs, acceleration_rhs) = rest.split_at(n);
-        let jacobian = matrix(jacobian, n);
-        let (before_rates, after_rates) = (&statements[last], &statements[last + 1]);
-        let solver = self.solver();
-        let (jacobian_name, rates, accelerations) =
-            (arg("jacobian"), local("rates"), local("accelerations"));
-        let rate_names = &self.unknown_dots;
+        let rate_solves = self.rate_solves(&rest, &statements[last], &statements[last + 1]);
         let names = self.model.unknowns.iter().map(|u| &u.name);
         let branch_parameter = self.branch_parameter(steps);
+        let (rates, accelerations) = (local("rates"), local("accelerations"));
         let labels = [
             format!("input rate `{input_dot}`"),
             format!("input acceleration `{input_ddot}`"),
@@ -1029,15 +1051,95 @@ impl<'a> Generator<'a> {
                 ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
                 #bindings
                 #(#solves)*
-                #(#before_rates)*
-                let #jacobian_name = #jacobian;
-                let (#rates, _) = #solver(#jacobian_name, [#(#velocity_rhs),*])?;
-                let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
-                #(#after_rates)*
-                let (#accelerations, _) = #solver(#jacobian_name, [#(#acceleration_rhs),*])?;
-                let #accelerations = ::mechgen::__private::finite(#accelerations, "acceleration")?;
+                #rate_solves
                 ::core::result::Result::Ok(::mechgen::Motion {
                     position: #ty { #(#names),* },
+                    velocity: #ty::from_array(#rates),
+                    acceleration: #ty::from_array(#accelerations),
+                })
+            }
+        }
+    }
+
+    /// The velocity and acceleration solves from emitted Jacobian and right-hand sides
+    /// (`outputs`: the Jacobian row by row, the velocity's right-hand side, the
+    /// acceleration's), with the statements to run before the rates are known and after.
+    /// Leaves `jacobian`, `rates` and `accelerations` bound, and each rate in its local.
+    fn rate_solves(
+        &self,
+        outputs: &[Emitted],
+        before: &[TokenStream],
+        after: &[TokenStream],
+    ) -> TokenStream {
+        let n = self.model.unknowns.len();
+        let (jacobian, rest) = outputs.split_at(n * n);
+        let (velocity_rhs, acceleration_rhs) = rest.split_at(n);
+        let jacobian = matrix(jacobian, n);
+        let solver = self.solver();
+        let (jacobian_name, rates, accelerations) =
+            (arg("jacobian"), local("rates"), local("accelerations"));
+        let rate_names = &self.unknown_dots;
+        quote! {
+            #(#before)*
+            let #jacobian_name = #jacobian;
+            let (#rates, _) = #solver(#jacobian_name, [#(#velocity_rhs),*])?;
+            let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
+            #(#after)*
+            let (#accelerations, _) = #solver(#jacobian_name, [#(#acceleration_rhs),*])?;
+            let #accelerations = ::mechgen::__private::finite(#accelerations, "acceleration")?;
+        }
+    }
+
+    /// `motion_at(input, &position, rate, acceleration)`: velocity and acceleration at a
+    /// solved position (from Newton, say) in one pass, every shared sine and product once.
+    fn motion_at(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let position = arg("position");
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let eq = self.equations;
+        let entries: Vec<ExprId> = eq
+            .jacobian
+            .iter()
+            .flatten()
+            .chain(&eq.velocity_rhs)
+            .chain(&eq.acceleration_rhs)
+            .copied()
+            .collect();
+        let stage = |var: Var| usize::from(matches!(var, Var::Rate(SymbolRef::Unknown(_))));
+        let (bindings, mut statements, outputs) =
+            self.block_with(&entries, Bindings::Position, &[], &stage);
+        statements.resize(2, Vec::new());
+        let rate_solves = self.rate_solves(&outputs, &statements[0], &statements[1]);
+        let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let labels = [
+            format!("input rate `{input_dot}`"),
+            format!("input acceleration `{input_ddot}`"),
+        ];
+        let [dot_label, ddot_label] = &labels;
+        let docs = doc(&format!(
+            "Velocity and acceleration at a solved `position` (from [`Self::position`], say) in \
+             one pass, for the input moving at `{input_dot}` and accelerating at \
+             `{input_ddot}`: what [`Self::velocity`] and [`Self::acceleration`] give, sharing \
+             their work.\n\nErrors: as [`Self::velocity`] and [`Self::acceleration`]."
+        ));
+        quote! {
+            #docs
+            pub fn motion_at(
+                &self,
+                #input: T,
+                #position: &#unknowns,
+                #input_dot: T,
+                #input_ddot: T,
+            ) -> ::core::result::Result<::mechgen::Motion<#unknowns>, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                ::mechgen::__private::finite(#position.to_array(), "position")?;
+                #bindings
+                #rate_solves
+                ::core::result::Result::Ok(::mechgen::Motion {
+                    position: *#position,
                     velocity: #ty::from_array(#rates),
                     acceleration: #ty::from_array(#accelerations),
                 })

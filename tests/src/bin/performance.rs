@@ -27,7 +27,9 @@ fn timings() -> BTreeMap<(String, String), f64> {
         return out;
     };
     for group in groups.flatten() {
-        let Ok(benches) = std::fs::read_dir(group.path()) else { continue };
+        let Ok(benches) = std::fs::read_dir(group.path()) else {
+            continue;
+        };
         for bench in benches.flatten() {
             let dir = bench.path().join("new");
             let (Ok(meta), Ok(estimates)) = (
@@ -47,7 +49,10 @@ fn timings() -> BTreeMap<(String, String), f64> {
                 continue;
             };
             // One iteration is a 360-angle sweep.
-            out.insert((group_id.to_string(), function_id.to_string()), mean / 360.0);
+            out.insert(
+                (group_id.to_string(), function_id.to_string()),
+                mean / 360.0,
+            );
         }
     }
     out
@@ -60,7 +65,11 @@ fn references(mechanism: &str) -> Vec<(f64, State)> {
         .skip(1)
         .filter(|line| line.starts_with(&format!("{mechanism},")))
         .map(|line| {
-            let f: Vec<f64> = line.split(',').skip(2).map(|x| x.parse().expect("a number")).collect();
+            let f: Vec<f64> = line
+                .split(',')
+                .skip(2)
+                .map(|x| x.parse().expect("a number"))
+                .collect();
             (f[0], [[f[1], f[2]], [f[3], f[4]], [f[5], f[6]]])
         })
         .collect()
@@ -72,7 +81,11 @@ fn accuracy(computed: &[State], reference: &[(f64, State)]) -> [f64; 3] {
     for (got, (_, want)) in computed.iter().zip(reference) {
         for (k, worst) in worst.iter_mut().enumerate() {
             for (g, w) in got[k].iter().zip(want[k]) {
-                let error = if k == 0 { (g - w).abs() } else { (g - w).abs() / w.abs().max(1.0) };
+                let error = if k == 0 {
+                    (g - w).abs()
+                } else {
+                    (g - w).abs() / w.abs().max(1.0)
+                };
                 *worst = worst.max(error);
             }
         }
@@ -88,7 +101,11 @@ fn four_bar_methods() -> Vec<Method<'static>> {
     let single = FourBar::new(180.0f32, 80.0, 200.0, 150.0).unwrap();
     let motion = move |t: f64| {
         let m = linkage.motion(t, Branch::Open, OMEGA, ALPHA).unwrap();
-        [m.position.to_array(), m.velocity.to_array(), m.acceleration.to_array()]
+        [
+            m.position.to_array(),
+            m.velocity.to_array(),
+            m.acceleration.to_array(),
+        ]
     };
     let newton = move |tolerance: f64, cold: bool| {
         move |r: &[(f64, State)]| {
@@ -98,13 +115,18 @@ fn four_bar_methods() -> Vec<Method<'static>> {
                 .map(|k| {
                     let t = r[k].0;
                     if cold {
-                        guess = linkage.assemble(r[(k + r.len() - 10) % r.len()].0, Branch::Open).unwrap();
+                        guess = linkage
+                            .assemble(r[(k + r.len() - 10) % r.len()].0, Branch::Open)
+                            .unwrap();
                     }
                     let q = linkage.position(t, &guess, &options).unwrap().value;
                     guess = q;
-                    let v = linkage.velocity(t, &q, OMEGA).unwrap();
-                    let a = linkage.acceleration(t, &q, OMEGA, &v, ALPHA).unwrap();
-                    [q.to_array(), v.to_array(), a.to_array()]
+                    let m = linkage.motion_at(t, &q, OMEGA, ALPHA).unwrap();
+                    [
+                        q.to_array(),
+                        m.velocity.to_array(),
+                        m.acceleration.to_array(),
+                    ]
                 })
                 .collect()
         }
@@ -123,26 +145,53 @@ fn four_bar_methods() -> Vec<Method<'static>> {
     };
     let widen = |v: [f32; 2]| v.map(f64::from);
     vec![
-        ("generated closed form (motion)", Box::new(move |r: &[(f64, State)]| r.iter().map(|(t, _)| motion(*t)).collect())),
+        (
+            "generated closed form (motion)",
+            Box::new(move |r: &[(f64, State)]| r.iter().map(|(t, _)| motion(*t)).collect()),
+        ),
         ("generated Newton 1e-4 warm", Box::new(newton(1e-4, false))),
         ("generated Newton 1e-6 warm", Box::new(newton(1e-6, false))),
         ("generated Newton 1e-9 warm", Box::new(newton(1e-9, false))),
-        ("generated Newton 1e-12 warm", Box::new(newton(1e-12, false))),
+        (
+            "generated Newton 1e-12 warm",
+            Box::new(newton(1e-12, false)),
+        ),
         ("generated Newton 1e-9 cold", Box::new(newton(1e-9, true))),
-        ("generated closed form (motion) f32", Box::new(move |r: &[(f64, State)]| {
-            r.iter()
-                .map(|(t, _)| {
-                    let m = single.motion(*t as f32, Branch::Open, 10.0, 2.0).unwrap();
-                    [widen(m.position.to_array()), widen(m.velocity.to_array()), widen(m.acceleration.to_array())]
-                })
-                .collect()
-        })),
-        ("hand-written Norton closed form", Box::new(move |r: &[(f64, State)]| {
-            r.iter().map(|(t, _)| baselines::four_bar_norton(&l, *t, OMEGA, ALPHA)).collect()
-        })),
-        ("hand-written Newton 1e-9 warm", Box::new(baseline(baselines::four_bar_newton))),
-        ("num-dual Newton 1e-9 warm", Box::new(baseline(baselines::four_bar_num_dual))),
-        ("nalgebra finite-difference Newton 1e-9 warm", Box::new(baseline(baselines::four_bar_nalgebra))),
+        (
+            "generated closed form (motion) f32",
+            Box::new(move |r: &[(f64, State)]| {
+                r.iter()
+                    .map(|(t, _)| {
+                        let m = single.motion(*t as f32, Branch::Open, 10.0, 2.0).unwrap();
+                        [
+                            widen(m.position.to_array()),
+                            widen(m.velocity.to_array()),
+                            widen(m.acceleration.to_array()),
+                        ]
+                    })
+                    .collect()
+            }),
+        ),
+        (
+            "hand-written Norton closed form",
+            Box::new(move |r: &[(f64, State)]| {
+                r.iter()
+                    .map(|(t, _)| baselines::four_bar_norton(&l, *t, OMEGA, ALPHA))
+                    .collect()
+            }),
+        ),
+        (
+            "hand-written Newton 1e-9 warm",
+            Box::new(baseline(baselines::four_bar_newton)),
+        ),
+        (
+            "num-dual Newton 1e-9 warm",
+            Box::new(baseline(baselines::four_bar_num_dual)),
+        ),
+        (
+            "nalgebra finite-difference Newton 1e-9 warm",
+            Box::new(baseline(baselines::four_bar_nalgebra)),
+        ),
     ]
 }
 
@@ -160,7 +209,9 @@ fn ratio(ns: Option<f64>, base: Option<f64>) -> String {
 /// Lines of each expansion snapshot.
 fn expansion_lines(name: &str) -> Option<usize> {
     let path = format!("tests/snapshots/expansion/{name}.snap");
-    std::fs::read_to_string(path).ok().map(|s| s.lines().count().saturating_sub(3))
+    std::fs::read_to_string(path)
+        .ok()
+        .map(|s| s.lines().count().saturating_sub(3))
 }
 
 /// Bytes of machine code of every symbol whose name contains `needle`, in the release
@@ -176,7 +227,11 @@ fn machine_code_bytes(needle: &str) -> Option<u64> {
                 .is_some_and(|n| n.starts_with("libmechgen_tests-") && n.ends_with(".rlib"))
         })
         .max_by_key(|p| std::fs::metadata(p).and_then(|m| m.modified()).ok())?;
-    let output = Command::new("nm").args(["-S", "-C", "--defined-only"]).arg(&rlib).output().ok()?;
+    let output = Command::new("nm")
+        .args(["-S", "-C", "--defined-only"])
+        .arg(&rlib)
+        .output()
+        .ok()?;
     let text = String::from_utf8_lossy(&output.stdout);
     Some(
         text.lines()
@@ -194,7 +249,10 @@ fn machine_code_bytes(needle: &str) -> Option<u64> {
 
 /// Seconds to build the mechanisms crate (release) from clean, and its expansion.
 fn compile_seconds() -> Option<f64> {
-    Command::new("cargo").args(["clean", "--release", "-p", "mechanisms"]).output().ok()?;
+    Command::new("cargo")
+        .args(["clean", "--release", "-p", "mechanisms"])
+        .output()
+        .ok()?;
     let start = Instant::now();
     let status = Command::new("cargo")
         .args(["build", "--release", "-q", "-p", "mechanisms", "--lib"])
@@ -208,8 +266,14 @@ fn frontier_svg(points: &[(String, f64, f64)]) -> String {
     let log = |v: f64| v.max(1e-17).log10();
     let xs: Vec<f64> = points.iter().map(|p| log(p.1)).collect();
     let ys: Vec<f64> = points.iter().map(|p| log(p.2)).collect();
-    let (x0, x1) = (xs.iter().cloned().fold(f64::MAX, f64::min).floor(), xs.iter().cloned().fold(f64::MIN, f64::max).ceil());
-    let (y0, y1) = (ys.iter().cloned().fold(f64::MAX, f64::min).floor(), ys.iter().cloned().fold(f64::MIN, f64::max).ceil());
+    let (x0, x1) = (
+        xs.iter().cloned().fold(f64::MAX, f64::min).floor(),
+        xs.iter().cloned().fold(f64::MIN, f64::max).ceil(),
+    );
+    let (y0, y1) = (
+        ys.iter().cloned().fold(f64::MAX, f64::min).floor(),
+        ys.iter().cloned().fold(f64::MIN, f64::max).ceil(),
+    );
     let px = |x: f64| margin + (x - x0) / (x1 - x0).max(1.0) * (width - 2.0 * margin);
     let py = |y: f64| height - margin - (y - y0) / (y1 - y0).max(1.0) * (height - 2.0 * margin);
     let mut svg = format!(
@@ -228,7 +292,11 @@ fn frontier_svg(points: &[(String, f64, f64)]) -> String {
     }
     for ((name, _, _), (x, y)) in points.iter().zip(xs.iter().zip(&ys)) {
         let (cx, cy) = (px(*x), py(*y));
-        let colour = if name.starts_with("generated") { "#1f6feb" } else { "#d1242f" };
+        let colour = if name.starts_with("generated") {
+            "#1f6feb"
+        } else {
+            "#d1242f"
+        };
         writeln!(svg, "<circle cx=\"{cx:.1}\" cy=\"{cy:.1}\" r=\"4\" fill=\"{colour}\"><title>{name}</title></circle><text x=\"{:.1}\" y=\"{:.1}\" fill=\"{colour}\">{name}</text>", cx + 6.0, cy - 4.0).unwrap();
     }
     svg.push_str("</svg>\n");
@@ -238,7 +306,9 @@ fn frontier_svg(points: &[(String, f64, f64)]) -> String {
 fn main() {
     let times = timings();
     if times.is_empty() {
-        eprintln!("no criterion results: run `cargo bench -p mechgen-tests --bench kinematics` first");
+        eprintln!(
+            "no criterion results: run `cargo bench -p mechgen-tests --bench kinematics` first"
+        );
         std::process::exit(1);
     }
     let time = |group: &str, name: &str| times.get(&(group.to_string(), name.to_string())).copied();
@@ -270,18 +340,40 @@ fn main() {
             .iter()
             .find(|(m, _)| m == name)
             .map(|(_, f)| accuracy(&f(&reference), &reference));
-        let [p, v, a] = errors.map_or(["–".to_string(), "–".into(), "–".into()], |e| e.map(|x| format!("{x:.1e}")));
+        let [p, v, a] = errors.map_or(["–".to_string(), "–".into(), "–".into()], |e| {
+            e.map(|x| format!("{x:.1e}"))
+        });
         if let (Some(ns), Some(e)) = (ns, errors) {
             frontier.push((name.clone(), *ns, e[0]));
         }
-        writeln!(out, "| {name} | {} | {} | {p} | {v} | {a} |", cell(*ns), ratio(*ns, base)).unwrap();
+        writeln!(
+            out,
+            "| {name} | {} | {} | {p} | {v} | {a} |",
+            cell(*ns),
+            ratio(*ns, base)
+        )
+        .unwrap();
     }
 
     // The other mechanisms.
-    for (group, title) in [("slider_crank", "Slider-crank 50/150, offset 20"), ("inverted_slider_crank", "Inverted slider-crank 150/60, offset 20, γ = 0.3")] {
+    for (group, title) in [
+        ("slider_crank", "Slider-crank 50/150, offset 20"),
+        (
+            "inverted_slider_crank",
+            "Inverted slider-crank 150/60, offset 20, γ = 0.3",
+        ),
+    ] {
         let base = time(group, "hand-written closed form");
-        writeln!(out, "\n## {title}\n\n| method | ns per call | ratio |\n|---|---|---|").unwrap();
-        for name in ["generated closed form (motion)", "generated Newton 1e-9 warm", "hand-written closed form"] {
+        writeln!(
+            out,
+            "\n## {title}\n\n| method | ns per call | ratio |\n|---|---|---|"
+        )
+        .unwrap();
+        for name in [
+            "generated closed form (motion)",
+            "generated Newton 1e-9 warm",
+            "hand-written closed form",
+        ] {
             let ns = time(group, name);
             writeln!(out, "| {name} | {} | {} |", cell(ns), ratio(ns, base)).unwrap();
         }
@@ -300,20 +392,45 @@ fn main() {
     ] {
         let measured = ns.zip(base).map(|(a, b)| a / b);
         let met = measured.map_or("–", |m| if m <= limit { "yes" } else { "no" });
-        writeln!(out, "| {what} | {} | {met} |", measured.map_or("–".into(), |m| format!("{m:.2}×"))).unwrap();
+        writeln!(
+            out,
+            "| {what} | {} | {met} |",
+            measured.map_or("–".into(), |m| format!("{m:.2}×"))
+        )
+        .unwrap();
     }
     out.push_str("| zero heap allocations per call | 0 (`tests/tests/allocations.rs`) | yes |\n");
 
     // Scenes.
     out.push_str("\n## What a scene requires (four-bar, closed-form position)\n\n| declaration | generates | expansion lines | machine code bytes | ns per `assemble` |\n|---|---|---|---|---|\n");
     for (name, generates, snapshot, needle) in [
-        ("positions only", "position", "PositionsOnly", "scenes::PositionsOnly"),
-        ("positions and velocities", "position, velocity", "WithVelocities", "scenes::WithVelocities"),
-        ("everything", "position, velocity, acceleration", "Everything", "scenes::Everything"),
+        (
+            "positions only",
+            "position",
+            "PositionsOnly",
+            "scenes::PositionsOnly",
+        ),
+        (
+            "positions and velocities",
+            "position, velocity",
+            "WithVelocities",
+            "scenes::WithVelocities",
+        ),
+        (
+            "everything",
+            "position, velocity, acceleration",
+            "Everything",
+            "scenes::Everything",
+        ),
     ] {
         let lines = expansion_lines(snapshot).map_or("–".into(), |l| l.to_string());
         let bytes = machine_code_bytes(needle).map_or("–".into(), |b| b.to_string());
-        writeln!(out, "| {name} | {generates} | {lines} | {bytes} | {} |", cell(time("scenes", name))).unwrap();
+        writeln!(
+            out,
+            "| {name} | {generates} | {lines} | {bytes} | {} |",
+            cell(time("scenes", name))
+        )
+        .unwrap();
     }
     out.push_str("\nLeaving an output out removes its functions from the expansion; the functions a scene calls are the same code either way, so the time per call does not change.\n");
 
@@ -325,12 +442,18 @@ fn main() {
     }
     out.push_str("\n| declaration | expansion lines |\n|---|---|\n");
     for name in ["FourBar", "SliderCrank", "InvertedSliderCrank"] {
-        writeln!(out, "| {name} | {} |", expansion_lines(name).map_or("–".into(), |l| l.to_string())).unwrap();
+        writeln!(
+            out,
+            "| {name} | {} |",
+            expansion_lines(name).map_or("–".into(), |l| l.to_string())
+        )
+        .unwrap();
     }
 
     out.push_str("\n## Speed against accuracy\n\n![Worst position error against time per call](frontier.svg)\n");
     std::fs::create_dir_all("docs").expect("docs/ can be made");
     std::fs::write("docs/PERFORMANCE.md", out).expect("docs/PERFORMANCE.md is writable");
-    std::fs::write("docs/frontier.svg", frontier_svg(&frontier)).expect("docs/frontier.svg is writable");
+    std::fs::write("docs/frontier.svg", frontier_svg(&frontier))
+        .expect("docs/frontier.svg is writable");
     println!("wrote docs/PERFORMANCE.md and docs/frontier.svg");
 }
