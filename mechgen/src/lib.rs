@@ -30,7 +30,7 @@ pub use mechgen_macros::mechanism;
 /// Items the generated code names. Not public API: they may change in any release.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::linear::{solve_lu, solve2};
+    pub use crate::linear::{Factored, solve_lu, solve2};
     pub use crate::newton::{Linearisation, all_finite, check_finite, finite, newton};
     pub use core::result::Result::{Err, Ok};
 }

@@ -70,27 +70,27 @@ fn normalise<T: Real, const N: usize>(a: &mut [[T; N]; N], b: &mut [T; N]) -> Re
         if square == T::zero() {
             return Err(singular);
         }
-        product = product * square.sqrt();
+        product = product * square;
     }
-    Ok(product)
+    Ok(product.sqrt())
 }
 
-/// The relative determinant from the scaled determinant and [`normalise`]'s column norms;
-/// an error at or below [`singular_threshold`].
+/// The signed relative determinant from the scaled determinant and [`normalise`]'s column
+/// norms; an error where its magnitude is at or below [`singular_threshold`].
 fn check_determinant<T: Real>(scaled_determinant: T, column_norms: T) -> Result<T, Error<T>> {
-    let relative = (scaled_determinant / column_norms).abs();
+    let relative = scaled_determinant / column_norms;
     // NaN (a non-finite determinant) is singular too.
-    if relative.is_nan() || relative <= singular_threshold::<T>() {
+    if relative.is_nan() || relative.abs() <= singular_threshold::<T>() {
         return Err(Error::Singular {
             determinant: scaled_determinant,
-            relative_determinant: relative,
+            relative_determinant: relative.abs(),
         });
     }
     Ok(relative)
 }
 
-/// Solves the 2×2 system `a·x = b` by Cramer's rule; returns `x` and the relative
-/// determinant `|det| / (‖column 0‖·‖column 1‖)`.
+/// Solves the 2×2 system `a·x = b` by Cramer's rule; returns `x` and the signed relative
+/// determinant `det / (‖column 0‖·‖column 1‖)`, whose sign is the matrix's orientation.
 #[inline]
 pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<([T; 2], T), Error<T>> {
     let columns = normalise(&mut a, &mut b)?;
@@ -108,7 +108,7 @@ pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<([T; 2], T),
 }
 
 /// Solves the N×N system `a·x = b` by LU factorisation with partial pivoting, in place on
-/// stack copies; returns `x` and the relative determinant.
+/// stack copies; returns `x` and the signed relative determinant.
 pub fn solve_lu<T: Real, const N: usize>(
     mut a: [[T; N]; N],
     mut b: [T; N],
@@ -151,6 +151,80 @@ pub fn solve_lu<T: Real, const N: usize>(
         x[k] = sum / lu[k][k];
     }
     Ok((x, relative))
+}
+
+/// A matrix factored once (LU with partial pivoting, on the stack) to solve for several
+/// right-hand sides: the velocity's and the acceleration's share their Jacobian.
+#[derive(Clone, Copy, Debug)]
+pub struct Factored<T, const N: usize> {
+    lu: [[T; N]; N],
+    pivots: [usize; N],
+    scale: T,
+}
+
+impl<T: Real, const N: usize> Factored<T, N> {
+    /// Factors `a`. Errors: as [`solve_lu`] (a singular or non-finite matrix).
+    pub fn new(a: [[T; N]; N]) -> Result<Self, Error<T>> {
+        let mut lu = a;
+        let mut unused = [T::zero(); N];
+        let columns = normalise(&mut lu, &mut unused)?;
+        let largest = a.iter().flatten().fold(T::zero(), |m, v| m.max(v.abs()));
+        let mut pivots = [0; N];
+        let mut determinant = T::one();
+        for k in 0..N {
+            let pivot_row = (k..N).fold(k, |best, i| {
+                if lu[i][k].abs() > lu[best][k].abs() {
+                    i
+                } else {
+                    best
+                }
+            });
+            pivots[k] = pivot_row;
+            if pivot_row != k {
+                lu.swap(k, pivot_row);
+                determinant = -determinant;
+            }
+            let pivot = lu[k][k];
+            determinant = determinant * pivot;
+            if pivot == T::zero() {
+                break;
+            }
+            let (upper, lower) = lu.split_at_mut(k + 1);
+            for row in lower.iter_mut() {
+                let factor = row[k] / pivot;
+                row[k] = factor;
+                for (entry, above) in row.iter_mut().zip(&upper[k]).skip(k + 1) {
+                    *entry = *entry - factor * *above;
+                }
+            }
+        }
+        check_determinant(determinant, columns)?;
+        Ok(Factored {
+            lu,
+            pivots,
+            scale: T::one() / largest,
+        })
+    }
+
+    /// The solution of `a·x = b`.
+    pub fn solve(&self, b: [T; N]) -> [T; N] {
+        let mut x = b.map(|v| v * self.scale);
+        // Whole rows were swapped while factoring, multipliers included: P·A = L·U.
+        for k in 0..N {
+            x.swap(k, self.pivots[k]);
+        }
+        for k in 0..N {
+            let x_k = x[k];
+            for (i, xi) in x.iter_mut().enumerate().skip(k + 1) {
+                *xi = *xi - self.lu[i][k] * x_k;
+            }
+        }
+        for k in (0..N).rev() {
+            let sum = ((k + 1)..N).fold(x[k], |acc, j| acc - self.lu[k][j] * x[j]);
+            x[k] = sum / self.lu[k][k];
+        }
+        x
+    }
 }
 
 /// The condition estimate of a Jacobian, `κ = Π‖column‖ / |det|`: 1 when the unknowns move
@@ -253,6 +327,22 @@ mod tests {
             let (x, _) = solve_lu(a4, [scale; 4]).unwrap();
             assert_eq!(x, [1.0; 4]);
         }
+    }
+
+    #[test]
+    fn a_factored_matrix_solves_several_right_hand_sides() {
+        let factored = Factored::new(A3).unwrap();
+        assert_close(factored.solve(multiply(&A3, &X3)), X3);
+        let other = [0.5, 0.0, -3.0];
+        assert_close(factored.solve(multiply(&A3, &other)), other);
+        let pivoting = [[0.0, 1.0], [2.0, 3.0]];
+        assert_close(
+            Factored::new(pivoting)
+                .unwrap()
+                .solve(multiply(&pivoting, &[1.0, -1.0])),
+            [1.0, -1.0],
+        );
+        assert!(Factored::new([[1.0, 2.0], [2.0, 4.0]]).is_err());
     }
 
     #[test]

@@ -93,10 +93,15 @@ const MAX_HALVINGS: u32 = 10;
 /// - stagnation where the Jacobian is ill-conditioned is [`Error::CannotAssemble`] at `input`
 ///   (the iterates press against a toggle the loops cannot pass), elsewhere
 ///   [`Error::NoConvergence`].
+///
+/// With `keep_orientation`, the Jacobian's orientation (the sign of its determinant) must be
+/// the same at the solution as at the guess, else [`Error::OtherBranch`]: for a single loop
+/// that sign is what tells its two assemblies apart, so Newton never switches branch silently.
 pub fn newton<T: Real, const N: usize>(
     input: T,
     guess: [T; N],
     options: &NewtonOptions<T>,
+    keep_orientation: bool,
     mut linearise: impl FnMut(&[T; N]) -> Linearisation<T, N>,
     solve: impl Fn([[T; N]; N], [T; N]) -> Result<([T; N], T), Error<T>>,
 ) -> Result<Solved<[T; N], T>, Error<T>> {
@@ -115,6 +120,7 @@ pub fn newton<T: Real, const N: usize>(
     let mut x = guess;
     let mut here = linearise(&x);
     let mut iterations = 0;
+    let mut orientation = None;
     loop {
         let residual_norm = max_abs(&here.residual);
         if !residual_norm.is_finite() {
@@ -123,12 +129,17 @@ pub fn newton<T: Real, const N: usize>(
             });
         }
         let (step, relative_determinant) = solve(here.jacobian, here.residual)?;
-        let condition = T::one() / relative_determinant;
+        let positive = relative_determinant > T::zero();
+        let started_positive = *orientation.get_or_insert(positive);
+        let condition = T::one() / relative_determinant.abs();
         let floor = rounding_floor * here.scale;
         // Only a point within the tolerance, but above the rounding floor, needs the test.
         if residual_norm <= options.tolerance.max(floor)
             && (residual_norm <= floor || kantorovich(&here, condition) <= quarter)
         {
+            if keep_orientation && positive != started_positive {
+                return Err(Error::OtherBranch);
+            }
             return Ok(Solved {
                 value: x,
                 iterations,

@@ -524,21 +524,25 @@ impl<'a> Generator<'a> {
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
         let solver = self.solver();
-        let has_branches = self
-            .equations
-            .closed_form
-            .as_ref()
-            .is_some_and(|steps| steps.iter().any(|s| s.case.has_branches()));
-        let branch_check = has_branches.then(|| {
+        let branching = self.equations.closed_form.as_ref().map_or(0, |steps| {
+            steps.iter().filter(|s| s.case.has_branches()).count()
+        });
+        let single_loop = self.model.loops.len() == 1;
+        // One loop: its branch is the Jacobian's orientation, which Newton checks for free.
+        // Several: compare the closed forms' signs.
+        let keep_orientation = branching == 1 && single_loop;
+        let branch_check = (branching > 0 && !keep_orientation).then(|| {
             quote! {
                 if self.branch_of(#input, &#solved.value) != self.branch_of(#input, #guess) {
                     return ::core::result::Result::Err(::mechgen::Error::OtherBranch);
                 }
             }
         });
-        let branch_doc = if has_branches {
-            " It keeps to the guess's assembly branch (by [`Self::branch_of`]): landing on the \
-             other one is the error [`mechgen::Error::OtherBranch`], never a silent switch."
+        let branch_doc = if branching > 0 {
+            " It keeps to the guess's assembly branch (for one loop, the orientation of the \
+             Jacobian, which tells the branches apart; for several, [`Self::branch_of`]): \
+             landing on the other one is the error [`mechgen::Error::OtherBranch`], never a \
+             silent switch."
         } else {
             ""
         };
@@ -565,6 +569,7 @@ impl<'a> Generator<'a> {
                     #input,
                     #guess.to_array(),
                     #options,
+                    #keep_orientation,
                     #linearise,
                     #solver,
                 )?
@@ -1075,17 +1080,16 @@ impl<'a> Generator<'a> {
         let (jacobian, rest) = outputs.split_at(n * n);
         let (velocity_rhs, acceleration_rhs) = rest.split_at(n);
         let jacobian = matrix(jacobian, n);
-        let solver = self.solver();
         let (jacobian_name, rates, accelerations) =
             (arg("jacobian"), local("rates"), local("accelerations"));
         let rate_names = &self.unknown_dots;
         quote! {
             #(#before)*
-            let #jacobian_name = #jacobian;
-            let (#rates, _) = #solver(#jacobian_name, [#(#velocity_rhs),*])?;
+            let #jacobian_name = ::mechgen::__private::Factored::new(#jacobian)?;
+            let #rates = #jacobian_name.solve([#(#velocity_rhs),*]);
             let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
             #(#after)*
-            let (#accelerations, _) = #solver(#jacobian_name, [#(#acceleration_rhs),*])?;
+            let #accelerations = #jacobian_name.solve([#(#acceleration_rhs),*]);
             let #accelerations = ::mechgen::__private::finite(#accelerations, "acceleration")?;
         }
     }

@@ -93,6 +93,9 @@ fn accuracy(computed: &[State], reference: &[(f64, State)]) -> [f64; 3] {
     worst
 }
 
+/// A baseline Newton: lengths, input, guess, tolerance, ω, α.
+type NewtonBaseline = fn(&[f64; 4], f64, [f64; 2], f64, f64, f64) -> State;
+
 type Method<'a> = (&'a str, Box<dyn Fn(&[(f64, State)]) -> Vec<State> + 'a>);
 
 fn four_bar_methods() -> Vec<Method<'static>> {
@@ -131,7 +134,7 @@ fn four_bar_methods() -> Vec<Method<'static>> {
                 .collect()
         }
     };
-    let baseline = |f: fn(&[f64; 4], f64, [f64; 2], f64, f64, f64) -> State| {
+    let baseline = |f: NewtonBaseline| {
         move |r: &[(f64, State)]| {
             let mut guess = r[0].1[0];
             r.iter()
