@@ -75,6 +75,16 @@ fn normalise<T: Real, const N: usize>(a: &mut [[T; N]; N], b: &mut [T; N]) -> Re
     Ok(product.sqrt())
 }
 
+/// The product of a 2×2 matrix's column norms without scaling it, when that is safe: the
+/// common case, several times cheaper than [`normalise`]. `None` when the squares overflow,
+/// underflow or are not finite, and the matrix must be scaled first.
+#[inline]
+fn unscaled_columns2<T: Real>(a: &[[T; 2]; 2]) -> Option<T> {
+    let [[a00, a01], [a10, a11]] = *a;
+    let product = (a00 * a00 + a10 * a10) * (a01 * a01 + a11 * a11);
+    product.is_normal().then(|| product.sqrt())
+}
+
 /// The signed relative determinant from the scaled determinant and [`normalise`]'s column
 /// norms; an error where its magnitude is at or below [`singular_threshold`].
 fn check_determinant<T: Real>(scaled_determinant: T, column_norms: T) -> Result<T, Error<T>> {
@@ -93,7 +103,10 @@ fn check_determinant<T: Real>(scaled_determinant: T, column_norms: T) -> Result<
 /// determinant `det / (‖column 0‖·‖column 1‖)`, whose sign is the matrix's orientation.
 #[inline]
 pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<([T; 2], T), Error<T>> {
-    let columns = normalise(&mut a, &mut b)?;
+    let columns = match unscaled_columns2(&a) {
+        Some(columns) => columns,
+        None => normalise(&mut a, &mut b)?,
+    };
     let [[a00, a01], [a10, a11]] = a;
     let determinant = a00 * a11 - a01 * a10;
     let relative = check_determinant(determinant, columns)?;
@@ -157,6 +170,7 @@ pub fn solve_lu<T: Real, const N: usize>(
 /// right-hand sides: the velocity's and the acceleration's share their Jacobian.
 #[derive(Clone, Copy, Debug)]
 pub struct Factored<T, const N: usize> {
+    /// LU factors, or for a 2×2 matrix its inverse (then `scale` is zero).
     lu: [[T; N]; N],
     pivots: [usize; N],
     scale: T,
@@ -165,6 +179,32 @@ pub struct Factored<T, const N: usize> {
 impl<T: Real, const N: usize> Factored<T, N> {
     /// Factors `a`. Errors: as [`solve_lu`] (a singular or non-finite matrix).
     pub fn new(a: [[T; N]; N]) -> Result<Self, Error<T>> {
+        if N == 2 {
+            // Two unknowns (one loop): keep the inverse, by Cramer's rule.
+            let (i, j) = (0, N - 1);
+            let columns = match unscaled_columns2(&[[a[i][i], a[i][j]], [a[j][i], a[j][j]]]) {
+                Some(columns) => columns,
+                None => return Self::by_lu(a),
+            };
+            let determinant = a[i][i] * a[j][j] - a[i][j] * a[j][i];
+            check_determinant(determinant, columns)?;
+            let inverse = T::one() / determinant;
+            let mut lu = a;
+            lu[i][i] = a[j][j] * inverse;
+            lu[i][j] = -a[i][j] * inverse;
+            lu[j][i] = -a[j][i] * inverse;
+            lu[j][j] = a[i][i] * inverse;
+            return Ok(Factored {
+                lu,
+                pivots: [0; N],
+                scale: T::zero(),
+            });
+        }
+        Self::by_lu(a)
+    }
+
+    /// LU with partial pivoting on the scaled matrix.
+    fn by_lu(a: [[T; N]; N]) -> Result<Self, Error<T>> {
         let mut lu = a;
         let mut unused = [T::zero(); N];
         let columns = normalise(&mut lu, &mut unused)?;
@@ -208,6 +248,17 @@ impl<T: Real, const N: usize> Factored<T, N> {
 
     /// The solution of `a·x = b`.
     pub fn solve(&self, b: [T; N]) -> [T; N] {
+        if N == 2 && self.scale == T::zero() {
+            // The explicit inverse of `new`'s 2×2 case.
+            let mut x = b;
+            for (xi, row) in x.iter_mut().zip(&self.lu) {
+                *xi = row
+                    .iter()
+                    .zip(&b)
+                    .fold(T::zero(), |acc, (r, v)| acc + *r * *v);
+            }
+            return x;
+        }
         let mut x = b.map(|v| v * self.scale);
         // Whole rows were swapped while factoring, multipliers included: P·A = L·U.
         for k in 0..N {
