@@ -14,6 +14,11 @@ fn shipped_declarations() -> Vec<(String, proc_macro2::TokenStream)> {
         .filter(|path| path.extension().is_some_and(|e| e == "rs"))
         .collect();
     paths.sort();
+    declarations_in(&paths)
+}
+
+/// Every `mechanism!` invocation in `paths`, by name.
+fn declarations_in(paths: &[std::path::PathBuf]) -> Vec<(String, proc_macro2::TokenStream)> {
     paths
         .iter()
         .flat_map(|path| {
@@ -55,6 +60,18 @@ fn shipped_mechanism_expansions() {
     for (name, tokens) in declarations {
         let expansion = pretty(crate::expand::expand(tokens.into_token_stream()));
         assert_expansion(&name, &expansion);
+    }
+}
+
+/// The performance report's scenes (the four-bar asking for less and less), whose expansion
+/// sizes it quotes.
+#[test]
+fn scene_expansions() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../tests/src/scenes.rs");
+    let declarations = declarations_in(&[path.into()]);
+    assert_eq!(declarations.len(), 3);
+    for (name, tokens) in declarations {
+        assert_expansion(&name, &pretty(crate::expand::expand(tokens)));
     }
 }
 
