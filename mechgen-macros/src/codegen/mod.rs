@@ -67,7 +67,9 @@ enum Bindings {
 }
 
 /// The generated functions' own argument and local names, besides derived ones.
-const ARGUMENT_NAMES: [&str; 16] = [
+const ARGUMENT_NAMES: [&str; 18] = [
+    "solved_a",
+    "solved_b",
     "rates",
     "accelerations",
     "solved",
@@ -618,17 +620,113 @@ impl<'a> Generator<'a> {
             .collect();
         let (prologue, outputs) = self.block(&entries);
         let (jacobian, rhs) = outputs.split_at(count * count);
-        let jacobian = matrix(jacobian, count);
-        let solver = self.solver();
         let ty = &self.unknowns_type;
-        let (jacobian_name, rhs_name, solution) = (arg("jacobian"), arg("rhs"), arg("solution"));
+        let solution = arg("solution");
+        let solve = self.solves(jacobian, &[(rhs, solution.clone())]);
         quote! {
             #prologue
-            let #jacobian_name = #jacobian;
-            let #rhs_name = [#(#rhs),*];
-            let (#solution, _) = #solver(#jacobian_name, #rhs_name)?;
+            #solve
             ::mechgen::__private::finite(#solution, #quantity).map(#ty::from_array)
         }
+    }
+
+    /// Code that solves `J·x = rhs` for each `(rhs, name)`, binding `name` to `x`: the
+    /// factorisation ([`Self::factorise`]) and the solves ([`Self::reuse_solves`]).
+    fn solves(&self, jacobian: &[Emitted], right_sides: &[(&[Emitted], Ident)]) -> TokenStream {
+        let factors = self.factorise(jacobian);
+        let solves = self.reuse_solves(jacobian, right_sides);
+        quote!(#factors #solves)
+    }
+
+    /// The closed-form plan's steps when the Jacobian is block lower-triangular in their
+    /// order: a plan of several loops (a loop does not involve unknowns solved after it).
+    fn triangular_steps(&self) -> Option<&[Step]> {
+        self.equations
+            .closed_form
+            .as_deref()
+            .filter(|steps| steps.len() > 1)
+    }
+
+    /// Factors the Jacobian once for any number of solves: each loop's 2×2 diagonal block
+    /// when it is block lower-triangular, else the whole matrix.
+    fn factorise(&self, jacobian: &[Emitted]) -> TokenStream {
+        let n = self.model.unknowns.len();
+        let matrix_tokens = matrix(jacobian, n);
+        let jacobian_name = arg("jacobian");
+        let Some(steps) = self.triangular_steps() else {
+            return quote! {
+                let #jacobian_name = ::mechgen::__private::Factored::new(#matrix_tokens)?;
+            };
+        };
+        let index = |i: usize| Literal::usize_unsuffixed(i);
+        let blocks = steps.iter().enumerate().map(|(s, step)| {
+            let block = local(&format!("block{s}"));
+            let [r0, r1] = [2 * step.loop_index, 2 * step.loop_index + 1].map(index);
+            let [a, b] = step.unknowns.map(index);
+            quote! {
+                let #block = ::mechgen::__private::Factored::new([
+                    [#jacobian_name[#r0][#a], #jacobian_name[#r0][#b]],
+                    [#jacobian_name[#r1][#a], #jacobian_name[#r1][#b]],
+                ])?;
+            }
+        });
+        quote! {
+            let #jacobian_name = #matrix_tokens;
+            #(#blocks)*
+        }
+    }
+
+    /// The solves of `J·x = rhs` with [`Self::factorise`]'s factors, binding each `name`.
+    /// Block by block when triangular: each loop's unknowns from its block, the earlier
+    /// unknowns' terms moved to the right-hand side and structural zeros skipped.
+    fn reuse_solves(
+        &self,
+        _jacobian: &[Emitted],
+        right_sides: &[(&[Emitted], Ident)],
+    ) -> TokenStream {
+        let jacobian_name = arg("jacobian");
+        let Some(steps) = self.triangular_steps() else {
+            let solves = right_sides
+                .iter()
+                .map(|(rhs, name)| quote!(let #name = #jacobian_name.solve([#(#rhs),*]);));
+            return quote!(#(#solves)*);
+        };
+        let n = self.model.unknowns.len();
+        let ids = &self.equations.jacobian;
+        let index = |i: usize| Literal::usize_unsuffixed(i);
+        let x = local("x");
+        let (solved_a, solved_b) = (local("solved_a"), local("solved_b"));
+        let solves = right_sides.iter().map(|(rhs, name)| {
+            let per_step = steps.iter().enumerate().map(|(s, step)| {
+                let block = local(&format!("block{s}"));
+                let earlier: Vec<usize> = steps[..s].iter().flat_map(|e| e.unknowns).collect();
+                let [first, second] = [2 * step.loop_index, 2 * step.loop_index + 1].map(|r| {
+                    let value = &rhs[r];
+                    let moved = earlier
+                        .iter()
+                        .filter(|&&u| !self.equations.graph.is_zero(ids[r][u]))
+                        .map(|&u| {
+                            let (r, u) = (index(r), index(u));
+                            quote!(- #jacobian_name[#r][#u] * #x[#u])
+                        });
+                    quote!((#value) #(#moved)*)
+                });
+                let [a, b] = step.unknowns.map(index);
+                quote! {
+                    let [#solved_a, #solved_b] = #block.solve([#first, #second]);
+                    #x[#a] = #solved_a;
+                    #x[#b] = #solved_b;
+                }
+            });
+            quote! {
+                let #name = {
+                    let mut #x = [T::zero(); #n];
+                    #(#per_step)*
+                    #x
+                };
+            }
+        });
+        quote!(#(#solves)*)
     }
 
     /// A checked kinematics function taking the first `arity` of the arguments
@@ -1079,17 +1177,18 @@ impl<'a> Generator<'a> {
         let n = self.model.unknowns.len();
         let (jacobian, rest) = outputs.split_at(n * n);
         let (velocity_rhs, acceleration_rhs) = rest.split_at(n);
-        let jacobian = matrix(jacobian, n);
-        let (jacobian_name, rates, accelerations) =
-            (arg("jacobian"), local("rates"), local("accelerations"));
+        let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let velocity_solve = self.solves(jacobian, &[(velocity_rhs, rates.clone())]);
+        // The acceleration reuses the factors: only its solve is emitted the second time.
+        let acceleration_solve =
+            self.reuse_solves(jacobian, &[(acceleration_rhs, accelerations.clone())]);
         let rate_names = &self.unknown_dots;
         quote! {
             #(#before)*
-            let #jacobian_name = ::mechgen::__private::Factored::new(#jacobian)?;
-            let #rates = #jacobian_name.solve([#(#velocity_rhs),*]);
+            #velocity_solve
             let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
             #(#after)*
-            let #accelerations = #jacobian_name.solve([#(#acceleration_rhs),*]);
+            #acceleration_solve
             let #accelerations = ::mechgen::__private::finite(#accelerations, "acceleration")?;
         }
     }
