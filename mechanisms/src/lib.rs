@@ -14,6 +14,12 @@
 //! | limits | toggle angles, dead centres | dead centres, stroke, time ratio | |
 //! | mechanical advantage | `ω2/ω4` | `ω2/ḋ` | `ω2/ω4` |
 //!
+//! Multi-loop mechanisms, declared with several loops sharing unknowns:
+//! [`WattSixBar`] (two loops solved one after the other in closed form, a branch each, rates
+//! solved block by block), [`StephensonSixBar`] (two coupled loops: Newton on all four
+//! unknowns) and [`JansenLeg`] (Theo Jansen's walking leg with his published lengths, three
+//! loops in closed form, the foot's trajectory, velocity and acceleration).
+//!
 //! Conventions (KINEMATICS.md in the project's notes): vectors are `r @ θ` = `r·e^{iθ}`,
 //! angles in radians counter-clockwise from +x, the crank pivot O2 at the origin.
 #![no_std]
@@ -21,6 +27,8 @@
 mod dimensions;
 mod four_bar;
 mod inverted_slider_crank;
+mod jansen;
+mod six_bar;
 mod slider_crank;
 
 pub use dimensions::DimensionError;
@@ -29,5 +37,10 @@ pub use four_bar::{
 };
 pub use inverted_slider_crank::{
     InvertedSliderCrank, InvertedSliderCrankPoints, InvertedSliderCrankUnknowns,
+};
+pub use jansen::{JansenLeg, JansenLegPoints, JansenLegUnknowns};
+pub use six_bar::{
+    StephensonSixBar, StephensonSixBarPoints, StephensonSixBarUnknowns, WattSixBar,
+    WattSixBarPoints, WattSixBarUnknowns,
 };
 pub use slider_crank::{SliderCrank, SliderCrankPoints, SliderCrankUnknowns};

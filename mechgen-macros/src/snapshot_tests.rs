@@ -56,7 +56,17 @@ fn assert_expansion(name: &str, expansion: &str) {
 fn shipped_mechanism_expansions() {
     let declarations = shipped_declarations();
     let names: Vec<&str> = declarations.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(names, ["FourBar", "InvertedSliderCrank", "SliderCrank"]);
+    assert_eq!(
+        names,
+        [
+            "FourBar",
+            "InvertedSliderCrank",
+            "JansenLeg",
+            "WattSixBar",
+            "StephensonSixBar",
+            "SliderCrank"
+        ]
+    );
     for (name, tokens) in declarations {
         let expansion = pretty(crate::expand::expand(tokens.into_token_stream()));
         assert_expansion(&name, &expansion);

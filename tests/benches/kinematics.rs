@@ -7,7 +7,10 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use mechanisms::{FourBar, FourBarUnknowns, InvertedSliderCrank, SliderCrank};
+use mechanisms::{
+    FourBar, FourBarUnknowns, InvertedSliderCrank, SliderCrank, StephensonSixBar,
+    StephensonSixBarUnknowns, WattSixBar,
+};
 use mechgen::{Branch, NewtonOptions};
 use mechgen_tests::baselines::{self, State};
 use mechgen_tests::scenes;
@@ -253,6 +256,86 @@ fn inverted_slider_crank(c: &mut Criterion) {
     group.finish();
 }
 
+fn six_bars(c: &mut Criterion) {
+    let four_bar = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+    let watt = WattSixBar::new(
+        [180.0, 80.0, 200.0, 150.0],
+        100.0,
+        0.8,
+        220.0,
+        160.0,
+        (300.0, 150.0),
+    )
+    .unwrap();
+    let stephenson = StephensonSixBar::new(
+        100.0,
+        20.0,
+        117.0,
+        [60.0, 63.0],
+        -0.97,
+        52.0,
+        85.0,
+        (189.0, -26.0),
+    )
+    .unwrap();
+    let guess = StephensonSixBarUnknowns {
+        theta3: -0.25,
+        theta4: 0.63,
+        theta5: 1.43,
+        theta6: 1.46,
+    };
+    let options = NewtonOptions::new(1e-9, 50);
+    let start = stephenson.position(0.0, &guess, &options).unwrap().value;
+    let mut group = c.benchmark_group("six_bars");
+    group.bench_function("four-bar closed form (motion)", |b| {
+        b.iter(|| {
+            angles()
+                .map(|t| {
+                    four_bar
+                        .motion(black_box(t), Branch::Open, OMEGA, ALPHA)
+                        .unwrap()
+                        .acceleration
+                        .theta4
+                })
+                .sum::<f64>()
+        })
+    });
+    group.bench_function("Watt six-bar closed form (motion)", |b| {
+        b.iter(|| {
+            angles()
+                .map(|t| {
+                    let m = watt
+                        .motion(black_box(t), [Branch::Open, Branch::Open], OMEGA, ALPHA)
+                        .unwrap();
+                    m.acceleration.theta6
+                })
+                .sum::<f64>()
+        })
+    });
+    group.bench_function(
+        "Stephenson six-bar Newton 1e-9 warm (position, motion_at)",
+        |b| {
+            b.iter(|| {
+                let mut q = start;
+                angles()
+                    .map(|t| {
+                        q = stephenson
+                            .position(black_box(t), &q, &options)
+                            .unwrap()
+                            .value;
+                        stephenson
+                            .motion_at(t, &q, OMEGA, ALPHA)
+                            .unwrap()
+                            .acceleration
+                            .theta6
+                    })
+                    .sum::<f64>()
+            })
+        },
+    );
+    group.finish();
+}
+
 fn scenes(c: &mut Criterion) {
     let mut group = c.benchmark_group("scenes");
     for (name, function) in [
@@ -281,6 +364,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = four_bar, slider_crank, inverted_slider_crank, scenes
+    targets = four_bar, slider_crank, inverted_slider_crank, six_bars, scenes
 }
 criterion_main!(benches);

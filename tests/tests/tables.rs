@@ -175,3 +175,136 @@ fn significant_digits_and_noise_flushing() {
     assert_eq!(significant(3e-14, 200.0), "0");
     assert_eq!(f64::constant(0.5), 0.5);
 }
+
+/// A full-turn table of a multi-loop mechanism from `row(θ)`: the unknowns, their rates and
+/// accelerations (ω = 10 rad/s, α = 2 rad/s²) and one tracked point.
+fn multi_loop_table(header: &[&str], rows: impl Fn(f64) -> Vec<f64>) -> String {
+    let rows: Vec<Vec<f64>> = (0..36)
+        .map(|k| {
+            let mut row = vec![f64::from(k * 10)];
+            row.extend(rows(f64::from(k * 10).to_radians()));
+            row
+        })
+        .collect();
+    let columns = header.len() + 1;
+    let column_max: Vec<f64> = (0..columns)
+        .map(|c| rows.iter().map(|r| r[c].abs()).fold(0.0f64, f64::max))
+        .collect();
+    let mut out = format!("# omega = {OMEGA2} rad/s, alpha = {ALPHA2} rad/s^2; angles in rad\n");
+    writeln!(out, "input_deg, {}", header.join(", ")).unwrap();
+    for row in rows {
+        let cells: Vec<String> = std::iter::once(format!("{:.0}", row[0]))
+            .chain(
+                row.iter()
+                    .zip(&column_max)
+                    .skip(1)
+                    .map(|(v, m)| significant(*v, *m)),
+            )
+            .collect();
+        writeln!(out, "{}", cells.join(", ")).unwrap();
+    }
+    out
+}
+
+fn unknown_header(names: &[&str], point: &str) -> Vec<String> {
+    let mut header: Vec<String> = Vec::new();
+    for suffix in ["", "_dot", "_ddot"] {
+        header.extend(names.iter().map(|n| format!("{n}{suffix}")));
+    }
+    header.extend([format!("{point}.x"), format!("{point}.y")]);
+    header
+}
+
+#[test]
+fn jansen_leg_full_turn() {
+    let leg = mechanisms::JansenLeg::<f64>::holy();
+    let names = ["phi_j", "phi_b", "phi_k", "phi_c", "phi_f", "phi_g"];
+    let header = unknown_header(&names, "foot");
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    let table = multi_loop_table(&header, |t| {
+        let m = leg
+            .motion(t, mechanisms::JansenLeg::<f64>::DRAWN, OMEGA2, ALPHA2)
+            .unwrap();
+        let foot = leg.points(t, &m.position).unwrap().foot;
+        let mut row: Vec<f64> = m.position.to_array().to_vec();
+        row.extend(m.velocity.to_array());
+        row.extend(m.acceleration.to_array());
+        row.extend([foot.x, foot.y]);
+        row
+    });
+    assert_table("jansen_leg_full_turn", table);
+}
+
+#[test]
+fn watt_six_bar_full_turn() {
+    let linkage = mechanisms::WattSixBar::new(
+        [180.0, 80.0, 200.0, 150.0],
+        100.0,
+        0.8,
+        220.0,
+        160.0,
+        (300.0, 150.0),
+    )
+    .unwrap();
+    let header = unknown_header(&["theta3", "theta4", "theta5", "theta6"], "output_pin");
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    let drawn = [mechgen::Branch::Open, mechgen::Branch::Open];
+    let table = multi_loop_table(&header, |t| {
+        let m = linkage.motion(t, drawn, OMEGA2, ALPHA2).unwrap();
+        let d = linkage.points(t, &m.position).unwrap().output_pin;
+        let mut row: Vec<f64> = m.position.to_array().to_vec();
+        row.extend(m.velocity.to_array());
+        row.extend(m.acceleration.to_array());
+        row.extend([d.x, d.y]);
+        row
+    });
+    assert_table("watt_six_bar_full_turn", table);
+}
+
+#[test]
+fn stephenson_six_bar_full_turn() {
+    let linkage = mechanisms::StephensonSixBar::new(
+        100.0,
+        20.0,
+        117.0,
+        [60.0, 63.0],
+        -0.97,
+        52.0,
+        85.0,
+        (189.0, -26.0),
+    )
+    .unwrap();
+    let guess = mechanisms::StephensonSixBarUnknowns {
+        theta3: -0.25,
+        theta4: 0.63,
+        theta5: 1.43,
+        theta6: 1.46,
+    };
+    let options = mechgen::NewtonOptions::default();
+    let start = linkage.position(0.0, &guess, &options).unwrap().value;
+    // Positions continued along the turn in 1° steps, so each row is on the drawn branch.
+    let positions: Vec<[f64; 4]> = mechgen::sweep::Sweep::new(
+        &linkage,
+        0.0,
+        start.to_array(),
+        1f64.to_radians(),
+        359,
+        options,
+    )
+    .map(|s| s.unwrap().position)
+    .collect();
+    let header = unknown_header(&["theta3", "theta4", "theta5", "theta6"], "d");
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    let table = multi_loop_table(&header, |t| {
+        let near = positions[(t.to_degrees().round() as usize) % 360].into();
+        let q = linkage.position(t, &near, &options).unwrap().value;
+        let m = linkage.motion_at(t, &q, OMEGA2, ALPHA2).unwrap();
+        let d = linkage.points(t, &q).unwrap().d;
+        let mut row: Vec<f64> = m.position.to_array().to_vec();
+        row.extend(m.velocity.to_array());
+        row.extend(m.acceleration.to_array());
+        row.extend([d.x, d.y]);
+        row
+    });
+    assert_table("stephenson_six_bar_full_turn", table);
+}

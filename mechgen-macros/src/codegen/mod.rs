@@ -691,7 +691,7 @@ impl<'a> Generator<'a> {
                 .map(|(rhs, name)| quote!(let #name = #jacobian_name.solve([#(#rhs),*]);));
             return quote!(#(#solves)*);
         };
-        let n = self.model.unknowns.len();
+        let n = Literal::usize_unsuffixed(self.model.unknowns.len());
         let ids = &self.equations.jacobian;
         let index = |i: usize| Literal::usize_unsuffixed(i);
         let x = local("x");
@@ -709,7 +709,8 @@ impl<'a> Generator<'a> {
                             let (r, u) = (index(r), index(u));
                             quote!(- #jacobian_name[#r][#u] * #x[#u])
                         });
-                    quote!((#value) #(#moved)*)
+                    // Subtraction is left-associative: the value needs no parentheses.
+                    quote!(#value #(#moved)*)
                 });
                 let [a, b] = step.unknowns.map(index);
                 quote! {

@@ -421,6 +421,18 @@ fn main() {
         let _ = (SliderCrank::<f64>::new, InvertedSliderCrank::<f64>::new);
     }
 
+    // Six-bars.
+    let four = time("six_bars", "four-bar closed form (motion)");
+    out.push_str("\n## Six-bars next to the four-bar\n\nPosition, velocity and acceleration per call over the same sweep. The Watt six-bar solves its two loops one after the other in closed form and its rates block by block; the Stephenson six-bar's loops are coupled, so Newton solves its four unknowns together on a 4×4 Jacobian.\n\n| mechanism | ns per call | ratio to the four-bar |\n|---|---|---|\n");
+    for name in [
+        "four-bar closed form (motion)",
+        "Watt six-bar closed form (motion)",
+        "Stephenson six-bar Newton 1e-9 warm (position, motion_at)",
+    ] {
+        let ns = time("six_bars", name);
+        writeln!(out, "| {name} | {} | {} |", cell(ns), ratio(ns, four)).unwrap();
+    }
+
     // Instruction counts.
     let counts = instruction_counts();
     if !counts.is_empty() {
