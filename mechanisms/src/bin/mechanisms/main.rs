@@ -1,0 +1,95 @@
+//! `mechanisms`: analyse a planar mechanism from the command line with the code
+//! `mechgen::mechanism!` generated for it. Degrees at this edge, radians inside.
+//!
+//! With no arguments it analyses the course notes' Example 1 four-bar at 60°.
+//! `cargo run --release -p mechanisms -- --help` lists the commands.
+
+mod analyse;
+mod seeds;
+mod svg;
+mod sweep;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+/// Analyse planar mechanisms with kinematics code generated at compile time.
+#[derive(Parser)]
+#[command(name = "mechanisms", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Positions, velocities and accelerations on both branches, with the analyses.
+    Analyse(analyse::Args),
+    /// A full turn (or the reachable range) on one branch, as CSV and SVG.
+    Sweep(sweep::Args),
+    /// The course notes' worked examples next to the values the notes print.
+    Seeds,
+}
+
+/// The mechanisms the program knows, and the dimensions each takes (mm, degrees).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Mechanism {
+    /// Four-bar: ground crank coupler rocker.
+    FourBar,
+    /// Slider-crank: crank rod offset.
+    SliderCrank,
+    /// Inverted slider-crank: ground crank offset angle(°).
+    InvertedSliderCrank,
+    /// Theo Jansen's leg with his published lengths (no dimensions).
+    Jansen,
+}
+
+impl Mechanism {
+    /// How many dimensions it takes, and their names.
+    pub fn dimensions(self) -> &'static [&'static str] {
+        match self {
+            Mechanism::FourBar => &["ground", "crank", "coupler", "rocker"],
+            Mechanism::SliderCrank => &["crank", "rod", "offset"],
+            Mechanism::InvertedSliderCrank => &["ground", "crank", "offset", "angle (°)"],
+            Mechanism::Jansen => &[],
+        }
+    }
+
+    /// Checks the count of dimensions given.
+    pub fn check(self, given: &[f64]) -> Result<(), String> {
+        let names = self.dimensions();
+        if given.len() == names.len() {
+            Ok(())
+        } else {
+            Err(format!(
+                "{} takes {} dimensions ({}), {} given",
+                self.to_possible_value()
+                    .map_or_else(String::new, |v| v.get_name().to_string()),
+                names.len(),
+                if names.is_empty() {
+                    "none".to_string()
+                } else {
+                    names.join(" ")
+                },
+                given.len()
+            ))
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        None => analyse::run(&analyse::Args::example_1()),
+        Some(Command::Analyse(args)) => analyse::run(&args),
+        Some(Command::Sweep(args)) => sweep::run(&args),
+        Some(Command::Seeds) => seeds::run().map_err(|e| e.to_string()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
