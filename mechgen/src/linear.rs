@@ -123,11 +123,17 @@ pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<([T; 2], T),
 /// Solves the N×N system `a·x = b` by LU factorisation with partial pivoting, in place on
 /// stack copies; returns `x` and the signed relative determinant.
 pub fn solve_lu<T: Real, const N: usize>(
-    mut a: [[T; N]; N],
-    mut b: [T; N],
+    a: [[T; N]; N],
+    b: [T; N],
 ) -> Result<([T; N], T), Error<T>> {
-    let columns = normalise(&mut a, &mut b)?;
-    let (mut lu, mut x) = (a, b);
+    let factored = Factored::by_lu(a)?;
+    Ok((factored.solve(b), factored.relative))
+}
+
+/// Gaussian elimination with partial pivoting in place: `lu` becomes the multipliers below the
+/// diagonal and U on and above it, `pivots[k]` the row swapped into row `k`. Returns the
+/// determinant. Stops at a zero pivot (the determinant is then zero).
+fn eliminate<T: Real, const N: usize>(lu: &mut [[T; N]; N], pivots: &mut [usize; N]) -> T {
     let mut determinant = T::one();
     for k in 0..N {
         let pivot_row = (k..N).fold(k, |best, i| {
@@ -137,33 +143,26 @@ pub fn solve_lu<T: Real, const N: usize>(
                 best
             }
         });
+        pivots[k] = pivot_row;
         if pivot_row != k {
             lu.swap(k, pivot_row);
-            x.swap(k, pivot_row);
             determinant = -determinant;
         }
         let pivot = lu[k][k];
-        let x_k = x[k];
         determinant = determinant * pivot;
         if pivot == T::zero() {
             break;
         }
         let (upper, lower) = lu.split_at_mut(k + 1);
-        let pivot_row = &upper[k];
-        for (row, xi) in lower.iter_mut().zip(x.iter_mut().skip(k + 1)) {
+        for row in lower.iter_mut() {
             let factor = row[k] / pivot;
-            for (entry, above) in row.iter_mut().zip(pivot_row).skip(k + 1) {
+            row[k] = factor;
+            for (entry, above) in row.iter_mut().zip(&upper[k]).skip(k + 1) {
                 *entry = *entry - factor * *above;
             }
-            *xi = *xi - factor * x_k;
         }
     }
-    let relative = check_determinant(determinant, columns)?;
-    for k in (0..N).rev() {
-        let sum = ((k + 1)..N).fold(x[k], |acc, j| acc - lu[k][j] * x[j]);
-        x[k] = sum / lu[k][k];
-    }
-    Ok((x, relative))
+    determinant
 }
 
 /// A matrix factored once (LU with partial pivoting, on the stack) to solve for several
@@ -174,6 +173,8 @@ pub struct Factored<T, const N: usize> {
     lu: [[T; N]; N],
     pivots: [usize; N],
     scale: T,
+    /// The signed relative determinant.
+    relative: T,
 }
 
 impl<T: Real, const N: usize> Factored<T, N> {
@@ -187,7 +188,7 @@ impl<T: Real, const N: usize> Factored<T, N> {
                 None => return Self::by_lu(a),
             };
             let determinant = a[i][i] * a[j][j] - a[i][j] * a[j][i];
-            check_determinant(determinant, columns)?;
+            let relative = check_determinant(determinant, columns)?;
             let inverse = T::one() / determinant;
             let mut lu = a;
             lu[i][i] = a[j][j] * inverse;
@@ -198,6 +199,7 @@ impl<T: Real, const N: usize> Factored<T, N> {
                 lu,
                 pivots: [0; N],
                 scale: T::zero(),
+                relative,
             });
         }
         Self::by_lu(a)
@@ -210,39 +212,13 @@ impl<T: Real, const N: usize> Factored<T, N> {
         let columns = normalise(&mut lu, &mut unused)?;
         let largest = a.iter().flatten().fold(T::zero(), |m, v| m.max(v.abs()));
         let mut pivots = [0; N];
-        let mut determinant = T::one();
-        for k in 0..N {
-            let pivot_row = (k..N).fold(k, |best, i| {
-                if lu[i][k].abs() > lu[best][k].abs() {
-                    i
-                } else {
-                    best
-                }
-            });
-            pivots[k] = pivot_row;
-            if pivot_row != k {
-                lu.swap(k, pivot_row);
-                determinant = -determinant;
-            }
-            let pivot = lu[k][k];
-            determinant = determinant * pivot;
-            if pivot == T::zero() {
-                break;
-            }
-            let (upper, lower) = lu.split_at_mut(k + 1);
-            for row in lower.iter_mut() {
-                let factor = row[k] / pivot;
-                row[k] = factor;
-                for (entry, above) in row.iter_mut().zip(&upper[k]).skip(k + 1) {
-                    *entry = *entry - factor * *above;
-                }
-            }
-        }
-        check_determinant(determinant, columns)?;
+        let determinant = eliminate(&mut lu, &mut pivots);
+        let relative = check_determinant(determinant, columns)?;
         Ok(Factored {
             lu,
             pivots,
             scale: T::one() / largest,
+            relative,
         })
     }
 
@@ -295,32 +271,8 @@ pub fn condition<T: Real, const N: usize>(jacobian: [[T; N]; N]) -> T {
     let Ok(columns) = normalise(&mut a, &mut b) else {
         return T::infinity();
     };
-    // The determinant of the row-scaled matrix, by elimination with partial pivoting.
-    let mut determinant = T::one();
-    for k in 0..N {
-        let pivot_row = (k..N).fold(k, |best, i| {
-            if a[i][k].abs() > a[best][k].abs() {
-                i
-            } else {
-                best
-            }
-        });
-        if pivot_row != k {
-            a.swap(k, pivot_row);
-        }
-        let pivot = a[k][k];
-        determinant = determinant * pivot;
-        if pivot == T::zero() {
-            return T::infinity();
-        }
-        let (upper, lower) = a.split_at_mut(k + 1);
-        for row in lower.iter_mut() {
-            let factor = row[k] / pivot;
-            for (entry, above) in row.iter_mut().zip(&upper[k]).skip(k + 1) {
-                *entry = *entry - factor * *above;
-            }
-        }
-    }
+    let mut pivots = [0; N];
+    let determinant = eliminate(&mut a, &mut pivots);
     columns / determinant.abs()
 }
 
