@@ -93,6 +93,26 @@ fn progress(done: usize, total: usize) {
     }
 }
 
+/// Visits the inputs (°) in order, showing progress, and keeps what `sample` makes of each:
+/// `Ok(None)` skips an input the mechanism cannot reach, an error ends the sweep.
+fn sample_inputs(
+    angles: &[f64],
+    mut sample: impl FnMut(f64, f64) -> Result<Option<Sample>, String>,
+) -> Result<Vec<Sample>, String> {
+    let mut samples = Vec::with_capacity(angles.len());
+    for (k, &input) in angles.iter().enumerate() {
+        progress(k, angles.len());
+        if let Some(found) = sample(input, input.to_radians())? {
+            samples.push(found);
+        }
+    }
+    Ok(samples)
+}
+
+fn names(columns: &[&str]) -> Vec<String> {
+    columns.iter().map(|&c| c.to_owned()).collect()
+}
+
 fn branch(args: &Args) -> Branch {
     match args.branch {
         BranchName::Open => Branch::Open,
@@ -120,16 +140,13 @@ fn four_bar(args: &Args) -> Result<Sweep, String> {
         )
     };
     let angles = inputs(from, to, args.step);
-    let mut samples = Vec::new();
-    for (k, input) in angles.iter().enumerate() {
-        progress(k, angles.len());
-        let t = input.to_radians();
+    let samples = sample_inputs(&angles, |input, t| {
         let m = linkage
             .motion(t, branch(args), args.rate, args.accel)
             .map_err(|e| format!("at {input}°: {e}"))?;
         let p = linkage.points(t, &m.position).map_err(|e| e.to_string())?;
-        samples.push(Sample {
-            input: *input,
+        Ok(Some(Sample {
+            input,
             values: vec![
                 m.position.theta3.to_degrees(),
                 m.position.theta4.to_degrees(),
@@ -148,8 +165,8 @@ fn four_bar(args: &Args) -> Result<Sweep, String> {
                 (d[0], 0.0),
                 point(p.coupler_point),
             ],
-        });
-    }
+        }))
+    })?;
     Ok(Sweep {
         title: format!(
             "Four-bar {} {} {} {} mm, {}",
@@ -159,7 +176,7 @@ fn four_bar(args: &Args) -> Result<Sweep, String> {
             d[3],
             four_bar_range(&linkage)
         ),
-        columns: [
+        columns: names(&[
             "theta3_deg",
             "theta4_deg",
             "omega3",
@@ -169,9 +186,7 @@ fn four_bar(args: &Args) -> Result<Sweep, String> {
             "transmission_deg",
             "coupler_x",
             "coupler_y",
-        ]
-        .map(String::from)
-        .to_vec(),
+        ]),
         groups: vec![
             ("output angles (°)".into(), 0..2),
             ("angular velocities (rad/s)".into(), 2..4),
@@ -194,17 +209,14 @@ fn slider_crank(args: &Args) -> Result<Sweep, String> {
             .map_err(|e| e.to_string())?;
     }
     let angles = inputs(0.0, 360.0, args.step);
-    let mut samples = Vec::new();
-    for (k, input) in angles.iter().enumerate() {
-        progress(k, angles.len());
-        let t = input.to_radians();
+    let samples = sample_inputs(&angles, |input, t| {
         // A crank that cannot turn fully: the samples the rod can reach.
         let Ok(m) = linkage.motion(t, branch(args), args.rate, args.accel) else {
-            continue;
+            return Ok(None);
         };
         let p = linkage.points(t, &m.position).map_err(|e| e.to_string())?;
-        samples.push(Sample {
-            input: *input,
+        Ok(Some(Sample {
+            input,
             values: vec![
                 m.position.theta3.to_degrees(),
                 m.position.d,
@@ -222,8 +234,8 @@ fn slider_crank(args: &Args) -> Result<Sweep, String> {
                 point(p.slider_pin),
                 point(p.coupler_point),
             ],
-        });
-    }
+        }))
+    })?;
     if samples.is_empty() {
         return Err(
             "the slider-crank cannot be assembled at any crank angle on that branch".into(),
@@ -231,7 +243,7 @@ fn slider_crank(args: &Args) -> Result<Sweep, String> {
     }
     Ok(Sweep {
         title: format!("Slider-crank {} {} mm, offset {} mm", d[0], d[1], d[2]),
-        columns: [
+        columns: names(&[
             "theta3_deg",
             "d",
             "omega3",
@@ -241,9 +253,7 @@ fn slider_crank(args: &Args) -> Result<Sweep, String> {
             "transmission_deg",
             "coupler_x",
             "coupler_y",
-        ]
-        .map(String::from)
-        .to_vec(),
+        ]),
         groups: vec![
             ("rod angle (°)".into(), 0..1),
             ("slider position (mm)".into(), 1..2),
@@ -263,16 +273,13 @@ fn inverted(args: &Args) -> Result<Sweep, String> {
     let linkage =
         InvertedSliderCrank::new(d[0], d[1], d[2], d[3].to_radians()).map_err(|e| e.to_string())?;
     let angles = inputs(0.0, 360.0, args.step);
-    let mut samples = Vec::new();
-    for (k, input) in angles.iter().enumerate() {
-        progress(k, angles.len());
-        let t = input.to_radians();
+    let samples = sample_inputs(&angles, |input, t| {
         let Ok(m) = linkage.motion(t, branch(args), args.rate, args.accel) else {
-            continue;
+            return Ok(None);
         };
         let p = linkage.points(t, &m.position).map_err(|e| e.to_string())?;
-        samples.push(Sample {
-            input: *input,
+        Ok(Some(Sample {
+            input,
             values: vec![
                 m.position.theta4.to_degrees(),
                 m.position.b,
@@ -287,16 +294,14 @@ fn inverted(args: &Args) -> Result<Sweep, String> {
                 (d[0], 0.0),
                 point(p.slide_origin),
             ],
-        });
-    }
+        }))
+    })?;
     Ok(Sweep {
         title: format!(
             "Inverted slider-crank {} {} mm, offset {} mm, angle {}°",
             d[0], d[1], d[2], d[3]
         ),
-        columns: ["theta4_deg", "b", "omega4", "b_dot", "alpha4", "b_ddot"]
-            .map(String::from)
-            .to_vec(),
+        columns: names(&["theta4_deg", "b", "omega4", "b_dot", "alpha4", "b_ddot"]),
         groups: vec![
             ("rocker angle (°)".into(), 0..1),
             ("slide length (mm)".into(), 1..2),
@@ -313,10 +318,7 @@ fn inverted(args: &Args) -> Result<Sweep, String> {
 fn jansen(args: &Args) -> Result<Sweep, String> {
     let leg = JansenLeg::<f64>::holy();
     let angles = inputs(0.0, 360.0, args.step);
-    let mut samples = Vec::new();
-    for (k, input) in angles.iter().enumerate() {
-        progress(k, angles.len());
-        let t = input.to_radians();
+    let samples = sample_inputs(&angles, |input, t| {
         let m = leg
             .motion(t, JansenLeg::<f64>::DRAWN, args.rate, args.accel)
             .map_err(|e| format!("at {input}°: {e}"))?;
@@ -334,8 +336,8 @@ fn jansen(args: &Args) -> Result<Sweep, String> {
                 &m.acceleration,
             )
             .map_err(|e| e.to_string())?;
-        samples.push(Sample {
-            input: *input,
+        Ok(Some(Sample {
+            input,
             values: vec![p.foot.x, p.foot.y, v.foot.x, v.foot.y, a.foot.x, a.foot.y],
             joints: vec![
                 (0.0, 0.0),
@@ -347,15 +349,13 @@ fn jansen(args: &Args) -> Result<Sweep, String> {
                 point(p.knee),
                 point(p.foot),
             ],
-        });
-    }
+        }))
+    })?;
     Ok(Sweep {
         title: "Jansen's leg, published lengths".into(),
-        columns: [
+        columns: names(&[
             "foot_x", "foot_y", "foot_vx", "foot_vy", "foot_ax", "foot_ay",
-        ]
-        .map(String::from)
-        .to_vec(),
+        ]),
         groups: vec![
             ("foot position (mm)".into(), 0..2),
             ("foot velocity (mm/s)".into(), 2..4),
