@@ -177,34 +177,42 @@ fn four_bar(c: &mut Criterion) {
     group.finish();
 }
 
+/// The generated closed form and the generated Newton (1e-9, warm) over the sweep for a
+/// shipped one-loop mechanism. A macro, because the mechanisms share method names, not a trait.
+macro_rules! generated_closed_form_and_newton {
+    ($group:ident, $linkage:ident) => {
+        $group.bench_function("generated closed form (motion)", |b| {
+            b.iter(|| {
+                total(angles().map(|t| {
+                    let m = $linkage
+                        .motion(black_box(t), Branch::Open, OMEGA, ALPHA)
+                        .unwrap();
+                    state(m.position, m.velocity, m.acceleration)
+                }))
+            })
+        });
+        $group.bench_function("generated Newton 1e-9 warm", |b| {
+            let options = NewtonOptions::new(1e-9, 50);
+            b.iter(|| {
+                let mut guess = $linkage.assemble(0.0, Branch::Open).unwrap();
+                total(angles().map(|t| {
+                    let q = $linkage
+                        .position(black_box(t), &guess, &options)
+                        .unwrap()
+                        .value;
+                    guess = q;
+                    let m = $linkage.motion_at(t, &q, OMEGA, ALPHA).unwrap();
+                    state(m.position, m.velocity, m.acceleration)
+                }))
+            })
+        });
+    };
+}
+
 fn slider_crank(c: &mut Criterion) {
     let linkage = SliderCrank::new(50.0, 150.0, 20.0).unwrap();
     let mut group = c.benchmark_group("slider_crank");
-    group.bench_function("generated closed form (motion)", |b| {
-        b.iter(|| {
-            total(angles().map(|t| {
-                let m = linkage
-                    .motion(black_box(t), Branch::Open, OMEGA, ALPHA)
-                    .unwrap();
-                state(m.position, m.velocity, m.acceleration)
-            }))
-        })
-    });
-    group.bench_function("generated Newton 1e-9 warm", |b| {
-        let options = NewtonOptions::new(1e-9, 50);
-        b.iter(|| {
-            let mut guess = linkage.assemble(0.0, Branch::Open).unwrap();
-            total(angles().map(|t| {
-                let q = linkage
-                    .position(black_box(t), &guess, &options)
-                    .unwrap()
-                    .value;
-                guess = q;
-                let m = linkage.motion_at(t, &q, OMEGA, ALPHA).unwrap();
-                state(m.position, m.velocity, m.acceleration)
-            }))
-        })
-    });
+    generated_closed_form_and_newton!(group, linkage);
     group.bench_function("hand-written closed form", |b| {
         b.iter(|| {
             total(angles().map(|t| {
@@ -219,31 +227,7 @@ fn inverted_slider_crank(c: &mut Criterion) {
     let p = [150.0, 60.0, 20.0, 0.3];
     let linkage = InvertedSliderCrank::new(p[0], p[1], p[2], p[3]).unwrap();
     let mut group = c.benchmark_group("inverted_slider_crank");
-    group.bench_function("generated closed form (motion)", |b| {
-        b.iter(|| {
-            total(angles().map(|t| {
-                let m = linkage
-                    .motion(black_box(t), Branch::Open, OMEGA, ALPHA)
-                    .unwrap();
-                state(m.position, m.velocity, m.acceleration)
-            }))
-        })
-    });
-    group.bench_function("generated Newton 1e-9 warm", |b| {
-        let options = NewtonOptions::new(1e-9, 50);
-        b.iter(|| {
-            let mut guess = linkage.assemble(0.0, Branch::Open).unwrap();
-            total(angles().map(|t| {
-                let q = linkage
-                    .position(black_box(t), &guess, &options)
-                    .unwrap()
-                    .value;
-                guess = q;
-                let m = linkage.motion_at(t, &q, OMEGA, ALPHA).unwrap();
-                state(m.position, m.velocity, m.acceleration)
-            }))
-        })
-    });
+    generated_closed_form_and_newton!(group, linkage);
     group.bench_function("hand-written closed form", |b| {
         b.iter(|| {
             total(
