@@ -7,13 +7,10 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use mechanisms::{
-    FourBar, FourBarUnknowns, InvertedSliderCrank, SliderCrank, StephensonSixBar,
-    StephensonSixBarUnknowns, WattSixBar,
-};
+use mechanisms::{FourBar, FourBarUnknowns, InvertedSliderCrank, SliderCrank, WattSixBar};
 use mechgen::{Branch, NewtonOptions};
 use mechgen_tests::baselines::{self, State};
-use mechgen_tests::scenes;
+use mechgen_tests::{examples, scenes};
 
 const OMEGA: f64 = 10.0;
 const ALPHA: f64 = 2.0;
@@ -251,23 +248,7 @@ fn six_bars(c: &mut Criterion) {
         (300.0, 150.0),
     )
     .unwrap();
-    let stephenson = StephensonSixBar::new(
-        100.0,
-        20.0,
-        117.0,
-        [60.0, 63.0],
-        -0.97,
-        52.0,
-        85.0,
-        (189.0, -26.0),
-    )
-    .unwrap();
-    let guess = StephensonSixBarUnknowns {
-        theta3: -0.25,
-        theta4: 0.63,
-        theta5: 1.43,
-        theta6: 1.46,
-    };
+    let (stephenson, guess) = examples::stephenson_six_bar();
     let options = NewtonOptions::new(1e-9, 50);
     let start = stephenson.position(0.0, &guess, &options).unwrap().value;
     let mut group = c.benchmark_group("six_bars");

@@ -2,5 +2,6 @@
 //! cases of `tests/reference/cases.csv` and how mechgen's answers compare with them.
 
 pub mod baselines;
+pub mod examples;
 pub mod reference;
 pub mod scenes;

@@ -2,7 +2,7 @@
 //! turn: joint positions by successive circle intersections (or, for the coupled Stephenson
 //! six-bar, a one-dimensional search), rates by finite differences.
 
-use mechanisms::{JansenLeg, StephensonSixBar, StephensonSixBarUnknowns, WattSixBar};
+use mechanisms::{JansenLeg, WattSixBar};
 use mechgen::sweep::Sweep;
 use mechgen::{Branch, NewtonOptions, Vec2};
 
@@ -222,20 +222,6 @@ fn watt_six_bar_matches_circle_intersections_and_finite_differences() {
     check_rates("Watt accelerations", rates, accelerations, 1.0);
 }
 
-fn stephenson() -> StephensonSixBar<f64> {
-    StephensonSixBar::new(
-        100.0,
-        20.0,
-        117.0,
-        [60.0, 63.0],
-        -0.97,
-        52.0,
-        85.0,
-        (189.0, -26.0),
-    )
-    .unwrap()
-}
-
 /// The Stephenson six-bar by a one-dimensional search, independent of the loop equations:
 /// for a trial rocker angle θ4, C is fixed, B is where the circles about A and C meet (on
 /// `side`), D follows from the ternary link, and θ4 is adjusted by the secant method until D
@@ -275,13 +261,7 @@ fn stephenson_by_search(t: f64, theta4_guess: f64, side: f64) -> [f64; 2] {
 
 #[test]
 fn stephenson_six_bar_matches_a_one_dimensional_search_over_a_turn() {
-    let linkage = stephenson();
-    let guess = StephensonSixBarUnknowns {
-        theta3: -0.25,
-        theta4: 0.63,
-        theta5: 1.43,
-        theta6: 1.46,
-    };
+    let (linkage, guess) = mechgen_tests::examples::stephenson_six_bar();
     let start = linkage
         .position(0.0, &guess, &NewtonOptions::default())
         .unwrap()

@@ -263,23 +263,7 @@ fn watt_six_bar_full_turn() {
 
 #[test]
 fn stephenson_six_bar_full_turn() {
-    let linkage = mechanisms::StephensonSixBar::new(
-        100.0,
-        20.0,
-        117.0,
-        [60.0, 63.0],
-        -0.97,
-        52.0,
-        85.0,
-        (189.0, -26.0),
-    )
-    .unwrap();
-    let guess = mechanisms::StephensonSixBarUnknowns {
-        theta3: -0.25,
-        theta4: 0.63,
-        theta5: 1.43,
-        theta6: 1.46,
-    };
+    let (linkage, guess) = mechgen_tests::examples::stephenson_six_bar();
     let options = mechgen::NewtonOptions::default();
     let start = linkage.position(0.0, &guess, &options).unwrap().value;
     // Positions continued along the turn in 1° steps, so each row is on the drawn branch.
