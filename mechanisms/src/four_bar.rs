@@ -54,6 +54,12 @@ mechanism! {
         /// P, the coupler point.
         point coupler_point = l2 @ theta2 + a @ (theta3 + delta);
         generate: position, velocity, acceleration;
+        /// The coupler's and rocker's angles, rates and accelerations.
+        scene angles: theta3, theta4, theta3_dot, theta4_dot, theta3_ddot, theta4_ddot;
+        /// The coupler point's position alone, as drawing the coupler curve needs.
+        scene coupler_path: coupler_point;
+        /// The coupler point's position, velocity and acceleration.
+        scene coupler_motion: coupler_point, coupler_point_dot, coupler_point_ddot;
     }
 }
 

@@ -59,6 +59,9 @@ mechanism! {
         /// P, the coupler point on the block.
         point coupler_point = l2 @ theta2 + a @ (theta4 + gamma + delta);
         generate: position, velocity, acceleration;
+        /// The rocker's angle and the block's place on it, with their rates and
+        /// accelerations.
+        scene state: theta4, b, theta4_dot, b_dot, theta4_ddot, b_ddot;
     }
 }
 

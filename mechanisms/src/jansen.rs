@@ -71,6 +71,10 @@ mechanism! {
         /// P5, the foot.
         point foot = -a @ 0 - l @ pi / 2 + c @ phi_c + i @ (phi_g + delta2);
         generate: position, velocity, acceleration;
+        /// The foot's path alone.
+        scene foot_path: foot;
+        /// The foot's position, velocity and acceleration.
+        scene foot_motion: foot, foot_dot, foot_ddot;
     }
 }
 

@@ -59,6 +59,8 @@ mechanism! {
         /// D, the output rocker's pin.
         point output_pin = g @ phi + l7 @ theta6;
         generate: position, velocity, acceleration;
+        /// The output link's angle, rate and acceleration.
+        scene output: theta6, theta6_dot, theta6_ddot;
     }
 }
 

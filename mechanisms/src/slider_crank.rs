@@ -49,6 +49,10 @@ mechanism! {
         /// P, the coupler point on the rod.
         point coupler_point = l2 @ theta2 + a @ (theta3 + delta);
         generate: position, velocity, acceleration;
+        /// The coupler's angle and the slider's position, with their rates and accelerations.
+        scene state: theta3, d, theta3_dot, d_dot, theta3_ddot, d_ddot;
+        /// The slider's position, velocity and acceleration alone (a piston's motion).
+        scene slider: d, d_dot, d_ddot;
     }
 }
 

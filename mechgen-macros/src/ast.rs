@@ -10,6 +10,7 @@
 //!         loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
 //!         point coupler = l2 @ theta2 + a @ (theta3 + gamma);
 //!         generate: position, velocity, acceleration;
+//!         scene trace: coupler, coupler_dot;
 //!     }
 //! }
 //! ```
@@ -35,6 +36,8 @@ pub enum Section {
     Loop(VectorSum),
     Point(Vec<Attribute>, Ident, VectorSum),
     Generate(Ident, Vec<Ident>),
+    /// `scene name: output, output_dot, ...;`, with doc attributes.
+    Scene(Vec<Attribute>, Ident, Vec<Ident>),
 }
 
 /// `name` or `name: kind`, with doc attributes and, for a parameter, a visibility.
@@ -100,7 +103,8 @@ impl Scalar {
     }
 }
 
-const SECTIONS: &str = "`params`, `input`, `unknowns`, `loop`, `point` or `generate`";
+const SECTIONS: &str =
+    "`params`, `input`, `unknowns`, `loop`, `point`, `generate` or `scene`";
 
 impl Parse for Declaration {
     fn parse(input: ParseStream) -> syn::Result<Self> {
@@ -126,11 +130,15 @@ impl Parse for Declaration {
 impl Parse for Section {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let attrs = input.call(Attribute::parse_outer)?;
-        let is_point = input.fork().parse::<Ident>().is_ok_and(|i| i == "point");
-        if let (Some(attr), false) = (attrs.first(), is_point) {
+        let documented = input
+            .fork()
+            .parse::<Ident>()
+            .is_ok_and(|i| i == "point" || i == "scene");
+        if let (Some(attr), false) = (attrs.first(), documented) {
             return Err(syn::Error::new_spanned(
                 attr,
-                "doc comments and attributes go on points and on declared names, not on sections",
+                "doc comments and attributes go on points, scenes and declared names, not on \
+                 other sections",
             ));
         }
         if input.peek(Token![loop]) {
@@ -156,6 +164,12 @@ impl Parse for Section {
                 input.parse::<Token![:]>()?;
                 let outputs = Punctuated::<Ident, Token![,]>::parse_separated_nonempty(input)?;
                 Section::Generate(keyword, outputs.into_iter().collect())
+            }
+            "scene" => {
+                let name = input.parse()?;
+                input.parse::<Token![:]>()?;
+                let outputs = Punctuated::<Ident, Token![,]>::parse_separated_nonempty(input)?;
+                Section::Scene(attrs, name, outputs.into_iter().collect())
             }
             _ => {
                 return Err(syn::Error::new(

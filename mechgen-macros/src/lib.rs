@@ -12,6 +12,7 @@ mod codegen;
 mod errors;
 mod expand;
 mod model;
+mod scene;
 mod structure;
 mod symbolic;
 

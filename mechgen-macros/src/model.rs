@@ -13,6 +13,7 @@ use syn::{Attribute, Ident, Visibility};
 
 use crate::ast::{self, BinaryOp, Declaration, Scalar, Section, SymbolDecl};
 use crate::errors::Errors;
+use crate::scene::{self, Scene};
 
 /// Whether a symbol is a length or an angle. Magnitudes must be lengths, angles angles.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -135,6 +136,7 @@ pub struct Model {
     pub loops: Vec<VectorSum>,
     pub points: Vec<Point>,
     pub outputs: Outputs,
+    pub scenes: Vec<Scene>,
 }
 
 impl Model {
@@ -163,6 +165,7 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
     let mut loops = Vec::new();
     let mut points = Vec::new();
     let mut generate = None;
+    let mut scenes = Vec::new();
     for section in sections {
         match section {
             Section::Params(keyword, decls) => set_once(&mut params, keyword, decls, &mut errors),
@@ -175,6 +178,7 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
             Section::Generate(keyword, outputs) => {
                 set_once(&mut generate, keyword, outputs, &mut errors)
             }
+            Section::Scene(docs, name, outputs) => scenes.push((docs, name, outputs)),
         }
     }
 
@@ -261,6 +265,16 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
     check_counts(&loops, &unknowns, unknowns_span, &mut errors);
     check_every_symbol_in_a_loop(&scope, &in_loops, input.first(), &unknowns, &mut errors);
     let outputs = outputs(generate, &mut errors);
+    let scenes = scene::resolve(
+        scenes,
+        &scene::Names {
+            params: &params.iter().map(|p| p.name.clone()).collect::<Vec<_>>(),
+            input: input.first().map_or(&name, |input| &input.name),
+            unknowns: &unknowns.iter().map(|u| u.name.clone()).collect::<Vec<_>>(),
+            points: &points.iter().map(|p| p.name.clone()).collect::<Vec<_>>(),
+        },
+        &mut errors,
+    );
 
     let input = match input.into_iter().next() {
         Some(input) => input,
@@ -282,6 +296,7 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         loops,
         points,
         outputs,
+        scenes,
     })
 }
 

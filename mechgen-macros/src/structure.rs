@@ -13,6 +13,20 @@ use crate::symbolic::Equations;
 
 pub fn check(model: &Model, equations: &Equations) -> syn::Result<()> {
     let mut errors = Errors::default();
+    // Rule: a scene kernel is straight-line code, so every loop must close in closed form.
+    if equations.closed_form.is_none() {
+        for scene in &model.scenes {
+            errors.error_at(
+                &scene.name,
+                format!(
+                    "scene `{}` needs every loop solved in closed form, but these loops must be \
+                     solved together by Newton-Raphson: use `motion_near` (Newton, then the \
+                     rates)",
+                    scene.name
+                ),
+            );
+        }
+    }
     let rows = equations.jacobian.len();
     let columns = model.unknowns.len();
     if rows != columns {

@@ -60,14 +60,14 @@ fn scaled<T: Real>(a: Vec2<T>, s: T) -> Vec2<T> {
     Vec2::new(a.x * s, a.y * s)
 }
 
-/// The turn `e^{iq}` that carries `from` onto `to`'s direction, and `q` in (−π, π]: one
-/// `atan2`, and the unit vector `(cos q, sin q)` exactly as generated code wants it, so no
-/// `sin_cos` of the solved angle is needed after.
-fn turn<T: Real>(to: Vec2<T>, from: Vec2<T>) -> (T, Vec2<T>) {
+/// The turn `e^{iq}` that carries `from` onto `to`'s direction, as the unit vector
+/// `(cos q, sin q)`: what generated code wants, so no `sin_cos` (and no `atan2`, unless the
+/// angle itself is asked for) of a solved angle is needed after.
+#[inline]
+fn turn<T: Real>(to: Vec2<T>, from: Vec2<T>) -> Vec2<T> {
     // to·conj(from), normalised.
     let product = Vec2::new(dot(to, from), cross(from, to));
-    let unit = scaled(product, T::one() / length(product));
-    (product.angle(), unit)
+    scaled(product, T::one() / length(product))
 }
 
 /// A square root that treats a slightly negative argument, within rounding of `scale`, as a
@@ -120,6 +120,18 @@ pub fn length_and_own_angle<T: Real>(
     w1: Vec2<T>,
     sign: T,
 ) -> Result<(T, T, Vec2<T>), Failure> {
+    let (l, direction) = length_and_own_direction(k, w0, w1, sign)?;
+    Ok((l, direction.angle(), direction))
+}
+
+/// [`length_and_own_angle`] without the angle: `(l, (cos q, sin q))`, with no arc tangent.
+#[inline]
+pub fn length_and_own_direction<T: Real>(
+    k: Vec2<T>,
+    w0: Vec2<T>,
+    w1: Vec2<T>,
+    sign: T,
+) -> Result<(T, Vec2<T>), Failure> {
     let a = dot(w1, w1);
     if a == T::zero() {
         return Err(Failure::Degenerate);
@@ -133,8 +145,7 @@ pub fn length_and_own_angle<T: Real>(
     if vector.x == T::zero() && vector.y == T::zero() {
         return Err(Failure::Degenerate);
     }
-    let (q, direction) = turn(scaled(k, -T::one()), vector);
-    Ok((l, q, direction))
+    Ok((l, turn(scaled(k, -T::one()), vector)))
 }
 
 /// The branch sign of a solution of [`length_and_own_angle`].
@@ -160,6 +171,18 @@ pub fn length_and_other_angle<T: Real>(
     w0: Vec2<T>,
     sign: T,
 ) -> Result<(T, T, Vec2<T>), Failure> {
+    let (l, direction) = length_and_other_direction(k, v, w0, sign)?;
+    Ok((l, direction.angle(), direction))
+}
+
+/// [`length_and_other_angle`] without the angle: `(l, (cos q, sin q))`, with no arc tangent.
+#[inline]
+pub fn length_and_other_direction<T: Real>(
+    k: Vec2<T>,
+    v: Vec2<T>,
+    w0: Vec2<T>,
+    sign: T,
+) -> Result<(T, Vec2<T>), Failure> {
     let a = dot(v, v);
     let radius_squared = dot(w0, w0);
     if a == T::zero() || radius_squared == T::zero() {
@@ -170,8 +193,7 @@ pub fn length_and_other_angle<T: Real>(
     let discriminant = half_b * half_b - a * c;
     let scale = half_b * half_b + (a * c).abs();
     let l = (-half_b + sign * rooted(discriminant, scale)?) / a;
-    let (q, direction) = turn(scaled(k + scaled(v, l), -T::one()), w0);
-    Ok((l, q, direction))
+    Ok((l, turn(scaled(k + scaled(v, l), -T::one()), w0)))
 }
 
 /// The branch sign of a solution of [`length_and_other_angle`].
@@ -200,6 +222,19 @@ pub fn two_angles<T: Real>(
     w2: Vec2<T>,
     sign: T,
 ) -> Result<(T, T, Vec2<T>, Vec2<T>), Failure> {
+    let (direction1, direction2) = two_directions(k, w1, w2, sign)?;
+    Ok((direction1.angle(), direction2.angle(), direction1, direction2))
+}
+
+/// [`two_angles`] without the angles: `((cos q1, sin q1), (cos q2, sin q2))`, with no arc
+/// tangent.
+#[inline]
+pub fn two_directions<T: Real>(
+    k: Vec2<T>,
+    w1: Vec2<T>,
+    w2: Vec2<T>,
+    sign: T,
+) -> Result<(Vec2<T>, Vec2<T>), Failure> {
     let chord = scaled(k, -T::one());
     let chord_squared = dot(chord, chord);
     if chord_squared == T::zero() {
@@ -213,9 +248,7 @@ pub fn two_angles<T: Real>(
     let normal = Vec2::new(-unit.y, unit.x);
     let p1 = scaled(unit, along) + scaled(normal, height);
     let p2 = chord - p1;
-    let (q1, direction1) = turn(p1, w1);
-    let (q2, direction2) = turn(p2, w2);
-    Ok((q1, q2, direction1, direction2))
+    Ok((turn(p1, w1), turn(p2, w2)))
 }
 
 /// The branch sign of a solution of [`two_angles`].

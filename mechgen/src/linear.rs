@@ -130,22 +130,37 @@ pub fn solve_lu<T: Real, const N: usize>(
     Ok((factored.solve(b), factored.relative))
 }
 
+/// Swaps entries `i` and `j` of `v`, both in range (else it leaves `v` as it is): unlike
+/// `<[T]>::swap`, with no panic path for the compiler to prove unreachable.
+fn swap<T: Copy>(v: &mut [T], i: usize, j: usize) {
+    if let (Some(&a), Some(&b)) = (v.get(i), v.get(j)) {
+        if let Some(slot) = v.get_mut(i) {
+            *slot = b;
+        }
+        if let Some(slot) = v.get_mut(j) {
+            *slot = a;
+        }
+    }
+}
+
 /// Gaussian elimination with partial pivoting in place: `lu` becomes the multipliers below the
 /// diagonal and U on and above it, `pivots[k]` the row swapped into row `k`. Returns the
 /// determinant. Stops at a zero pivot (the determinant is then zero).
 fn eliminate<T: Real, const N: usize>(lu: &mut [[T; N]; N], pivots: &mut [usize; N]) -> T {
     let mut determinant = T::one();
     for k in 0..N {
-        let pivot_row = (k..N).fold(k, |best, i| {
-            if lu[i][k].abs() > lu[best][k].abs() {
-                i
-            } else {
-                best
+        // The first row at or below k with the largest magnitude in column k.
+        let mut pivot_row = k;
+        let mut largest = lu[k][k].abs();
+        for (i, row) in lu.iter().enumerate().skip(k + 1) {
+            if row[k].abs() > largest {
+                pivot_row = i;
+                largest = row[k].abs();
             }
-        });
+        }
         pivots[k] = pivot_row;
         if pivot_row != k {
-            lu.swap(k, pivot_row);
+            swap(lu, k, pivot_row);
             determinant = -determinant;
         }
         let pivot = lu[k][k];
@@ -222,6 +237,12 @@ impl<T: Real, const N: usize> Factored<T, N> {
         })
     }
 
+    /// The signed relative determinant, `det / Π‖column‖`: its sign is the matrix's
+    /// orientation, its inverse magnitude the condition estimate.
+    pub fn relative(&self) -> T {
+        self.relative
+    }
+
     /// The solution of `a·x = b`.
     pub fn solve(&self, b: [T; N]) -> [T; N] {
         if N == 2 && self.scale == T::zero() {
@@ -237,18 +258,26 @@ impl<T: Real, const N: usize> Factored<T, N> {
         }
         let mut x = b.map(|v| v * self.scale);
         // Whole rows were swapped while factoring, multipliers included: P·A = L·U.
-        for k in 0..N {
-            x.swap(k, self.pivots[k]);
+        for (k, &pivot) in self.pivots.iter().enumerate() {
+            swap(&mut x, k, pivot);
         }
+        // Rows are zipped with `x`, and `x` read with `get`, rather than indexed with indices
+        // the compiler cannot always bound: no bounds check, so no panic path, is left.
         for k in 0..N {
             let x_k = x[k];
-            for (i, xi) in x.iter_mut().enumerate().skip(k + 1) {
-                *xi = *xi - self.lu[i][k] * x_k;
+            for (xi, row) in x.iter_mut().zip(&self.lu).skip(k + 1) {
+                *xi = *xi - row[k] * x_k;
             }
         }
-        for k in (0..N).rev() {
-            let sum = ((k + 1)..N).fold(x[k], |acc, j| acc - self.lu[k][j] * x[j]);
-            x[k] = sum / self.lu[k][k];
+        for (k, row) in self.lu.iter().enumerate().rev() {
+            // (row[k], x[k]), then the entries right of the diagonal.
+            let mut entries = row.iter().zip(&x).skip(k);
+            if let Some((&diagonal, &x_k)) = entries.next() {
+                let sum = entries.fold(x_k, |acc, (r, xj)| acc - *r * *xj);
+                if let Some(x_k) = x.get_mut(k) {
+                    *x_k = sum / diagonal;
+                }
+            }
         }
         x
     }

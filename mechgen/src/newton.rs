@@ -4,6 +4,7 @@
 //! short (it only evaluates the residual and Jacobian) and every mechanism gets the same
 //! stopping rules.
 
+use crate::linear::Factored;
 use crate::{Error, Real};
 
 /// How hard Newton-Raphson tries.
@@ -65,7 +66,7 @@ impl<S, T> Solved<S, T> {
 
 /// One evaluation of the loop equations at an iterate.
 #[derive(Clone, Copy, Debug)]
-pub struct Linearisation<T, const N: usize> {
+pub struct Linearisation<T, const N: usize, P = ()> {
     /// The loop residual `f(x)`.
     pub residual: [T; N],
     /// The Jacobian `∂f/∂x`, row-major.
@@ -73,6 +74,21 @@ pub struct Linearisation<T, const N: usize> {
     /// `Σ|r|` over the loops' vector magnitudes: the size of the numbers whose rounding
     /// bounds how small the residual can get.
     pub scale: T,
+    /// What else the generated code computed at the iterate (sines, cosines, products) and
+    /// wants back at the solution, so the rates after Newton need not compute them again.
+    pub payload: P,
+}
+
+/// Newton's solution, with the evaluation and the factored Jacobian it converged on: what
+/// the rates at the solution need, so they cost no new evaluation or factorisation.
+#[derive(Clone, Copy, Debug)]
+pub struct Converged<T, const N: usize, P> {
+    /// The solution and what it cost.
+    pub solved: Solved<[T; N], T>,
+    /// The loops evaluated at the solution.
+    pub at: Linearisation<T, N, P>,
+    /// The Jacobian at the solution, factored.
+    pub jacobian: Factored<T, N>,
 }
 
 /// How many times a Newton step is halved, at most, looking for a smaller residual.
@@ -80,9 +96,9 @@ const MAX_HALVINGS: u32 = 10;
 
 /// Solves `f(x) = 0` by a safeguarded Newton-Raphson from `guess`.
 ///
-/// `linearise` evaluates the residual and Jacobian; `solve` solves `J·dx = f` and returns the
-/// relative determinant with the step (the generator passes the closed-form 2×2 solver, or
-/// the LU one). The safeguards:
+/// `linearise` evaluates the residual and Jacobian; each Jacobian is factored once
+/// ([`Factored`]: the explicit inverse of a 2×2, LU with partial pivoting otherwise), for
+/// the step and, at the solution, for the rates. The safeguards:
 /// - a step that does not reduce the largest residual component is halved, up to
 ///   10 times; if none does, the iteration has stagnated;
 /// - a point is accepted when its residual is at most the tolerance (raised to the rounding
@@ -97,14 +113,13 @@ const MAX_HALVINGS: u32 = 10;
 /// With `keep_orientation`, the Jacobian's orientation (the sign of its determinant) must be
 /// the same at the solution as at the guess, else [`Error::OtherBranch`]: for a single loop
 /// that sign is what tells its two assemblies apart, so Newton never switches branch silently.
-pub fn newton<T: Real, const N: usize>(
+pub fn newton<T: Real, const N: usize, P: Copy>(
     input: T,
     guess: [T; N],
     options: &NewtonOptions<T>,
     keep_orientation: bool,
-    mut linearise: impl FnMut(&[T; N]) -> Linearisation<T, N>,
-    solve: impl Fn([[T; N]; N], [T; N]) -> Result<([T; N], T), Error<T>>,
-) -> Result<Solved<[T; N], T>, Error<T>> {
+    mut linearise: impl FnMut(&[T; N]) -> Linearisation<T, N, P>,
+) -> Result<Converged<T, N, P>, Error<T>> {
     if !options.tolerance.is_finite() || options.tolerance < T::zero() {
         return Err(Error::NonFinite {
             quantity: "Newton tolerance",
@@ -128,7 +143,9 @@ pub fn newton<T: Real, const N: usize>(
                 quantity: "loop residual",
             });
         }
-        let (step, relative_determinant) = solve(here.jacobian, here.residual)?;
+        let jacobian = Factored::new(here.jacobian)?;
+        let step = jacobian.solve(here.residual);
+        let relative_determinant = jacobian.relative();
         let positive = relative_determinant > T::zero();
         let started_positive = *orientation.get_or_insert(positive);
         let condition = T::one() / relative_determinant.abs();
@@ -140,11 +157,15 @@ pub fn newton<T: Real, const N: usize>(
             if keep_orientation && positive != started_positive {
                 return Err(Error::OtherBranch);
             }
-            return Ok(Solved {
-                value: x,
-                iterations,
-                residual_norm,
-                condition,
+            return Ok(Converged {
+                solved: Solved {
+                    value: x,
+                    iterations,
+                    residual_norm,
+                    condition,
+                },
+                at: here,
+                jacobian,
             });
         }
         if iterations >= options.max_iterations {
@@ -194,7 +215,7 @@ pub fn newton<T: Real, const N: usize>(
 /// Kantorovich's `h = ‖J⁻¹‖²·L·‖f‖` at an iterate, estimated from the Jacobian's columns:
 /// `‖J⁻¹‖ ≈ κ / min‖column‖` and, the loops being sums of `r·e^{iθ}`, `L ≈ max‖column‖`.
 /// Below 1/2 a root is certain to lie near the iterate.
-fn kantorovich<T: Real, const N: usize>(at: &Linearisation<T, N>, condition: T) -> T {
+fn kantorovich<T: Real, const N: usize, P>(at: &Linearisation<T, N, P>, condition: T) -> T {
     let mut squares = [T::zero(); N];
     for row in &at.jacobian {
         for (square, v) in squares.iter_mut().zip(row) {

@@ -21,6 +21,9 @@ pub struct Block {
     pub outputs: Vec<Emitted>,
     /// The variables the block reads, so the caller binds only those.
     pub used: BTreeSet<Var>,
+    /// Every node the statements bind to a local, with the local and the stage of its
+    /// statement, so a later block can read them instead of computing them again.
+    pub named: Vec<(ExprId, Ident, usize)>,
 }
 
 /// An emitted expression and the precedence of its outermost operator.
@@ -93,6 +96,7 @@ pub fn emit(
         names,
         used: BTreeSet::new(),
         taken: context.reserved.clone(),
+        named: Vec::new(),
     };
     let statements = emitter.schedule(outputs, context);
     let outputs = outputs
@@ -106,6 +110,7 @@ pub fn emit(
         statements,
         outputs,
         used: emitter.used,
+        named: emitter.named,
     }
 }
 
@@ -117,6 +122,8 @@ struct Emitter<'a> {
     used: BTreeSet<Var>,
     /// Generated names in scope so far, so a new local never shadows another.
     taken: BTreeSet<String>,
+    /// What [`Block::named`] reports.
+    named: Vec<(ExprId, Ident, usize)>,
 }
 
 impl Emitter<'_> {
@@ -198,6 +205,14 @@ impl Emitter<'_> {
                         },
                     };
                     let statement = self.trig(a, &stem, has_sin[a.index()], has_cos[a.index()]);
+                    for node in [Node::Sin(a), Node::Cos(a)] {
+                        if let Some(index) = self.find(node)
+                            && reachable[index]
+                            && let Some(name) = self.names[index].clone()
+                        {
+                            self.named.push((id_at(index), name, stage[i]));
+                        }
+                    }
                     statements[stage[i]].push(statement);
                 }
                 Node::Add(..) | Node::Mul(..) if uses[i] > 1 => {
@@ -211,6 +226,7 @@ impl Emitter<'_> {
                     };
                     let name = local(&name);
                     statements[stage[i]].push(quote!(let #name = #value;));
+                    self.named.push((id, name.clone(), stage[i]));
                     self.names[i] = Some(name);
                 }
                 _ => {}
@@ -354,7 +370,7 @@ fn id_at(index: usize) -> ExprId {
     ExprId::from_index(index)
 }
 
-fn children(node: Node) -> impl Iterator<Item = ExprId> {
+pub fn children(node: Node) -> impl Iterator<Item = ExprId> {
     let (a, b) = match node {
         Node::Const(_) | Node::Var(_) => (None, None),
         Node::Neg(a) | Node::Sin(a) | Node::Cos(a) => (Some(a), None),

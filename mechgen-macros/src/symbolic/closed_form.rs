@@ -15,7 +15,6 @@
 
 use crate::model::{Kind, Linear, Model, SymbolRef, VectorSum};
 
-use super::equations::linear;
 use super::graph::{ExprId, Graph};
 
 /// A complex coefficient as `(x, y)` expressions.
@@ -50,6 +49,18 @@ impl Case {
     /// Whether the loop closes in two ways, so a branch must be chosen.
     pub fn has_branches(&self) -> bool {
         !matches!(self, Case::TwoLengths { .. })
+    }
+
+    /// The case's complex coefficients, flattened `(x, y)` by `(x, y)` in the order the
+    /// runtime's solver takes them.
+    pub fn coefficients(&self) -> Vec<ExprId> {
+        let vectors = match self {
+            Case::TwoLengths { k, v1, v2 } => [k, v1, v2],
+            Case::LengthAndOwnAngle { k, w0, w1 } => [k, w0, w1],
+            Case::LengthAndOtherAngle { k, v, w0 } => [k, v, w0],
+            Case::TwoAngles { k, w1, w2 } => [k, w1, w2],
+        };
+        vectors.into_iter().flatten().copied().collect()
     }
 
     /// How the expansion's docs name the case.
@@ -183,7 +194,7 @@ fn two_lengths(
         Accumulator::new(graph),
     );
     for term in &sum.terms {
-        let angle = linear(graph, &term.angle);
+        let angle = graph.linear(&term.angle);
         let (rest, alpha) = split(&term.magnitude, ua);
         let (rest, beta) = split(&rest, ub);
         for (accumulator, coefficient) in [(&mut v1, alpha), (&mut v2, beta)] {
@@ -192,7 +203,7 @@ fn two_lengths(
                 accumulator.add(graph, term.negated, c, angle);
             }
         }
-        let known = linear(graph, &rest);
+        let known = graph.linear(&rest);
         k.add(graph, term.negated, known, angle);
     }
     let case = Case::TwoLengths {
@@ -228,8 +239,8 @@ fn two_angles(
     for term in &sum.terms {
         let (turns_a, rest) = turning(&term.angle, a)?;
         let (turns_b, rest) = turning(&rest, b)?;
-        let magnitude = linear(graph, &term.magnitude);
-        let offset = linear(graph, &rest);
+        let magnitude = graph.linear(&term.magnitude);
+        let offset = graph.linear(&rest);
         let accumulator = match (turns_a, turns_b) {
             (false, false) => &mut k,
             (true, false) => &mut w1,
@@ -263,8 +274,8 @@ fn length_and_angle(
     for term in &sum.terms {
         let (turns, offset) = turning(&term.angle, angle)?;
         let (rest, alpha) = split(&term.magnitude, l);
-        let offset = linear(graph, &offset);
-        let known = linear(graph, &rest);
+        let offset = graph.linear(&offset);
+        let known = graph.linear(&rest);
         let (fixed, with_length) = if turns {
             (&mut w0, &mut w1)
         } else {

@@ -6,7 +6,7 @@
 //! - velocity: `J·q̇ = -∂f/∂u·u̇`;
 //! - acceleration: `J·q̈ = -(d/dt(J·q̇ + ∂f/∂u·u̇) with q̈ = 0)`.
 
-use crate::model::{Linear, Model, SymbolRef, VectorSum};
+use crate::model::{Model, SymbolRef, VectorSum};
 
 use super::graph::{ExprId, Graph, Var};
 
@@ -37,6 +37,22 @@ pub struct Equations {
     pub points: Vec<PointExprs>,
     /// The loops in the order they solve in closed form, if every one does.
     pub closed_form: Option<Vec<super::closed_form::Step>>,
+    /// What scene kernels evaluate, when the declaration has scenes and a closed form.
+    pub scenes: Option<SceneExprs>,
+}
+
+/// The expressions scene kernels evaluate: those of the closed form, the rates and the
+/// points, with angle sums taken apart (see [`super::angles`]) so a solved angle is only
+/// ever read through its unit vector.
+pub struct SceneExprs {
+    /// Each closed-form step's coefficients, as [`super::Case::coefficients`] orders them.
+    pub coefficients: Vec<Vec<ExprId>>,
+    /// The Jacobian, row-major.
+    pub jacobian: Vec<ExprId>,
+    pub velocity_rhs: Vec<ExprId>,
+    pub acceleration_rhs: Vec<ExprId>,
+    /// Each point's `[position, velocity, acceleration]`, each `(x, y)`.
+    pub points: Vec<[[ExprId; 2]; 3]>,
 }
 
 impl Equations {
@@ -61,7 +77,7 @@ impl Equations {
             residual.iter().map(|&f| graph.partial(f, input)).collect();
 
         let input_rate = graph.var(Var::Rate(SymbolRef::Input));
-        let velocity_rhs = input_jacobian
+        let velocity_rhs: Vec<ExprId> = input_jacobian
             .iter()
             .map(|&fu| {
                 let product = graph.mul(fu, input_rate);
@@ -80,7 +96,7 @@ impl Equations {
         let all_vars: Vec<Var> = position_vars.iter().chain(&rate_vars).copied().collect();
         let unknown_accel = |v: Var| matches!(v, Var::Accel(SymbolRef::Unknown(_)));
 
-        let acceleration_rhs = residual
+        let acceleration_rhs: Vec<ExprId> = residual
             .iter()
             .map(|&f| {
                 // d/dt f = J·q̇ + ∂f/∂u·u̇; differentiate once more with q̈ left out.
@@ -92,7 +108,7 @@ impl Equations {
             .collect();
 
         let mut point_magnitudes = Vec::new();
-        let points = model
+        let points: Vec<PointExprs> = model
             .points
             .iter()
             .map(|point| {
@@ -111,8 +127,30 @@ impl Equations {
             .collect();
 
         let closed_form = super::closed_form::plan(model, &mut graph);
+        let scenes = match &closed_form {
+            Some(steps) if !model.scenes.is_empty() => {
+                let mut expand = |roots: &[ExprId]| super::angles::expand(&mut graph, roots);
+                Some(SceneExprs {
+                    coefficients: steps.iter().map(|s| expand(&s.case.coefficients())).collect(),
+                    jacobian: expand(&jacobian.concat()),
+                    velocity_rhs: expand(&velocity_rhs),
+                    acceleration_rhs: expand(&acceleration_rhs),
+                    points: points
+                        .iter()
+                        .map(|p: &PointExprs| {
+                            [p.position, p.velocity, p.acceleration].map(|v| {
+                                let e = expand(&v);
+                                [e[0], e[1]]
+                            })
+                        })
+                        .collect(),
+                })
+            }
+            _ => None,
+        };
         Equations {
             closed_form,
+            scenes,
             graph,
             residual,
             jacobian,
@@ -130,8 +168,8 @@ fn vector_sum(graph: &mut Graph, sum: &VectorSum, magnitudes: &mut Vec<ExprId>) 
     let zero = graph.constant(0.0);
     let mut components = [zero, zero];
     for term in &sum.terms {
-        let magnitude = linear(graph, &term.magnitude);
-        let angle = linear(graph, &term.angle);
+        let magnitude = graph.linear(&term.magnitude);
+        let angle = graph.linear(&term.angle);
         magnitudes.push(magnitude);
         let cosine = graph.cos(angle);
         let sine = graph.sin(angle);
@@ -160,8 +198,8 @@ fn acceleration_parts(
     let two = graph.constant(2.0);
     let mut parts = [[zero; 2]; 4];
     for term in &sum.terms {
-        let r = linear(graph, &term.magnitude);
-        let theta = linear(graph, &term.angle);
+        let r = graph.linear(&term.magnitude);
+        let theta = graph.linear(&term.angle);
         let r_dot = graph.time_derivative(r, position_vars, |_| true);
         let r_ddot = graph.time_derivative(r_dot, all_vars, |_| true);
         let theta_dot = graph.time_derivative(theta, position_vars, |_| true);
@@ -193,16 +231,4 @@ fn acceleration_parts(
         }
     }
     parts
-}
-
-pub(super) fn linear(graph: &mut Graph, linear: &Linear) -> ExprId {
-    let mut sum = graph.constant(0.0);
-    for (&symbol, &coefficient) in &linear.coefficients {
-        let var = graph.var(Var::Value(symbol));
-        let factor = graph.constant(coefficient);
-        let term = graph.mul(factor, var);
-        sum = graph.add(sum, term);
-    }
-    let constant = graph.constant(linear.constant);
-    graph.add(sum, constant)
 }

@@ -8,7 +8,7 @@
 
 use std::collections::HashMap;
 
-use crate::model::SymbolRef;
+use crate::model::{Linear, SymbolRef};
 
 /// A variable of the generated code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -114,6 +114,20 @@ impl Graph {
 
     pub fn var(&mut self, var: Var) -> ExprId {
         self.intern(Node::Var(var))
+    }
+
+    /// `Σ c·symbol + constant`: a declared angle or magnitude, as the equations and the
+    /// closed forms both build it.
+    pub fn linear(&mut self, linear: &Linear) -> ExprId {
+        let mut sum = self.constant(0.0);
+        for (&symbol, &coefficient) in &linear.coefficients {
+            let var = self.var(Var::Value(symbol));
+            let factor = self.constant(coefficient);
+            let term = self.mul(factor, var);
+            sum = self.add(sum, term);
+        }
+        let constant = self.constant(linear.constant);
+        self.add(sum, constant)
     }
 
     pub fn neg(&mut self, a: ExprId) -> ExprId {

@@ -1,10 +1,11 @@
 //! The mechanism's equations as expressions: loop residuals, their derivatives, and the
 //! right-hand sides of the velocity and acceleration solves.
 
+mod angles;
 mod closed_form;
 mod equations;
 mod graph;
 
 pub use closed_form::{Case, Step};
-pub use equations::{Equations, PointExprs};
+pub use equations::{Equations, PointExprs, SceneExprs};
 pub use graph::{ExprId, Graph, Node, Var};

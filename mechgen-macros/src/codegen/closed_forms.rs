@@ -1,0 +1,385 @@
+//! The closed-form functions: `assemble`, `branch_of` and the one-pass `motion`, built on
+//! the runtime's `mechgen::closed` solvers for each loop's case.
+
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::quote;
+use syn::ext::IdentExt;
+
+use super::docs::doc;
+use super::emit::{Block, Emitted, local};
+use super::{Bindings, Generator, arg};
+use crate::model::SymbolRef;
+use crate::symbolic::{Case, ExprId, Node, Step, Var};
+
+impl Generator<'_> {
+    /// `assemble(input, branch)`: every loop in closed form, in the planned order.
+    pub(super) fn assemble(&self, steps: &[Step]) -> TokenStream {
+        let input = &self.model.input.name;
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let branch_parameter = self.branch_parameter(steps);
+        let solve = self.closed_form_solve(steps, false);
+        let names = self.model.unknowns.iter().map(|u| &u.name);
+        let mut docs = format!(
+            "The position at `{input}` in closed form, loop by loop, on the chosen assembly \
+             branch{}:",
+            if steps.iter().filter(|s| s.case.has_branches()).count() > 1 {
+                "es"
+            } else {
+                ""
+            }
+        );
+        for step in steps {
+            let [a, b] = step
+                .unknowns
+                .map(|u| self.model.unknowns[u].name.unraw().to_string());
+            docs.push_str(&format!(
+                "\n- loop {} (`{}`): {}, for `{a}` and `{b}`{}",
+                step.loop_index + 1,
+                self.model.loops[step.loop_index].source,
+                step.case.description(),
+                branch_rule(&step.case, &a, &b),
+            ));
+        }
+        docs.push_str(
+            "\n\nErrors: [`mechgen::Error::CannotAssemble`] where a loop cannot close (outside \
+             the range of motion); a degenerate configuration; a non-finite parameter or input.",
+        );
+        let docs = doc(&docs);
+        quote! {
+            #docs
+            pub fn assemble(
+                &self,
+                #input: T #branch_parameter
+            ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                #solve
+                ::core::result::Result::Ok(#ty { #(#names),* })
+            }
+        }
+    }
+
+    /// `branch_of(input, position)`: the branch each branching loop is on, by the sign its
+    /// closed form documents.
+    pub(super) fn branch_of(&self, steps: &[Step]) -> TokenStream {
+        let branching: Vec<&Step> = steps.iter().filter(|s| s.case.has_branches()).collect();
+        if branching.is_empty() {
+            return TokenStream::new();
+        }
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, _, _) = self.signature_types();
+        let signs: Vec<TokenStream> = branching
+            .iter()
+            .map(|step| {
+                // Only the coefficients the sign reads, so no unused locals are bound.
+                let (needed, function) = match &step.case {
+                    Case::LengthAndOwnAngle { w0, w1, .. } => {
+                        ([w0, w1], "length_and_own_angle_sign")
+                    }
+                    Case::LengthAndOtherAngle { k, v, .. } => {
+                        ([k, v], "length_and_other_angle_sign")
+                    }
+                    Case::TwoAngles { k, w1, .. } => ([k, w1], "two_angles_sign"),
+                    Case::TwoLengths { .. } => unreachable!("filtered out above"),
+                };
+                let needed: Vec<ExprId> = needed.into_iter().flatten().copied().collect();
+                let (prologue, coefficients) = self.block(&needed);
+                let vectors = complex_values(&coefficients);
+                let first = &self.model.unknowns[step.unknowns[0]].name;
+                let function = Ident::new(function, proc_macro2::Span::call_site());
+                let sign = quote!(::mechgen::closed::#function(#(#vectors),*, #position.#first));
+                quote! {
+                    {
+                        #prologue
+                        ::mechgen::Branch::from_sign(#sign)
+                    }
+                }
+            })
+            .collect();
+        let (output, value) = match &signs[..] {
+            [sign] => (quote!(::mechgen::Branch), sign.clone()),
+            _ => {
+                let n = Literal::usize_unsuffixed(signs.len());
+                (quote!([::mechgen::Branch; #n]), quote!([#(#signs),*]))
+            }
+        };
+        let docs = doc(&format!(
+            "The assembly branch a solved position at `{input}` is on, by the signs \
+             [`Self::assemble`] documents. A raw evaluation: it does not check its arguments."
+        ));
+        quote! {
+            #docs
+            pub fn branch_of(&self, #input: T, #position: &#unknowns) -> #output {
+                #value
+            }
+        }
+    }
+
+    /// `motion(input, branch, rate, acceleration)`: position, velocity and acceleration in one
+    /// pass. It is staged: stage `s` solves loop step `s` in closed form, so each sine,
+    /// product or sum is computed once, as soon as what it reads is known; the solved angles'
+    /// sines and cosines come from the closed form's directions, with no `sin_cos`.
+    pub(super) fn motion(&self, steps: &[Step]) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let n = self.model.unknowns.len();
+        let last = steps.len();
+        let graph = &self.equations.graph;
+        // Stage of each unknown: the step (1-based) that solves it; the rates come after all.
+        let mut solved_at = vec![0; n];
+        for (s, step) in steps.iter().enumerate() {
+            step.unknowns.iter().for_each(|&u| solved_at[u] = s + 1);
+        }
+        let stage = |var: Var| match var {
+            Var::Value(SymbolRef::Unknown(u)) => solved_at[u],
+            Var::Rate(SymbolRef::Unknown(_)) | Var::Accel(SymbolRef::Unknown(_)) => last + 1,
+            // Parameters, the input and its rate and acceleration are known from the start.
+            _ => 0,
+        };
+        let mut presets = Vec::new();
+        let mut direction_bindings = vec![Vec::new(); last + 1];
+        for u in self.solved_angles(steps) {
+            let direction = self.direction(u);
+            let stem = self.model.unknowns[u].name.unraw().to_string();
+            let (sin, cos) = (local(&format!("sin_{stem}")), local(&format!("cos_{stem}")));
+            direction_bindings[solved_at[u]]
+                .push(quote!(let (#sin, #cos) = (#direction.y, #direction.x);));
+            if let Some(var) = graph.lookup(Node::Var(Var::Value(SymbolRef::Unknown(u)))) {
+                for (node, name) in [(Node::Sin(var), &sin), (Node::Cos(var), &cos)] {
+                    if let Some(id) = graph.lookup(node) {
+                        presets.push((id, name.clone(), solved_at[u]));
+                    }
+                }
+            }
+        }
+        let eq = self.equations;
+        let step_coefficients: Vec<Vec<ExprId>> =
+            steps.iter().map(|step| step.case.coefficients()).collect();
+        let entries: Vec<ExprId> = step_coefficients
+            .iter()
+            .flatten()
+            .chain(eq.jacobian.iter().flatten())
+            .chain(&eq.velocity_rhs)
+            .chain(&eq.acceleration_rhs)
+            .copied()
+            .collect();
+        let (bindings, Block {
+            mut statements,
+            outputs,
+            ..
+        }) =
+            self.block_with(&entries, Bindings::ParametersOnly, &presets, &stage);
+        statements.resize(last + 2, Vec::new());
+        let mut outputs = outputs.into_iter();
+        let mut choices = self.branch_choices(steps).into_iter();
+        let failure = arg("failure");
+        let solves: Vec<TokenStream> = steps
+            .iter()
+            .zip(&step_coefficients)
+            .enumerate()
+            .map(|(s, (step, coefficients))| {
+                let computed = &statements[s];
+                let values: Vec<Emitted> = outputs.by_ref().take(coefficients.len()).collect();
+                let vectors = complex_values(&values);
+                let solver = solver_name(&step.case);
+                let sign = step.case.has_branches().then(|| {
+                    let choice = choices.next();
+                    quote!(, #choice.sign::<T>())
+                });
+                let [a, b] = step.unknowns.map(|u| &self.model.unknowns[u].name);
+                let [direction_a, direction_b] = step.unknowns.map(|u| self.direction(u));
+                let pattern = match step.case {
+                    Case::TwoLengths { .. } => quote!([#a, #b]),
+                    Case::TwoAngles { .. } => quote!((#a, #b, #direction_a, #direction_b)),
+                    _ => quote!((#a, #b, #direction_b)),
+                };
+                let directions = &direction_bindings[s + 1];
+                quote! {
+                    #(#computed)*
+                    let #pattern = ::mechgen::closed::#solver(#(#vectors),* #sign)
+                        .map_err(|#failure| #failure.at(#input))?;
+                    #(#directions)*
+                }
+            })
+            .collect();
+        let rest: Vec<Emitted> = outputs.collect();
+        let rate_solves = self.rate_solves(&rest, &statements[last], &statements[last + 1]);
+        let names = self.model.unknowns.iter().map(|u| &u.name);
+        let branch_parameter = self.branch_parameter(steps);
+        let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let labels = [
+            format!("input rate `{input_dot}`"),
+            format!("input acceleration `{input_ddot}`"),
+        ];
+        let [dot_label, ddot_label] = &labels;
+        let docs = doc(&format!(
+            "Position (as [`Self::assemble`]), velocity and acceleration at `{input}` in one \
+             pass, for the input moving at `{input_dot}` and accelerating at `{input_ddot}`: \
+             the fastest way to all three, sharing every sine, cosine and product between \
+             them.\n\nErrors: as [`Self::assemble`], [`Self::velocity`] and \
+             [`Self::acceleration`]."
+        ));
+        quote! {
+            #docs
+            pub fn motion(
+                &self,
+                #input: T #branch_parameter,
+                #input_dot: T,
+                #input_ddot: T,
+            ) -> ::core::result::Result<::mechgen::Motion<#unknowns>, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                #bindings
+                #(#solves)*
+                #rate_solves
+                ::core::result::Result::Ok(::mechgen::Motion {
+                    position: #ty { #(#names),* },
+                    velocity: #ty::from_array(#rates),
+                    acceleration: #ty::from_array(#accelerations),
+                })
+            }
+        }
+    }
+
+    /// The statements that solve every loop in closed form, binding each unknown to a local
+    /// of its own name and, with `directions`, each solved angle's `(cos, sin)` to
+    /// `direction_{angle}`.
+    fn closed_form_solve(&self, steps: &[Step], directions: bool) -> TokenStream {
+        let input = &self.model.input.name;
+        let mut choices = self.branch_choices(steps).into_iter();
+        let solves = steps.iter().map(|step| {
+            let (prologue, coefficients) = self.block_in(&step.case.coefficients(), true);
+            let vectors = complex_values(&coefficients);
+            let solver = solver_name(&step.case);
+            let sign = step.case.has_branches().then(|| {
+                let choice = choices.next();
+                quote!(, #choice.sign::<T>())
+            });
+            let [a, b] = step.unknowns.map(|u| &self.model.unknowns[u].name);
+            let [direction_a, direction_b] = step.unknowns.map(|u| {
+                if directions {
+                    let direction = self.direction(u);
+                    quote!(#direction)
+                } else {
+                    quote!(_)
+                }
+            });
+            let failure = arg("failure");
+            let call = quote! {
+                ::mechgen::closed::#solver(#(#vectors),* #sign)
+                    .map_err(|#failure| #failure.at(#input))?
+            };
+            let pattern = match step.case {
+                Case::TwoLengths { .. } => quote!([#a, #b]),
+                Case::TwoAngles { .. } => quote!((#a, #b, #direction_a, #direction_b)),
+                // (length, angle, the angle's direction)
+                _ => quote!((#a, #b, #direction_b)),
+            };
+            quote! {
+                let #pattern = {
+                    #prologue
+                    #call
+                };
+            }
+        });
+        quote!(#(#solves)*)
+    }
+
+    /// The branch choice each branching step of a closed-form plan reads: `branch` when there
+    /// is one, `branches[i]` when there are several.
+    pub(super) fn branch_choices(&self, steps: &[Step]) -> Vec<TokenStream> {
+        let branching = steps.iter().filter(|s| s.case.has_branches()).count();
+        (0..branching)
+            .map(|i| {
+                if branching == 1 {
+                    let branch = arg("branch");
+                    quote!(#branch)
+                } else {
+                    let branches = arg("branches");
+                    let i = Literal::usize_unsuffixed(i);
+                    quote!(#branches[#i])
+                }
+            })
+            .collect()
+    }
+
+    /// The `branch` or `branches` parameter of a closed-form function.
+    pub(super) fn branch_parameter(&self, steps: &[Step]) -> TokenStream {
+        match steps.iter().filter(|s| s.case.has_branches()).count() {
+            0 => TokenStream::new(),
+            1 => {
+                let branch = arg("branch");
+                quote!(, #branch: ::mechgen::Branch)
+            }
+            n => {
+                let branches = arg("branches");
+                let n = Literal::usize_unsuffixed(n);
+                quote!(, #branches: [::mechgen::Branch; #n])
+            }
+        }
+    }
+
+    /// The local holding an unknown angle's `(cos, sin)` from a closed form.
+    pub(super) fn direction(&self, unknown: usize) -> Ident {
+        local(&format!(
+            "direction_{}",
+            self.model.unknowns[unknown].name.unraw()
+        ))
+    }
+
+    /// The unknown angles a closed-form plan gives directions for.
+    pub(super) fn solved_angles(&self, steps: &[Step]) -> Vec<usize> {
+        steps
+            .iter()
+            .flat_map(|step| match step.case {
+                Case::TwoLengths { .. } => vec![],
+                Case::TwoAngles { .. } => step.unknowns.to_vec(),
+                _ => vec![step.unknowns[1]],
+            })
+            .collect()
+    }
+}
+
+/// A closed-form case's complex coefficients, in the order its runtime solver takes them.
+/// `(x, y)` pairs of emitted coefficients as `mechgen::Vec2` values.
+pub(super) fn complex_values(components: &[Emitted]) -> Vec<TokenStream> {
+    components
+        .chunks(2)
+        .map(|pair| {
+            let (x, y) = (&pair[0], &pair[1]);
+            quote!(::mechgen::Vec2::new(#x, #y))
+        })
+        .collect()
+}
+
+fn solver_name(case: &Case) -> Ident {
+    let name = match case {
+        Case::TwoLengths { .. } => "two_lengths",
+        Case::LengthAndOwnAngle { .. } => "length_and_own_angle",
+        Case::LengthAndOtherAngle { .. } => "length_and_other_angle",
+        Case::TwoAngles { .. } => "two_angles",
+    };
+    Ident::new(name, proc_macro2::Span::call_site())
+}
+
+/// How a case's two branches are told apart, for the docs, with the unknowns' names.
+fn branch_rule(case: &Case, a: &str, b: &str) -> String {
+    match case {
+        Case::TwoLengths { .. } => String::new(),
+        Case::LengthAndOwnAngle { .. } => format!(
+            "; open where `{a}` makes the vector that turns with `{b}` longer along its own \
+             direction (`Re(conj(w1)·({a}·w1 + w0)) ≥ 0`)"
+        ),
+        Case::LengthAndOtherAngle { .. } => format!(
+            "; open where the intersection is the one farther along `{a}`'s direction \
+             (`Re(conj(v)·(K + {a}·v)) ≥ 0`)"
+        ),
+        Case::TwoAngles { .. } => format!(
+            "; open where the vector turning with `{a}` lies counter-clockwise of the chord it \
+             spans with the one turning with `{b}` (`cross(−K, e^{{i·{a}}}·w1) ≥ 0`)"
+        ),
+    }
+}

@@ -1,0 +1,120 @@
+//! The raw evaluators (residual, Jacobians, condition), which return plain values and do not
+//! check their arguments, and `mechgen_check_finite`, the check every solver starts with.
+
+use proc_macro2::TokenStream;
+use quote::quote;
+use syn::ext::IdentExt;
+
+use super::docs::doc;
+use super::{Generator, arg, matrix};
+use crate::symbolic::ExprId;
+
+impl Generator<'_> {
+    /// `(self.l1, "parameter `l1`"), ...`: every parameter, then the listed extras.
+    pub(super) fn check_finite(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let checks = self.model.params.iter().map(|param| {
+            let field = &param.name;
+            let label = format!("parameter `{}`", field.unraw());
+            quote!((self.#field, #label),)
+        });
+        let input_label = format!("input `{}`", input.unraw());
+        quote! {
+            /// Checks that the parameters and the input are finite.
+            #[inline]
+            fn mechgen_check_finite(&self, #input: T) -> ::core::result::Result<(), ::mechgen::Error<T>> {
+                ::mechgen::__private::check_finite(&[#(#checks)* (#input, #input_label)])
+            }
+        }
+    }
+
+    pub(super) fn residual(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, array, _) = self.signature_types();
+        let (prologue, outputs) = self.block(&self.equations.residual);
+        let doc = doc(&format!(
+            "The loop-closure residual at `{input}` and `{position}`: zero when the loops \
+             close.\n{}\n\n{RAW_EVALUATION}",
+            self.loops_doc()
+        ));
+        quote! {
+            #doc
+            pub fn residual(&self, #input: T, #position: &#unknowns) -> #array {
+                #prologue
+                [#(#outputs),*]
+            }
+        }
+    }
+
+    pub(super) fn jacobian(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, _, count) = self.signature_types();
+        let entries: Vec<ExprId> = self.equations.jacobian.iter().flatten().copied().collect();
+        let (prologue, outputs) = self.block(&entries);
+        let rows = matrix(&outputs, self.model.unknowns.len());
+        let raw = doc(RAW_EVALUATION);
+        quote! {
+            /// The Jacobian of [`Self::residual`] with respect to the unknowns: row `i`,
+            /// column `j` is `∂residual[i]/∂unknown[j]`.
+            ///
+            #raw
+            pub fn jacobian(&self, #input: T, #position: &#unknowns) -> [[T; #count]; #count] {
+                #prologue
+                #rows
+            }
+        }
+    }
+
+    pub(super) fn input_jacobian(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, array, _) = self.signature_types();
+        let (prologue, outputs) = self.block(&self.equations.input_jacobian);
+        let raw = doc(RAW_EVALUATION);
+        quote! {
+            /// The derivative of [`Self::residual`] with respect to the input.
+            ///
+            #raw
+            pub fn input_jacobian(&self, #input: T, #position: &#unknowns) -> #array {
+                #prologue
+                [#(#outputs),*]
+            }
+        }
+    }
+
+    /// `condition(input, position)`, which tells how far to trust what the solvers return.
+    pub(super) fn condition(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let position = arg("position");
+        let (unknowns, _, _) = self.signature_types();
+        quote! {
+            /// The Jacobian's condition estimate at a position, `1 / relative determinant`
+            /// (see [`mechgen::condition`]): 1 at best, about `1/√ε` at a toggle, where the
+            /// solvers return [`mechgen::Error::Singular`]. Errors in positions and rates grow
+            /// with it (the accuracy contract in the `mechgen` docs).
+            pub fn condition(&self, #input: T, #position: &#unknowns) -> T {
+                ::mechgen::condition(self.jacobian(#input, #position))
+            }
+        }
+    }
+
+    fn loops_doc(&self) -> String {
+        let mut doc = String::new();
+        for (k, l) in self.model.loops.iter().enumerate() {
+            doc.push_str(&format!(
+                "\n- rows {} and {} (x and y of loop {}): `{} = 0`",
+                2 * k,
+                2 * k + 1,
+                k + 1,
+                l.source
+            ));
+        }
+        doc
+    }
+}
+
+/// Said of the evaluators, which unlike the solvers return plain arrays.
+const RAW_EVALUATION: &str = "A raw evaluation: it does not check its arguments, so a NaN \
+     in gives NaN out. The solvers check theirs.";

@@ -1,0 +1,284 @@
+//! `position` and `motion_near`: the safeguarded Newton solve, with the work that depends
+//! only on the parameters and input hoisted out of the iteration, and the rates at its
+//! solution from what its last iteration computed (sines, cosines, the factored Jacobian).
+
+use std::collections::BTreeSet;
+
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::quote;
+
+use super::docs::doc;
+use super::emit::{Block, Context, emit, local};
+use super::{Bindings, Generator, arg, matrix};
+use crate::model::SymbolRef;
+use crate::symbolic::{ExprId, Var};
+
+impl Generator<'_> {
+    pub(super) fn position(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let (guess, options, x, solved) = (arg("guess"), arg("options"), arg("x"), arg("solved"));
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let (keep_orientation, branch_check) = self.branch_keeping(quote!(&#solved.value));
+        let branch_doc = if keep_orientation || branch_check.is_some() {
+            " It keeps to the guess's assembly branch (for one loop, the orientation of the \
+             Jacobian, which tells the branches apart; for several, [`Self::branch_of`]): \
+             landing on the other one is the error [`mechgen::Error::OtherBranch`], never a \
+             silent switch."
+        } else {
+            ""
+        };
+        let Linearised {
+            hoisted, closure, ..
+        } = self.linearisation(&x);
+        let doc = doc(&format!(
+            "Solves the loops for the unknowns at `{input}` by a safeguarded Newton-Raphson from \
+             `guess` (see `mechgen::__private::newton`: halved steps, a certified root, \
+             stagnation reported).{branch_doc}\n\n\
+             Errors: a non-finite parameter, input or guess; a singular Jacobian on the way; \
+             [`mechgen::Error::CannotAssemble`] where the iterates press against a toggle the \
+             loops cannot pass; no convergence within `options.max_iterations`."
+        ));
+        quote! {
+            #doc
+            pub fn position(
+                &self,
+                #input: T,
+                #guess: &#unknowns,
+                #options: &::mechgen::NewtonOptions<T>,
+            ) -> ::core::result::Result<::mechgen::Solved<#unknowns, T>, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                #hoisted
+                let #solved = ::mechgen::__private::newton(
+                    #input,
+                    #guess.to_array(),
+                    #options,
+                    #keep_orientation,
+                    #closure,
+                )?
+                .solved
+                .map(#ty::from_array);
+                #branch_check
+                ::core::result::Result::Ok(#solved)
+            }
+        }
+    }
+
+    /// Whether Newton keeps to the guess's branch through the Jacobian's orientation (one
+    /// loop with two assemblies), and the check after it otherwise (several loops with
+    /// closed-form branches), comparing `solution` with the guess.
+    fn branch_keeping(&self, solution: TokenStream) -> (bool, Option<TokenStream>) {
+        let input = &self.model.input.name;
+        let guess = arg("guess");
+        let branching = self.equations.closed_form.as_ref().map_or(0, |steps| {
+            steps.iter().filter(|s| s.case.has_branches()).count()
+        });
+        let keep_orientation = branching == 1 && self.model.loops.len() == 1;
+        let check = (branching > 0 && !keep_orientation).then(|| {
+            quote! {
+                if self.branch_of(#input, #solution) != self.branch_of(#input, #guess) {
+                    return ::core::result::Result::Err(::mechgen::Error::OtherBranch);
+                }
+            }
+        });
+        (keep_orientation, check)
+    }
+
+    /// `motion_near(input, &guess, &options, rate, acceleration)`: Newton from `guess`, then
+    /// the rates at its solution with the sines, cosines and factored Jacobian of its last
+    /// evaluation, so nothing is evaluated or factored twice.
+    pub(super) fn motion_near(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (guess, options, x) = (arg("guess"), arg("options"), arg("x"));
+        let (converged, jacobian) = (arg("converged"), arg("jacobian"));
+        let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let n = self.model.unknowns.len();
+        let Linearised {
+            hoisted,
+            closure,
+            named,
+            used: bound,
+        } = self.linearisation(&x);
+        let (keep_orientation, branch_check) =
+            self.branch_keeping(quote!(&#ty::from_array(#converged.solved.value)));
+
+        // The rates read the hoisted values and the last iteration's payload.
+        let presets: Vec<(ExprId, Ident, usize)> = named
+            .iter()
+            .map(|(id, name, _)| (*id, name.clone(), 0))
+            .collect();
+        let payload_names = named
+            .iter()
+            .filter(|(_, _, stage)| *stage == 1)
+            .map(|(_, name, _)| name);
+        let eq = self.equations;
+        let entries: Vec<ExprId> = eq
+            .velocity_rhs
+            .iter()
+            .chain(&eq.acceleration_rhs)
+            .copied()
+            .collect();
+        let stage = |var: Var| usize::from(matches!(var, Var::Rate(SymbolRef::Unknown(_))));
+        // Its own temporaries must not shadow the payload's.
+        let mut reserved = self.reserved.clone();
+        reserved.extend(named.iter().map(|(_, name, _)| name.to_string()));
+        let context = Context {
+            reserved: &reserved,
+            presets: &presets,
+            stage: &stage,
+        };
+        let Block {
+            mut statements,
+            outputs,
+            used,
+            ..
+        } = emit(
+            &self.equations.graph,
+            &entries,
+            &|var| self.var_name(var),
+            &context,
+        );
+        let unbound: BTreeSet<Var> = used.difference(&bound).copied().collect();
+        let bindings = self.parameter_bindings(&unbound, quote!(self));
+        statements.resize(2, Vec::new());
+        let (before, after) = (&statements[0], &statements[1]);
+        let (velocity_rhs, acceleration_rhs) = outputs.split_at(n);
+        let names = self.model.unknowns.iter().map(|u| &u.name);
+        let rate_names = &self.unknown_dots;
+        let labels = [
+            format!("input rate `{input_dot}`"),
+            format!("input acceleration `{input_ddot}`"),
+        ];
+        let [dot_label, ddot_label] = &labels;
+        let docs = doc(&format!(
+            "Position by Newton-Raphson from `guess` (as [`Self::position`]), then velocity \
+             and acceleration at the solution for the input moving at `{input_dot}` and \
+             accelerating at `{input_ddot}` (as [`Self::motion_at`]), reusing the sines, \
+             cosines and factored Jacobian of Newton's last evaluation: the fastest way to all \
+             three without a closed form.\n\nErrors: as [`Self::position`] and \
+             [`Self::motion_at`]."
+        ));
+        quote! {
+            #docs
+            #[allow(unused_variables)]
+            pub fn motion_near(
+                &self,
+                #input: T,
+                #guess: &#unknowns,
+                #options: &::mechgen::NewtonOptions<T>,
+                #input_dot: T,
+                #input_ddot: T,
+            ) -> ::core::result::Result<
+                ::mechgen::Solved<::mechgen::Motion<#unknowns>, T>,
+                ::mechgen::Error<T>,
+            > {
+                self.mechgen_check_finite(#input)?;
+                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                #hoisted
+                let #converged = ::mechgen::__private::newton(
+                    #input,
+                    #guess.to_array(),
+                    #options,
+                    #keep_orientation,
+                    #closure,
+                )?;
+                #branch_check
+                let [#(#names),*] = #converged.solved.value;
+                let [#(#payload_names),*] = #converged.at.payload;
+                let #jacobian = #converged.jacobian;
+                #bindings
+                #(#before)*
+                let #rates = #jacobian.solve([#(#velocity_rhs),*]);
+                let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
+                #(#after)*
+                let #accelerations = #jacobian.solve([#(#acceleration_rhs),*]);
+                let #accelerations = ::mechgen::__private::finite(#accelerations, "acceleration")?;
+                ::core::result::Result::Ok(#converged.solved.map(|value| ::mechgen::Motion {
+                    position: #ty::from_array(value),
+                    velocity: #ty::from_array(#rates),
+                    acceleration: #ty::from_array(#accelerations),
+                }))
+            }
+        }
+    }
+
+    /// The Newton iteration's evaluation as a closure over the iterate `x`, with everything
+    /// that depends only on the parameters and input computed once, before the closure. The
+    /// closure hands back, as its payload, every value it named (sines, cosines, shared
+    /// products), for the rates at the solution.
+    fn linearisation(&self, x: &Ident) -> Linearised {
+        let n = self.model.unknowns.len();
+        let eq = self.equations;
+        let entries: Vec<ExprId> = eq
+            .residual
+            .iter()
+            .chain(eq.jacobian.iter().flatten())
+            .chain(&eq.magnitudes)
+            .copied()
+            .collect();
+        let stage = |var: Var| usize::from(matches!(var, Var::Value(SymbolRef::Unknown(_))));
+        let (bindings, Block {
+            mut statements,
+            outputs,
+            named,
+            used,
+        }) = self.block_with(&entries, Bindings::ParametersOnly, &[], &stage);
+        statements.resize(2, Vec::new());
+        let (hoisted, per_iterate) = (&statements[0], &statements[1]);
+        let (residual, rest) = outputs.split_at(n);
+        let (jacobian, magnitudes) = rest.split_at(n * n);
+        let jacobian = matrix(jacobian, n);
+        let scale = magnitudes.iter().map(|m| {
+            let m = m.receiver();
+            quote!(#m.abs())
+        });
+        let names = self.model.unknowns.iter().map(|u| &u.name);
+        let payload: Vec<&Ident> = named
+            .iter()
+            .filter(|(_, _, stage)| *stage == 1)
+            .map(|(_, name, _)| name)
+            .collect();
+        // An empty payload still needs its type.
+        let payload = if payload.is_empty() {
+            quote!([T::zero(); 0])
+        } else {
+            quote!([#(#payload),*])
+        };
+        let count = Literal::usize_unsuffixed(n);
+        Linearised {
+            hoisted: quote! {
+                #bindings
+                #(#hoisted)*
+            },
+            closure: quote! {
+                |#x: &[T; #count]| {
+                    let [#(#names),*] = *#x;
+                    #(#per_iterate)*
+                    ::mechgen::__private::Linearisation {
+                        residual: [#(#residual),*],
+                        jacobian: #jacobian,
+                        scale: #(#scale)+*,
+                        payload: #payload,
+                    }
+                }
+            },
+            named,
+            used,
+        }
+    }
+}
+
+/// [`Generator::linearisation`]'s parts.
+struct Linearised {
+    /// The parameters' bindings and the work on parameters and input alone.
+    hoisted: TokenStream,
+    /// The evaluation at an iterate.
+    closure: TokenStream,
+    /// Every value the two name, with its stage: 0 hoisted, 1 in the closure's payload.
+    named: Vec<(ExprId, Ident, usize)>,
+    /// The variables they read: the parameters among them are bound.
+    used: BTreeSet<Var>,
+}

@@ -1,0 +1,250 @@
+//! Velocity and acceleration: linear solves with the Jacobian, factored once and, when the
+//! loops are block lower-triangular, solved loop by loop.
+
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::quote;
+
+use super::docs::doc;
+use super::emit::{Block, Emitted, local};
+use super::{Bindings, Generator, arg, matrix};
+use crate::model::SymbolRef;
+use crate::symbolic::{ExprId, Step, Var};
+
+impl Generator<'_> {
+    pub(super) fn velocity(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let input_dot = &self.input_dot;
+        let (unknowns, _, _) = self.signature_types();
+        let body = self.linear_solve(&self.equations.velocity_rhs, "velocity");
+        let docs = format!(
+            "The unknowns' rates at a solved `position`, for the input moving at \
+             `{input_dot}`:\nsolves `J·q̇ = -(∂f/∂{input})·{input_dot}`.\n\n\
+             Errors: a non-finite argument; a singular Jacobian (a toggle, where the rates \
+             are unbounded)."
+        );
+        self.checked_function("velocity", &docs, 3, &unknowns, body)
+    }
+
+    pub(super) fn acceleration(&self) -> TokenStream {
+        let (unknowns, _, _) = self.signature_types();
+        let body = self.linear_solve(&self.equations.acceleration_rhs, "acceleration");
+        let docs = "The unknowns' accelerations at a solved `position` and `velocity`, for the \
+             input's rate and acceleration.\nThe right-hand side is the second time derivative \
+             of the loops, so centripetal, Coriolis and sliding terms are all in it.\n\n\
+             Errors: a non-finite argument; a singular Jacobian.";
+        self.checked_function("acceleration", docs, 5, &unknowns, body)
+    }
+
+    /// `motion_at(input, &position, rate, acceleration)`: velocity and acceleration at a
+    /// solved position (from Newton, say) in one pass, every shared sine and product once.
+    pub(super) fn motion_at(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let position = arg("position");
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let eq = self.equations;
+        let entries: Vec<ExprId> = eq
+            .jacobian
+            .iter()
+            .flatten()
+            .chain(&eq.velocity_rhs)
+            .chain(&eq.acceleration_rhs)
+            .copied()
+            .collect();
+        let stage = |var: Var| usize::from(matches!(var, Var::Rate(SymbolRef::Unknown(_))));
+        let (bindings, Block {
+            mut statements,
+            outputs,
+            ..
+        }) =
+            self.block_with(&entries, Bindings::Position, &[], &stage);
+        statements.resize(2, Vec::new());
+        let rate_solves = self.rate_solves(&outputs, &statements[0], &statements[1]);
+        let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let labels = [
+            format!("input rate `{input_dot}`"),
+            format!("input acceleration `{input_ddot}`"),
+        ];
+        let [dot_label, ddot_label] = &labels;
+        let docs = doc(&format!(
+            "Velocity and acceleration at a solved `position` (from [`Self::position`], say) in \
+             one pass, for the input moving at `{input_dot}` and accelerating at \
+             `{input_ddot}`: what [`Self::velocity`] and [`Self::acceleration`] give, sharing \
+             their work.\n\nErrors: as [`Self::velocity`] and [`Self::acceleration`]."
+        ));
+        quote! {
+            #docs
+            pub fn motion_at(
+                &self,
+                #input: T,
+                #position: &#unknowns,
+                #input_dot: T,
+                #input_ddot: T,
+            ) -> ::core::result::Result<::mechgen::Motion<#unknowns>, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#input)?;
+                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                ::mechgen::__private::finite(#position.to_array(), "position")?;
+                #bindings
+                #rate_solves
+                ::core::result::Result::Ok(::mechgen::Motion {
+                    position: *#position,
+                    velocity: #ty::from_array(#rates),
+                    acceleration: #ty::from_array(#accelerations),
+                })
+            }
+        }
+    }
+
+    /// The velocity and acceleration solves from emitted Jacobian and right-hand sides
+    /// (`outputs`: the Jacobian row by row, the velocity's right-hand side, the
+    /// acceleration's), with the statements to run before the rates are known and after.
+    /// Leaves `jacobian`, `rates` and `accelerations` bound, and each rate in its local.
+    pub(super) fn rate_solves(
+        &self,
+        outputs: &[Emitted],
+        before: &[TokenStream],
+        after: &[TokenStream],
+    ) -> TokenStream {
+        let n = self.model.unknowns.len();
+        let (jacobian, rest) = outputs.split_at(n * n);
+        let (velocity_rhs, acceleration_rhs) = rest.split_at(n);
+        let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let velocity_solve = self.solves(jacobian, &[(velocity_rhs, rates.clone())]);
+        // The acceleration reuses the factors: only its solve is emitted the second time.
+        let acceleration_solve =
+            self.reuse_solves(jacobian, &[(acceleration_rhs, accelerations.clone())]);
+        let rate_names = &self.unknown_dots;
+        quote! {
+            #(#before)*
+            #velocity_solve
+            let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
+            #(#after)*
+            #acceleration_solve
+            let #accelerations = ::mechgen::__private::finite(#accelerations, "acceleration")?;
+        }
+    }
+
+    /// A function that solves `J·x = rhs` for the unknowns' rates or accelerations.
+    fn linear_solve(&self, rhs: &[ExprId], quantity: &str) -> TokenStream {
+        let count = self.model.unknowns.len();
+        let entries: Vec<ExprId> = self
+            .equations
+            .jacobian
+            .iter()
+            .flatten()
+            .chain(rhs)
+            .copied()
+            .collect();
+        let (prologue, outputs) = self.block(&entries);
+        let (jacobian, rhs) = outputs.split_at(count * count);
+        let ty = &self.unknowns_type;
+        let solution = arg("solution");
+        let solve = self.solves(jacobian, &[(rhs, solution.clone())]);
+        quote! {
+            #prologue
+            #solve
+            ::mechgen::__private::finite(#solution, #quantity).map(#ty::from_array)
+        }
+    }
+
+    /// Code that solves `J·x = rhs` for each `(rhs, name)`, binding `name` to `x`: the
+    /// factorisation ([`Self::factorise`]) and the solves ([`Self::reuse_solves`]).
+    pub(super) fn solves(&self, jacobian: &[Emitted], right_sides: &[(&[Emitted], Ident)]) -> TokenStream {
+        let factors = self.factorise(jacobian);
+        let solves = self.reuse_solves(jacobian, right_sides);
+        quote!(#factors #solves)
+    }
+
+    /// The closed-form plan's steps when the Jacobian is block lower-triangular in their
+    /// order: a plan of several loops (a loop does not involve unknowns solved after it).
+    fn triangular_steps(&self) -> Option<&[Step]> {
+        self.equations
+            .closed_form
+            .as_deref()
+            .filter(|steps| steps.len() > 1)
+    }
+
+    /// Factors the Jacobian once for any number of solves: each loop's 2×2 diagonal block
+    /// when it is block lower-triangular, else the whole matrix.
+    fn factorise(&self, jacobian: &[Emitted]) -> TokenStream {
+        let n = self.model.unknowns.len();
+        let matrix_tokens = matrix(jacobian, n);
+        let jacobian_name = arg("jacobian");
+        let Some(steps) = self.triangular_steps() else {
+            return quote! {
+                let #jacobian_name = ::mechgen::__private::Factored::new(#matrix_tokens)?;
+            };
+        };
+        let index = |i: usize| Literal::usize_unsuffixed(i);
+        let blocks = steps.iter().enumerate().map(|(s, step)| {
+            let block = local(&format!("block{s}"));
+            let [r0, r1] = [2 * step.loop_index, 2 * step.loop_index + 1].map(index);
+            let [a, b] = step.unknowns.map(index);
+            quote! {
+                let #block = ::mechgen::__private::Factored::new([
+                    [#jacobian_name[#r0][#a], #jacobian_name[#r0][#b]],
+                    [#jacobian_name[#r1][#a], #jacobian_name[#r1][#b]],
+                ])?;
+            }
+        });
+        quote! {
+            let #jacobian_name = #matrix_tokens;
+            #(#blocks)*
+        }
+    }
+
+    /// The solves of `J·x = rhs` with [`Self::factorise`]'s factors, binding each `name`.
+    /// Block by block when triangular: each loop's unknowns from its block, the earlier
+    /// unknowns' terms moved to the right-hand side and structural zeros skipped.
+    pub(super) fn reuse_solves(
+        &self,
+        _jacobian: &[Emitted],
+        right_sides: &[(&[Emitted], Ident)],
+    ) -> TokenStream {
+        let jacobian_name = arg("jacobian");
+        let Some(steps) = self.triangular_steps() else {
+            let solves = right_sides
+                .iter()
+                .map(|(rhs, name)| quote!(let #name = #jacobian_name.solve([#(#rhs),*]);));
+            return quote!(#(#solves)*);
+        };
+        let n = Literal::usize_unsuffixed(self.model.unknowns.len());
+        let ids = &self.equations.jacobian;
+        let index = |i: usize| Literal::usize_unsuffixed(i);
+        let x = local("x");
+        let (solved_a, solved_b) = (local("solved_a"), local("solved_b"));
+        let solves = right_sides.iter().map(|(rhs, name)| {
+            let per_step = steps.iter().enumerate().map(|(s, step)| {
+                let block = local(&format!("block{s}"));
+                let earlier: Vec<usize> = steps[..s].iter().flat_map(|e| e.unknowns).collect();
+                let [first, second] = [2 * step.loop_index, 2 * step.loop_index + 1].map(|r| {
+                    let value = &rhs[r];
+                    let moved = earlier
+                        .iter()
+                        .filter(|&&u| !self.equations.graph.is_zero(ids[r][u]))
+                        .map(|&u| {
+                            let (r, u) = (index(r), index(u));
+                            quote!(- #jacobian_name[#r][#u] * #x[#u])
+                        });
+                    // Subtraction is left-associative: the value needs no parentheses.
+                    quote!(#value #(#moved)*)
+                });
+                let [a, b] = step.unknowns.map(index);
+                quote! {
+                    let [#solved_a, #solved_b] = #block.solve([#first, #second]);
+                    #x[#a] = #solved_a;
+                    #x[#b] = #solved_b;
+                }
+            });
+            quote! {
+                let #name = {
+                    let mut #x = [T::zero(); #n];
+                    #(#per_step)*
+                    #x
+                };
+            }
+        });
+        quote!(#(#solves)*)
+    }
+}

@@ -1,0 +1,205 @@
+//! The declared types: the mechanism struct, its unknowns and points types, and the
+//! `mechgen::Kinematics` impl the runtime's sweep walks.
+
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::quote;
+use syn::ext::IdentExt;
+
+use super::docs::{doc, docs_or};
+use super::emit::local;
+use super::{Generator, arg};
+use crate::model::{Kind, Model};
+
+impl Generator<'_> {
+    pub(super) fn mechanism_struct(&self) -> TokenStream {
+        let Model {
+            attrs, vis, name, ..
+        } = self.model;
+        let fields = self.model.params.iter().map(|param| {
+            let field = &param.name;
+            let docs = docs_or(
+                &param.docs,
+                &format!("Parameter `{}`: {}.", field.unraw(), unit(param.kind)),
+            );
+            let vis = &param.vis;
+            quote!(#docs #vis #field: T,)
+        });
+        quote! {
+            #(#attrs)*
+            #[derive(Clone, Copy, Debug, PartialEq)]
+            #vis struct #name<T> {
+                #(#fields)*
+            }
+        }
+    }
+
+    pub(super) fn unknowns_struct(&self) -> TokenStream {
+        let Model {
+            vis,
+            name,
+            unknowns,
+            ..
+        } = self.model;
+        let ty = &self.unknowns_type;
+        let count = Literal::usize_unsuffixed(unknowns.len());
+        let names: Vec<&Ident> = unknowns.iter().map(|u| &u.name).collect();
+        let name_strings = names.iter().map(|n| n.unraw().to_string());
+        let fields = unknowns.iter().map(|unknown| {
+            let field = &unknown.name;
+            let docs = docs_or(
+                &unknown.docs,
+                &format!("Unknown `{}`: {}.", field.unraw(), unit(unknown.kind)),
+            );
+            quote!(#docs pub #field: T,)
+        });
+        let text = format!(
+            "Values of [`{name}`]'s unknowns, in declaration order: a position, or the \
+             unknowns' rates (per unit time), or their accelerations."
+        );
+        let values = arg("values");
+        let doc = doc(&text);
+        quote! {
+            #doc
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            #vis struct #ty<T> {
+                #(#fields)*
+            }
+
+            impl<T: Copy> #ty<T> {
+                /// The unknowns' names, in declaration (and array) order.
+                pub const NAMES: [&'static str; #count] = [#(#name_strings),*];
+
+                /// From values in declaration order.
+                pub const fn from_array(#values: [T; #count]) -> Self {
+                    let [#(#names),*] = #values;
+                    Self { #(#names),* }
+                }
+
+                /// The values in declaration order.
+                pub const fn to_array(&self) -> [T; #count] {
+                    [#(self.#names),*]
+                }
+            }
+
+            impl<T: Copy> ::core::convert::From<[T; #count]> for #ty<T> {
+                fn from(#values: [T; #count]) -> Self {
+                    Self::from_array(#values)
+                }
+            }
+
+            impl<T: Copy> ::core::convert::From<#ty<T>> for [T; #count] {
+                fn from(#values: #ty<T>) -> Self {
+                    #values.to_array()
+                }
+            }
+        }
+    }
+
+    pub(super) fn points_struct(&self) -> TokenStream {
+        let Model {
+            vis, name, points, ..
+        } = self.model;
+        if points.is_empty() {
+            return TokenStream::new();
+        }
+        let ty = &self.points_type;
+        let fields = points.iter().map(|point| {
+            let field = &point.name;
+            let formula = doc(&format!(
+                "Point `{}` = `{}`.",
+                field.unraw(),
+                point.position.source
+            ));
+            let docs = &point.docs;
+            let separator = (!docs.is_empty()).then(|| quote!(#[doc = ""]));
+            quote!(#(#docs)* #separator #formula pub #field: V,)
+        });
+        let text = format!(
+            "[`{name}`]'s tracked points: for each, a `V` that is its position, velocity or \
+             acceleration (a [`mechgen::Vec2`]) or its acceleration's parts (a \
+             [`mechgen::AccelerationParts`]), in the frame of the loops."
+        );
+        let doc = doc(&text);
+        quote! {
+            #doc
+            #[derive(Clone, Copy, Debug, Default, PartialEq)]
+            #vis struct #ty<V> {
+                #(#fields)*
+            }
+        }
+    }
+
+    /// `impl mechgen::Kinematics`, which lets the runtime's sweep walk the mechanism. Needs
+    /// the velocity for its predictor.
+    pub(super) fn kinematics_impl(&self) -> TokenStream {
+        if !self.model.outputs.velocity {
+            return TokenStream::new();
+        }
+        let name = &self.model.name;
+        let ty = &self.unknowns_type;
+        let count = Literal::usize_unsuffixed(self.model.unknowns.len());
+        let (input, guess, options, position) = (
+            local("input"),
+            arg("guess"),
+            arg("options"),
+            arg("position"),
+        );
+        let (a, b, input_a, input_b) = (local("a"), local("b"), local("input_a"), local("input_b"));
+        let same_branch = if self
+            .equations
+            .closed_form
+            .as_ref()
+            .is_some_and(|steps| steps.iter().any(|s| s.case.has_branches()))
+        {
+            quote! {
+                self.branch_of(#input_a, &#ty::from_array(#a))
+                    == self.branch_of(#input_b, &#ty::from_array(#b))
+            }
+        } else {
+            // No closed form defines branches: the sweep relies on its other checks.
+            quote! {
+                let _ = (#input_a, #a, #input_b, #b);
+                true
+            }
+        };
+        quote! {
+            impl<T: ::mechgen::Real> ::mechgen::Kinematics<T, #count> for #name<T> {
+                fn solve_near(
+                    &self,
+                    #input: T,
+                    #guess: [T; #count],
+                    #options: &::mechgen::NewtonOptions<T>,
+                ) -> ::core::result::Result<::mechgen::Solved<[T; #count], T>, ::mechgen::Error<T>> {
+                    self.position(#input, &#ty::from_array(#guess), #options)
+                        .map(|solved| solved.map(|value| value.to_array()))
+                }
+
+                fn slope(
+                    &self,
+                    #input: T,
+                    #position: [T; #count],
+                ) -> ::core::result::Result<[T; #count], ::mechgen::Error<T>> {
+                    self.velocity(#input, &#ty::from_array(#position), T::one())
+                        .map(|rates| rates.to_array())
+                }
+
+                fn same_branch(
+                    &self,
+                    #input_a: T,
+                    #a: [T; #count],
+                    #input_b: T,
+                    #b: [T; #count],
+                ) -> bool {
+                    #same_branch
+                }
+            }
+        }
+    }
+}
+
+pub(super) fn unit(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Length => "a length",
+        Kind::Angle => "an angle, in radians",
+    }
+}

@@ -1,0 +1,167 @@
+//! Scenes: what one caller needs from the mechanism, down to single outputs.
+//!
+//! `scene trace: coupler, coupler_dot;` names an unknown or a point for its value, with
+//! `_dot` for its rate and `_ddot` for its acceleration. Each scene becomes one generated
+//! kernel that computes exactly those outputs and nothing a caller did not ask for.
+
+use std::collections::BTreeSet;
+
+use syn::{Attribute, Ident};
+use syn::ext::IdentExt;
+
+use crate::errors::Errors;
+
+/// A declared scene, resolved.
+pub struct Scene {
+    pub name: Ident,
+    pub docs: Vec<Attribute>,
+    /// The outputs in the order written, which is the order of the output struct's fields.
+    pub items: Vec<SceneItem>,
+}
+
+/// One output of a scene: a field of its output struct.
+pub struct SceneItem {
+    /// The name as written (`coupler_dot`), which names the field.
+    pub field: Ident,
+    pub quantity: Quantity,
+    pub order: Order,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quantity {
+    Unknown(usize),
+    Point(usize),
+}
+
+/// Which time derivative of a quantity: its value, rate or acceleration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Order {
+    Value,
+    Rate,
+    Acceleration,
+}
+
+impl Scene {
+    /// The highest derivative any output needs, which decides what the kernel solves for and
+    /// which input rates it takes.
+    pub fn order(&self) -> Order {
+        self.items
+            .iter()
+            .map(|item| item.order)
+            .max()
+            .unwrap_or(Order::Value)
+    }
+}
+
+/// Names a scene may not take: they would collide with the generated types
+/// (`{Name}Unknowns`, `{Name}Points`, `{Name}Scenes`) or the scenes type's own method.
+const RESERVED: [&str; 4] = ["unknowns", "points", "scenes", "mechanism"];
+
+/// What the scene resolver can see of the model.
+pub struct Names<'a> {
+    pub params: &'a [Ident],
+    pub input: &'a Ident,
+    pub unknowns: &'a [Ident],
+    pub points: &'a [Ident],
+}
+
+/// Resolves every scene; reports unknown, repeated and misplaced names.
+pub fn resolve(
+    declared: Vec<(Vec<Attribute>, Ident, Vec<Ident>)>,
+    names: &Names,
+    errors: &mut Errors,
+) -> Vec<Scene> {
+    let mut scene_names = BTreeSet::new();
+    declared
+        .into_iter()
+        .map(|(docs, name, outputs)| {
+            let text = name.unraw().to_string();
+            if RESERVED.contains(&text.as_str()) {
+                errors.error_at(
+                    &name,
+                    format!("`{name}` names a generated item already: call the scene otherwise"),
+                );
+            } else if !scene_names.insert(text) {
+                errors.error_at(&name, format!("scene `{name}` is declared twice"));
+            }
+            let mut fields = BTreeSet::new();
+            let items = outputs
+                .into_iter()
+                .filter_map(|field| {
+                    if !fields.insert(field.unraw().to_string()) {
+                        errors.error_at(&field, format!("`{field}` is listed twice in this scene"));
+                        return None;
+                    }
+                    match item(&field, names) {
+                        Ok((quantity, order)) => Some(SceneItem {
+                            field,
+                            quantity,
+                            order,
+                        }),
+                        Err(message) => {
+                            errors.error_at(&field, message);
+                            None
+                        }
+                    }
+                })
+                .collect();
+            Scene { name, docs, items }
+        })
+        .collect()
+}
+
+/// What `field` asks for, or why it cannot be a scene output.
+fn item(field: &Ident, names: &Names) -> Result<(Quantity, Order), String> {
+    let text = field.unraw().to_string();
+    let find = |stem: &str| {
+        let position = |list: &[Ident]| list.iter().position(|n| n.unraw() == stem);
+        position(names.unknowns)
+            .map(Quantity::Unknown)
+            .or_else(|| position(names.points).map(Quantity::Point))
+    };
+    // `_ddot` before `_dot`: `x_ddot` also ends in `dot`.
+    let candidates = [
+        (text.as_str(), Order::Value),
+        (text.strip_suffix("_ddot").unwrap_or(""), Order::Acceleration),
+        (text.strip_suffix("_dot").unwrap_or(""), Order::Rate),
+    ];
+    for (stem, order) in candidates {
+        if let Some(quantity) = (!stem.is_empty()).then(|| find(stem)).flatten() {
+            return Ok((quantity, order));
+        }
+    }
+    let stem = candidates
+        .iter()
+        .skip(1)
+        .map(|(stem, _)| *stem)
+        .find(|stem| !stem.is_empty())
+        .unwrap_or(&text);
+    if names.input.unraw() == stem {
+        return Err(format!(
+            "the input `{}` and its rates are the scene's arguments, not its outputs",
+            names.input
+        ));
+    }
+    if names.params.iter().any(|p| p.unraw() == stem) {
+        return Err(format!(
+            "`{stem}` is a parameter, a constant of the mechanism: a scene lists unknowns and points"
+        ));
+    }
+    let list = |idents: &[Ident]| {
+        if idents.is_empty() {
+            "none".to_string()
+        } else {
+            idents
+                .iter()
+                .map(|i| format!("`{}`", i.unraw()))
+                .collect::<Vec<_>>()
+                .join(", ")
+        }
+    };
+    Err(format!(
+        "`{field}` is not an output of this mechanism: a scene lists unknowns ({}) and points \
+         ({}), each as its name for the value, `_dot` for its rate, `_ddot` for its acceleration",
+        list(names.unknowns),
+        list(names.points),
+    ))
+}

@@ -1,0 +1,289 @@
+//! Scene kernels agree with the general functions (`motion`, `points`, `point_velocities`,
+//! `point_accelerations`) to rounding, over full turns of every shipped mechanism that has
+//! scenes, in f64 and f32, and on random assemblable four-bars.
+
+mod common;
+
+use mechanisms::{InvertedSliderCrank, JansenLeg, SliderCrank, WattSixBar};
+use mechgen::{Branch, Real, Vec2};
+use proptest::prelude::*;
+
+const RATE: f64 = 10.0;
+const ACCELERATION: f64 = 2.0;
+
+/// Asserts `|got − want| ≤ tolerance·scale`, naming what differs.
+fn close<T: Real>(what: &str, input: T, got: T, want: T, scale: T, tolerance: f64) {
+    let error = (got - want).abs();
+    assert!(
+        error <= T::constant(tolerance) * scale,
+        "{what} at {input}: scene {got}, general {want} (error {error}, allowed {} × {scale})",
+        tolerance
+    );
+}
+
+fn close2<T: Real>(what: &str, input: T, got: Vec2<T>, want: Vec2<T>, scale: T, tolerance: f64) {
+    close(what, input, got.x, want.x, scale, tolerance);
+    close(what, input, got.y, want.y, scale, tolerance);
+}
+
+/// Rounding allowance: a few hundred units of rounding of the float type.
+fn tolerance<T: Real>() -> f64 {
+    256.0 * T::epsilon().to_f64().unwrap_or(1e-7)
+}
+
+fn inputs<T: Real>() -> impl Iterator<Item = T> {
+    (0..360).map(|degree| T::constant(f64::from(degree).to_radians()))
+}
+
+fn four_bar_scenes_agree<T: Real>() {
+    let linkage = common::example_1::<T>();
+    let scenes = linkage.scenes().unwrap();
+    let (w, a) = (T::constant(RATE), T::constant(ACCELERATION));
+    let tol = tolerance::<T>();
+    for t in inputs::<T>() {
+        let motion = linkage.motion(t, Branch::Open, w, a).unwrap();
+        let angles = scenes.angles(t, Branch::Open, w, a).unwrap();
+        let (q, v, acc) = (motion.position, motion.velocity, motion.acceleration);
+        close("θ3", t, angles.theta3, q.theta3, T::one(), tol);
+        close("θ4", t, angles.theta4, q.theta4, T::one(), tol);
+        close("ω3", t, angles.theta3_dot, v.theta3, w, tol);
+        close("ω4", t, angles.theta4_dot, v.theta4, w, tol);
+        close("α3", t, angles.theta3_ddot, acc.theta3, w * w, tol);
+        close("α4", t, angles.theta4_ddot, acc.theta4, w * w, tol);
+
+        let points = linkage.points(t, &q).unwrap();
+        let velocities = linkage.point_velocities(t, &q, w, &v).unwrap();
+        let accelerations = linkage
+            .point_accelerations(t, &q, w, &v, a, &acc)
+            .unwrap();
+        let size = T::constant(200.0);
+        let path = scenes.coupler_path(t, Branch::Open).unwrap();
+        close2("P", t, path.coupler_point, points.coupler_point, size, tol);
+        let moving = scenes.coupler_motion(t, Branch::Open, w, a).unwrap();
+        close2("P", t, moving.coupler_point, points.coupler_point, size, tol);
+        close2(
+            "Ṗ",
+            t,
+            moving.coupler_point_dot,
+            velocities.coupler_point,
+            size * w,
+            tol,
+        );
+        close2(
+            "P̈",
+            t,
+            moving.coupler_point_ddot,
+            accelerations.coupler_point,
+            size * w * w,
+            tol,
+        );
+    }
+}
+
+#[test]
+fn four_bar_scenes_agree_with_the_general_functions() {
+    four_bar_scenes_agree::<f64>();
+    four_bar_scenes_agree::<f32>();
+}
+
+fn slider_crank_scenes_agree<T: Real>() {
+    let linkage: SliderCrank<T> = common::slider_crank();
+    let scenes = linkage.scenes().unwrap();
+    let (w, a) = (T::constant(RATE), T::constant(ACCELERATION));
+    let tol = tolerance::<T>();
+    let size = T::constant(150.0);
+    for t in inputs::<T>() {
+        let motion = linkage.motion(t, Branch::Open, w, a).unwrap();
+        let (q, v, acc) = (motion.position, motion.velocity, motion.acceleration);
+        let state = scenes.state(t, Branch::Open, w, a).unwrap();
+        close("θ3", t, state.theta3, q.theta3, T::one(), tol);
+        close("d", t, state.d, q.d, size, tol);
+        close("ω3", t, state.theta3_dot, v.theta3, w, tol);
+        close("ḋ", t, state.d_dot, v.d, size * w, tol);
+        close("α3", t, state.theta3_ddot, acc.theta3, w * w, tol);
+        close("d̈", t, state.d_ddot, acc.d, size * w * w, tol);
+        let slider = scenes.slider(t, Branch::Open, w, a).unwrap();
+        assert_eq!(
+            [slider.d, slider.d_dot, slider.d_ddot],
+            [state.d, state.d_dot, state.d_ddot],
+            "the slider scene is the state scene's slider, to the bit"
+        );
+    }
+}
+
+#[test]
+fn slider_crank_scenes_agree_with_the_general_functions() {
+    slider_crank_scenes_agree::<f64>();
+    slider_crank_scenes_agree::<f32>();
+}
+
+fn inverted_slider_crank_scenes_agree<T: Real>() {
+    let linkage: InvertedSliderCrank<T> = common::inverted_slider_crank();
+    let scenes = linkage.scenes().unwrap();
+    let (w, a) = (T::constant(RATE), T::constant(ACCELERATION));
+    let tol = tolerance::<T>();
+    let size = T::constant(200.0);
+    for t in inputs::<T>() {
+        let motion = linkage.motion(t, Branch::Open, w, a).unwrap();
+        let (q, v, acc) = (motion.position, motion.velocity, motion.acceleration);
+        let state = scenes.state(t, Branch::Open, w, a).unwrap();
+        close("θ4", t, state.theta4, q.theta4, T::one(), tol);
+        close("b", t, state.b, q.b, size, tol);
+        close("ω4", t, state.theta4_dot, v.theta4, w, tol);
+        close("ḃ", t, state.b_dot, v.b, size * w, tol);
+        close("α4", t, state.theta4_ddot, acc.theta4, w * w, tol);
+        close("b̈", t, state.b_ddot, acc.b, size * w * w, tol);
+    }
+}
+
+#[test]
+fn inverted_slider_crank_scenes_agree_with_the_general_functions() {
+    inverted_slider_crank_scenes_agree::<f64>();
+    inverted_slider_crank_scenes_agree::<f32>();
+}
+
+fn watt<T: Real>() -> WattSixBar<T> {
+    let c = T::constant;
+    WattSixBar::new(
+        [c(180.0), c(80.0), c(200.0), c(150.0)],
+        c(100.0),
+        c(0.8),
+        c(220.0),
+        c(160.0),
+        (c(300.0), c(150.0)),
+    )
+    .unwrap()
+}
+
+fn watt_scene_agrees<T: Real>() {
+    let linkage = watt::<T>();
+    let scenes = linkage.scenes().unwrap();
+    let (w, a) = (T::constant(RATE), T::constant(ACCELERATION));
+    let tol = tolerance::<T>();
+    let branches = [Branch::Open, Branch::Open];
+    for t in inputs::<T>() {
+        let motion = linkage.motion(t, branches, w, a).unwrap();
+        let output = scenes.output(t, branches, w, a).unwrap();
+        close("θ6", t, output.theta6, motion.position.theta6, T::one(), tol);
+        close("ω6", t, output.theta6_dot, motion.velocity.theta6, w, tol);
+        let alpha = motion.acceleration.theta6;
+        close("α6", t, output.theta6_ddot, alpha, w * w, tol);
+    }
+}
+
+#[test]
+fn watt_six_bar_scene_agrees_with_motion() {
+    watt_scene_agrees::<f64>();
+    watt_scene_agrees::<f32>();
+}
+
+fn jansen_scenes_agree<T: Real>() {
+    let linkage = JansenLeg::<T>::holy();
+    let scenes = linkage.scenes().unwrap();
+    let (w, a) = (T::constant(RATE), T::constant(ACCELERATION));
+    let tol = tolerance::<T>();
+    let size = T::constant(100.0);
+    let branches = JansenLeg::<T>::DRAWN;
+    for t in inputs::<T>() {
+        let motion = linkage.motion(t, branches, w, a).unwrap();
+        let (q, v, acc) = (motion.position, motion.velocity, motion.acceleration);
+        // Errors in rates grow with the condition of the Jacobian, once per derivative.
+        let kappa = linkage.condition(t, &q);
+        let foot = linkage.points(t, &q).unwrap().foot;
+        let foot_velocity = linkage.point_velocities(t, &q, w, &v).unwrap().foot;
+        let foot_acceleration = linkage
+            .point_accelerations(t, &q, w, &v, a, &acc)
+            .unwrap()
+            .foot;
+        let path = scenes.foot_path(t, branches).unwrap();
+        close2("foot", t, path.foot, foot, size, tol);
+        let moving = scenes.foot_motion(t, branches, w, a).unwrap();
+        close2("foot", t, moving.foot, foot, size, tol);
+        close2("foot velocity", t, moving.foot_dot, foot_velocity, size * w * kappa, tol);
+        let scale = size * w * w * kappa * kappa;
+        close2("foot acceleration", t, moving.foot_ddot, foot_acceleration, scale, tol);
+    }
+}
+
+#[test]
+fn jansen_leg_scenes_agree_with_the_general_functions() {
+    jansen_scenes_agree::<f64>();
+    jansen_scenes_agree::<f32>();
+}
+
+#[test]
+fn scenes_say_why_as_the_general_functions_do() {
+    let linkage = common::example_1::<f64>();
+    let scenes = linkage.scenes().unwrap();
+    // Example 1 is a crank-rocker: a crossed coupler point exists everywhere, but the
+    // inputs themselves must be finite.
+    assert!(matches!(
+        scenes.coupler_path(f64::NAN, Branch::Open),
+        Err(mechgen::Error::NonFinite { .. })
+    ));
+    assert!(matches!(
+        scenes.angles(1.0, Branch::Open, f64::INFINITY, 0.0),
+        Err(mechgen::Error::NonFinite { .. })
+    ));
+    // A non-Grashof four-bar cannot reach θ2 = π: the scene says so, as `assemble` does.
+    let short = common::four_bar(100.0, 120.0, 90.0, 80.0).scenes().unwrap();
+    assert_eq!(
+        short.coupler_path(std::f64::consts::PI, Branch::Open),
+        Err(mechgen::Error::CannotAssemble {
+            input: std::f64::consts::PI
+        })
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// On any four-bar that assembles at the drawn input, the scene's angles, rates and
+    /// coupler point agree with `motion` and the point functions, relative to the
+    /// mechanism's size and to the condition of its Jacobian.
+    #[test]
+    fn random_four_bar_scenes_agree(
+        l1 in 0.1f64..10.0,
+        l2 in 0.1f64..10.0,
+        l3 in 0.1f64..10.0,
+        l4 in 0.1f64..10.0,
+        a in 0.0f64..10.0,
+        delta in -3.0f64..3.0,
+        theta2 in -7.0f64..7.0,
+        crossed in any::<bool>(),
+    ) {
+        let linkage = mechanisms::FourBar::new(l1, l2, l3, l4)
+            .and_then(|linkage| linkage.with_coupler_point(a, delta));
+        // Lengths that never assemble are refused by the constructor.
+        prop_assume!(linkage.is_ok());
+        let linkage = linkage.unwrap();
+        let branch = if crossed { Branch::Crossed } else { Branch::Open };
+        let Ok(motion) = linkage.motion(theta2, branch, RATE, ACCELERATION) else {
+            // Outside the range of motion or at a toggle: the scene must fail too.
+            prop_assert!(linkage.scenes().unwrap().angles(theta2, branch, RATE, ACCELERATION).is_err());
+            return Ok(());
+        };
+        let q = motion.position;
+        let kappa = linkage.condition(theta2, &q);
+        prop_assume!(kappa < 1e4);
+        let scenes = linkage.scenes().unwrap();
+        let angles = scenes.angles(theta2, branch, RATE, ACCELERATION).unwrap();
+        let size = l1 + l2 + l3 + l4 + a;
+        let shortest = l2.min(l3).min(l4).min(l1);
+        // Angles are known to ε·κ·size/shortest (an angle's error is a displacement over
+        // its link); rates and accelerations to a further κ each.
+        let angle_tol = 64.0 * f64::EPSILON * kappa * size / shortest;
+        let diff = |x: f64, y: f64| {
+            let d = (x - y).rem_euclid(std::f64::consts::TAU);
+            d.min(std::f64::consts::TAU - d)
+        };
+        prop_assert!(diff(angles.theta3, q.theta3) <= angle_tol);
+        prop_assert!(diff(angles.theta4, q.theta4) <= angle_tol);
+        let w_scale = RATE * size / shortest * kappa;
+        prop_assert!((angles.theta3_dot - motion.velocity.theta3).abs() <= angle_tol * w_scale);
+        prop_assert!((angles.theta4_dot - motion.velocity.theta4).abs() <= angle_tol * w_scale);
+        let path = scenes.coupler_path(theta2, branch).unwrap();
+        let point = linkage.points(theta2, &q).unwrap().coupler_point;
+        prop_assert!((path.coupler_point - point).norm() <= angle_tol * size);
+    }
+}
