@@ -33,14 +33,22 @@ mod slider_crank;
 
 pub use dimensions::DimensionError;
 pub use four_bar::{
-    DeadCentre, FourBar, FourBarPoints, FourBarUnknowns, LimitAngles, TransmissionExtremes,
+    DeadCentre, FourBar, FourBarAngles, FourBarCouplerMotion, FourBarCouplerPath, FourBarPoints,
+    FourBarScenes, FourBarUnknowns, LimitAngles, TransmissionExtremes,
 };
 pub use inverted_slider_crank::{
-    InvertedSliderCrank, InvertedSliderCrankPoints, InvertedSliderCrankUnknowns,
+    InvertedSliderCrank, InvertedSliderCrankPoints, InvertedSliderCrankScenes,
+    InvertedSliderCrankState, InvertedSliderCrankUnknowns,
 };
-pub use jansen::{JansenLeg, JansenLegPoints, JansenLegUnknowns};
+pub use jansen::{
+    JansenLeg, JansenLegFootMotion, JansenLegFootPath, JansenLegPoints, JansenLegScenes,
+    JansenLegUnknowns,
+};
 pub use six_bar::{
     StephensonSixBar, StephensonSixBarPoints, StephensonSixBarUnknowns, WattSixBar,
-    WattSixBarPoints, WattSixBarUnknowns,
+    WattSixBarOutput, WattSixBarPoints, WattSixBarScenes, WattSixBarUnknowns,
 };
-pub use slider_crank::{SliderCrank, SliderCrankPoints, SliderCrankUnknowns};
+pub use slider_crank::{
+    SliderCrank, SliderCrankPoints, SliderCrankScenes, SliderCrankSlider, SliderCrankState,
+    SliderCrankUnknowns,
+};

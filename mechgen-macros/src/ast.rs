@@ -103,8 +103,7 @@ impl Scalar {
     }
 }
 
-const SECTIONS: &str =
-    "`params`, `input`, `unknowns`, `loop`, `point`, `generate` or `scene`";
+const SECTIONS: &str = "`params`, `input`, `unknowns`, `loop`, `point`, `generate` or `scene`";
 
 impl Parse for Declaration {
     fn parse(input: ParseStream) -> syn::Result<Self> {

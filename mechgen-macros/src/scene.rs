@@ -6,8 +6,8 @@
 
 use std::collections::BTreeSet;
 
-use syn::{Attribute, Ident};
 use syn::ext::IdentExt;
+use syn::{Attribute, Ident};
 
 use crate::errors::Errors;
 
@@ -122,7 +122,10 @@ fn item(field: &Ident, names: &Names) -> Result<(Quantity, Order), String> {
     // `_ddot` before `_dot`: `x_ddot` also ends in `dot`.
     let candidates = [
         (text.as_str(), Order::Value),
-        (text.strip_suffix("_ddot").unwrap_or(""), Order::Acceleration),
+        (
+            text.strip_suffix("_ddot").unwrap_or(""),
+            Order::Acceleration,
+        ),
         (text.strip_suffix("_dot").unwrap_or(""), Order::Rate),
     ];
     for (stem, order) in candidates {

@@ -166,12 +166,14 @@ impl Generator<'_> {
             .chain(&eq.acceleration_rhs)
             .copied()
             .collect();
-        let (bindings, Block {
-            mut statements,
-            outputs,
-            ..
-        }) =
-            self.block_with(&entries, Bindings::ParametersOnly, &presets, &stage);
+        let (
+            bindings,
+            Block {
+                mut statements,
+                outputs,
+                ..
+            },
+        ) = self.block_with(&entries, Bindings::ParametersOnly, &presets, &stage);
         statements.resize(last + 2, Vec::new());
         let mut outputs = outputs.into_iter();
         let mut choices = self.branch_choices(steps).into_iter();

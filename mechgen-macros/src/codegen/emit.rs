@@ -215,7 +215,9 @@ impl Emitter<'_> {
                     }
                     statements[stage[i]].push(statement);
                 }
-                Node::Add(..) | Node::Mul(..) if uses[i] > 1 => {
+                Node::Add(..) | Node::Mul(..) | Node::Recip(..) | Node::Sqrt(..)
+                    if uses[i] > 1 && self.names[i].is_none() =>
+                {
                     let value = self.expr(id).0;
                     let name = loop {
                         let name = format!("t{temporaries}");
@@ -355,6 +357,14 @@ impl Emitter<'_> {
                 let a = self.operand(a, Precedence::Atom);
                 (quote!(#a.cos()), Precedence::Atom)
             }
+            Node::Recip(a) => {
+                let a = self.operand(a, Precedence::Atom);
+                (quote!(#a.recip()), Precedence::Atom)
+            }
+            Node::Sqrt(a) => {
+                let a = self.operand(a, Precedence::Atom);
+                (quote!(#a.sqrt()), Precedence::Atom)
+            }
         }
     }
 }
@@ -373,7 +383,9 @@ fn id_at(index: usize) -> ExprId {
 pub fn children(node: Node) -> impl Iterator<Item = ExprId> {
     let (a, b) = match node {
         Node::Const(_) | Node::Var(_) => (None, None),
-        Node::Neg(a) | Node::Sin(a) | Node::Cos(a) => (Some(a), None),
+        Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Recip(a) | Node::Sqrt(a) => {
+            (Some(a), None)
+        }
         Node::Add(a, b) | Node::Mul(a, b) => (Some(a), Some(b)),
     };
     a.into_iter().chain(b)

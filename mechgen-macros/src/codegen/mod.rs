@@ -160,6 +160,7 @@ impl<'a> Generator<'a> {
             Var::Rate(SymbolRef::Unknown(i)) => self.unknown_dots[i].clone(),
             Var::Accel(SymbolRef::Input) => self.input_ddot.clone(),
             Var::Accel(SymbolRef::Unknown(i)) => self.unknown_ddots[i].clone(),
+            Var::Aux(k) => local(&format!("aux{k}")),
             // Parameters are constant: the graph never holds their rates.
             Var::Rate(SymbolRef::Param(i)) | Var::Accel(SymbolRef::Param(i)) => {
                 self.model.params[i].name.clone()
@@ -186,11 +187,14 @@ impl<'a> Generator<'a> {
         } else {
             Bindings::Arguments
         };
-        let (bindings, Block {
-            mut statements,
-            outputs,
-            ..
-        }) = self.block_with(outputs, bindings, &[], &|_| 0);
+        let (
+            bindings,
+            Block {
+                mut statements,
+                outputs,
+                ..
+            },
+        ) = self.block_with(outputs, bindings, &[], &|_| 0);
         let statements = statements.pop().unwrap_or_default();
         (quote!(#bindings #(#statements)*), outputs)
     }

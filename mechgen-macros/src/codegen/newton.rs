@@ -220,12 +220,15 @@ impl Generator<'_> {
             .copied()
             .collect();
         let stage = |var: Var| usize::from(matches!(var, Var::Value(SymbolRef::Unknown(_))));
-        let (bindings, Block {
-            mut statements,
-            outputs,
-            named,
-            used,
-        }) = self.block_with(&entries, Bindings::ParametersOnly, &[], &stage);
+        let (
+            bindings,
+            Block {
+                mut statements,
+                outputs,
+                named,
+                used,
+            },
+        ) = self.block_with(&entries, Bindings::ParametersOnly, &[], &stage);
         statements.resize(2, Vec::new());
         let (hoisted, per_iterate) = (&statements[0], &statements[1]);
         let (residual, rest) = outputs.split_at(n);

@@ -53,12 +53,14 @@ impl Generator<'_> {
             .copied()
             .collect();
         let stage = |var: Var| usize::from(matches!(var, Var::Rate(SymbolRef::Unknown(_))));
-        let (bindings, Block {
-            mut statements,
-            outputs,
-            ..
-        }) =
-            self.block_with(&entries, Bindings::Position, &[], &stage);
+        let (
+            bindings,
+            Block {
+                mut statements,
+                outputs,
+                ..
+            },
+        ) = self.block_with(&entries, Bindings::Position, &[], &stage);
         statements.resize(2, Vec::new());
         let rate_solves = self.rate_solves(&outputs, &statements[0], &statements[1]);
         let (rates, accelerations) = (local("rates"), local("accelerations"));
@@ -150,7 +152,11 @@ impl Generator<'_> {
 
     /// Code that solves `J·x = rhs` for each `(rhs, name)`, binding `name` to `x`: the
     /// factorisation ([`Self::factorise`]) and the solves ([`Self::reuse_solves`]).
-    pub(super) fn solves(&self, jacobian: &[Emitted], right_sides: &[(&[Emitted], Ident)]) -> TokenStream {
+    pub(super) fn solves(
+        &self,
+        jacobian: &[Emitted],
+        right_sides: &[(&[Emitted], Ident)],
+    ) -> TokenStream {
         let factors = self.factorise(jacobian);
         let solves = self.reuse_solves(jacobian, right_sides);
         quote!(#factors #solves)

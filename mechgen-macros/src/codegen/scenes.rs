@@ -19,7 +19,7 @@ use super::emit::{Context, Emitted, children, emit, local};
 use super::{Generator, arg};
 use crate::model::SymbolRef;
 use crate::scene::{Order, Quantity, Scene};
-use crate::symbolic::{Case, ExprId, Graph, Node, SceneExprs, Step, Var};
+use crate::symbolic::{AuxKind, ExprId, Graph, Node, Straight, Threshold, Var};
 
 /// Expressions that depend on the dimensions alone, computed once per mechanism.
 struct Constants {
@@ -53,20 +53,23 @@ impl Generator<'_> {
     /// The items for the declared scenes, outside the mechanism's `impl`: the scenes type,
     /// each scene's output struct, and the kernels.
     pub(super) fn scene_items(&self) -> TokenStream {
-        let (Some(steps), Some(exprs)) = (&self.equations.closed_form, &self.equations.scenes)
-        else {
+        let Some(exprs) = &self.equations.scenes else {
             return TokenStream::new();
         };
         let constants = self.constants(exprs);
         let name = &self.model.name;
         let scenes_type = self.scenes_type();
         let count = Literal::usize_unsuffixed(constants.ids.len());
-        let outputs = self.model.scenes.iter().map(|scene| self.scene_output(scene));
+        let outputs = self
+            .model
+            .scenes
+            .iter()
+            .map(|scene| self.scene_output(scene));
         let kernels = self
             .model
             .scenes
             .iter()
-            .map(|scene| self.kernel(scene, steps, exprs, &constants));
+            .map(|scene| self.kernel(scene, exprs, &constants));
         let docs = doc(&format!(
             "[`{name}`]'s scene kernels (see [`{name}::scenes`]): the mechanism, and what \
              depends on its dimensions alone, computed once."
@@ -140,7 +143,11 @@ impl Generator<'_> {
     }
 
     /// `let name = source.field;` for each parameter in `used`.
-    pub(super) fn parameter_bindings(&self, used: &BTreeSet<Var>, source: TokenStream) -> TokenStream {
+    pub(super) fn parameter_bindings(
+        &self,
+        used: &BTreeSet<Var>,
+        source: TokenStream,
+    ) -> TokenStream {
         let bindings = used.iter().filter_map(|&var| match var {
             Var::Value(SymbolRef::Param(i)) => {
                 let name = &self.model.params[i].name;
@@ -154,10 +161,22 @@ impl Generator<'_> {
     /// The dimension-only subexpressions the kernels read, hoisted as large as they come:
     /// a node is hoisted when it depends on parameters alone, is more than a name or a number,
     /// and is read by something that moves (or is itself an output).
-    fn constants(&self, exprs: &SceneExprs) -> Constants {
+    fn constants(&self, straight: &Straight) -> Constants {
         let graph = &self.equations.graph;
-        let roots = all_scene_roots(&self.model.scenes, exprs);
-        let fixed = fixed_nodes(graph);
+        let roots: Vec<ExprId> = self
+            .model
+            .scenes
+            .iter()
+            .flat_map(|scene| {
+                let outputs = scene_outputs(scene, straight);
+                let needed = needed_aux(graph, straight, &outputs);
+                needed
+                    .into_iter()
+                    .flat_map(|k| aux_arguments(&straight.aux[k]))
+                    .chain(outputs)
+                    .collect::<Vec<_>>()
+            })
+            .collect();
         let mut reachable = vec![false; graph.len()];
         let mut stack = roots.clone();
         while let Some(id) = stack.pop() {
@@ -177,13 +196,15 @@ impl Generator<'_> {
             }
         };
         for &root in &roots {
-            if fixed[root.index()] {
+            if graph.is_fixed(root) {
                 hoist(root);
             }
         }
-        for i in (0..graph.len()).filter(|&i| reachable[i] && !fixed[i]) {
+        for i in
+            (0..graph.len()).filter(|&i| reachable[i] && !graph.is_fixed(ExprId::from_index(i)))
+        {
             for child in children(graph.node(ExprId::from_index(i))) {
-                if fixed[child.index()] {
+                if graph.is_fixed(child) {
                     hoist(child);
                 }
             }
@@ -239,260 +260,201 @@ impl Generator<'_> {
         }
     }
 
-    /// One scene's kernel.
-    fn kernel(
+    /// `let auxK = …;`: auxiliary value `k` from its emitted arguments (taken from
+    /// `emitted`), blaming a non-finite argument among `inputs` when it fails.
+    fn aux_definition(
         &self,
-        scene: &Scene,
-        steps: &[Step],
-        exprs: &SceneExprs,
-        constants: &Constants,
+        k: usize,
+        straight: &Straight,
+        emitted: &mut impl Iterator<Item = Emitted>,
+        branches: &mut [TokenStream],
+        inputs: &TokenStream,
     ) -> TokenStream {
+        let input = &self.model.input.name;
+        let failure = arg("failure");
+        let name = self.var_name(Var::Aux(k as u32));
+        let kind = &straight.aux[k];
+        let args: Vec<Emitted> = emitted.by_ref().take(aux_arguments(kind).len()).collect();
+        let value = match kind {
+            AuxKind::BranchRoot { branch, .. } => {
+                let choice = branches.get_mut(*branch).map(std::mem::take);
+                let [plus, minus] = [&args[0], &args[1]];
+                quote! {
+                    ::mechgen::__private::branch_root(#plus, #minus, #choice.sign::<T>())
+                        .map_err(|#failure| ::mechgen::__private::blame(#inputs, #failure.at(#input)))?
+                }
+            }
+            AuxKind::Inverse(_) => {
+                let x = &args[0];
+                quote! {
+                    ::mechgen::__private::inverse(#x)
+                        .map_err(|#failure| ::mechgen::__private::blame(#inputs, #failure.at(#input)))?
+                }
+            }
+            AuxKind::InverseDeterminant { threshold, .. } => {
+                let [det, inverse_norms] = [&args[0], &args[1]];
+                let threshold = match threshold {
+                    Threshold::Position => quote!(T::constant(8.0) * T::epsilon()),
+                    Threshold::Rates => quote!(::mechgen::singular_threshold::<T>()),
+                };
+                quote! {
+                    ::mechgen::__private::inverse_determinant(#det, #inverse_norms, #threshold)
+                        .map_err(|error| ::mechgen::__private::blame(#inputs, error))?
+                }
+            }
+            AuxKind::Angle { .. } => {
+                let (y, x) = (&args[0], &args[1]);
+                quote!(::mechgen::__private::unit_angle(#y, #x))
+            }
+        };
+        quote!(let #name = #value;)
+    }
+
+    /// One scene's kernel: the auxiliary values it needs, each after the statements its
+    /// arguments read, then its outputs.
+    fn kernel(&self, scene: &Scene, straight: &Straight, constants: &Constants) -> TokenStream {
         let graph = &self.equations.graph;
         let input = &self.model.input.name;
         let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
         let order = scene.order();
-        let n = self.model.unknowns.len();
-        let last = steps.len();
+        let outputs = scene_outputs(scene, straight);
+        let needed = needed_aux(graph, straight, &outputs);
 
-        // Stage s + 1 follows the solve of step s; then the rates, then the accelerations.
-        let mut solved_at = vec![0; n];
-        for (s, step) in steps.iter().enumerate() {
-            step.unknowns.iter().for_each(|&u| solved_at[u] = s + 1);
-        }
-        let stage = |var: Var| match var {
-            Var::Value(SymbolRef::Unknown(u)) => solved_at[u],
-            Var::Rate(SymbolRef::Unknown(_)) => last + 1,
-            Var::Accel(SymbolRef::Unknown(_)) => last + 2,
-            _ => 0,
-        };
-
-        // Sines and cosines of solved angles come from the closed forms' unit vectors, and
-        // dimension-only values from the constants.
-        let mut presets: Vec<(ExprId, Ident, usize)> = Vec::new();
-        let mut direction_bindings = vec![Vec::new(); last + 3];
-        for u in self.solved_angles(steps) {
-            let direction = self.direction(u);
-            let stem = self.model.unknowns[u].name.unraw().to_string();
-            let (sin, cos) = (local(&format!("sin_{stem}")), local(&format!("cos_{stem}")));
-            direction_bindings[solved_at[u]]
-                .push(quote!(let (#sin, #cos) = (#direction.y, #direction.x);));
-            if let Some(var) = graph.lookup(Node::Var(Var::Value(SymbolRef::Unknown(u)))) {
-                for (node, name) in [(Node::Sin(var), &sin), (Node::Cos(var), &cos)] {
-                    if let Some(id) = graph.lookup(node) {
-                        presets.push((id, name.clone(), solved_at[u]));
-                    }
-                }
-            }
-        }
         let constant_names: Vec<Ident> = (0..constants.ids.len())
             .map(|k| local(&format!("constant_{k}")))
             .collect();
-        presets.extend(
-            constants
-                .ids
-                .iter()
-                .zip(&constant_names)
-                .map(|(&id, name)| (id, name.clone(), 0)),
-        );
+        let mut presets: Vec<(ExprId, Ident, usize)> = constants
+            .ids
+            .iter()
+            .zip(&constant_names)
+            .map(|(&id, name)| (id, name.clone(), 0))
+            .collect();
         let mut reserved = self.reserved.clone();
         reserved.extend(constant_names.iter().map(Ident::to_string));
-
-        // What the kernel evaluates: the closed forms, the rate solves it needs, the points.
-        let mut roots: Vec<ExprId> = exprs.coefficients.concat();
-        if order >= Order::Rate {
-            roots.extend(exprs.jacobian.iter().chain(&exprs.velocity_rhs));
-        }
-        if order >= Order::Acceleration {
-            roots.extend(&exprs.acceleration_rhs);
-        }
-        let point_items: Vec<(usize, usize)> = scene
-            .items
-            .iter()
-            .filter_map(|item| match item.quantity {
-                Quantity::Point(p) => Some((p, item.order as usize)),
-                Quantity::Unknown(_) => None,
-            })
-            .collect();
-        for &(p, k) in &point_items {
-            roots.extend(exprs.points[p][k]);
-        }
+        // The input's sine and cosine come first, before anything is read from `self`, so
+        // that nothing lives across the call.
+        let input_trig = graph
+            .lookup(Node::Var(Var::Value(SymbolRef::Input)))
+            .filter(|_| self.model.input.kind == crate::model::Kind::Angle)
+            .map(|var| {
+                let stem = input.unraw().to_string();
+                let (sin, cos) = (local(&format!("sin_{stem}")), local(&format!("cos_{stem}")));
+                for (node, name) in [(Node::Sin(var), &sin), (Node::Cos(var), &cos)] {
+                    if let Some(id) = graph.lookup(node) {
+                        presets.push((id, name.clone(), 0));
+                    }
+                }
+                reserved.extend([sin.to_string(), cos.to_string()]);
+                quote!(let (#sin, #cos) = #input.sin_cos();)
+            });
+        // Auxiliary value k is known from stage k + 1.
+        let stage = |var: Var| match var {
+            Var::Aux(k) => k as usize + 1,
+            _ => 0,
+        };
         let context = Context {
             reserved: &reserved,
             presets: &presets,
             stage: &stage,
         };
+        let arguments: Vec<ExprId> = needed
+            .iter()
+            .flat_map(|&k| aux_arguments(&straight.aux[k]))
+            .collect();
+        let roots: Vec<ExprId> = arguments.iter().chain(&outputs).copied().collect();
         let block = emit(graph, &roots, &|var| self.var_name(var), &context);
         let mut statements = block.statements;
-        statements.resize(last + 3, Vec::new());
-        let mut outputs = block.outputs.into_iter();
+        statements.resize(straight.aux.len() + 1, Vec::new());
+        let mut emitted = block.outputs.into_iter();
 
-        // The constants the emitted code reads, from `self`.
+        // A failure blames a non-finite argument if there is one.
+        let mut labelled = vec![(input, format!("input `{}`", input.unraw()))];
+        if order >= Order::Rate {
+            labelled.push((input_dot, format!("input rate `{input_dot}`")));
+        }
+        if order >= Order::Acceleration {
+            labelled.push((input_ddot, format!("input acceleration `{input_ddot}`")));
+        }
+        let inputs = {
+            let pairs = labelled.iter().map(|(name, label)| quote!((#name, #label)));
+            quote!([#(#pairs),*])
+        };
+
+        // Statements of stage k, then auxiliary value k.
+        let mut body = Vec::new();
+        let mut branches =
+            self.branch_choices(self.equations.closed_form.as_deref().unwrap_or_default());
+        for (k, stage_statements) in statements.iter().enumerate() {
+            body.extend(stage_statements.iter().cloned());
+            if needed.contains(&k) {
+                body.push(self.aux_definition(k, straight, &mut emitted, &mut branches, &inputs));
+            }
+        }
+        let values: Vec<Emitted> = emitted.collect();
+
+        // The constants and parameters the kernel reads, from `self`.
         let read = read_presets(graph, &roots, &presets);
-        let constant_bindings = constants.ids.iter().zip(&constant_names).enumerate().filter_map(
-            |(k, (id, name))| {
-                read.contains(id).then(|| {
-                    let k = Literal::usize_unsuffixed(k);
-                    quote!(let #name = self.constants[#k];)
-                })
-            },
-        );
+        let constant_bindings = constants
+            .ids
+            .iter()
+            .zip(&constant_names)
+            .enumerate()
+            .filter(|(_, (id, _))| read.contains(id))
+            .map(|(k, (_, name))| {
+                let k = Literal::usize_unsuffixed(k);
+                quote!(let #name = self.constants[#k];)
+            });
         let parameter_bindings = self.parameter_bindings(&block.used, quote!(self.mechanism));
 
-        // Angles a scene lists, or that an expression still reads whole, cost an `atan2`.
-        let listed: BTreeSet<usize> = scene
-            .items
-            .iter()
-            .filter_map(|item| match (item.quantity, item.order) {
-                (Quantity::Unknown(u), Order::Value) => Some(u),
-                _ => None,
-            })
-            .collect();
-        let solved_angles = self.solved_angles(steps);
-        let mut choices = self.branch_choices(steps).into_iter();
-        let failure = arg("failure");
-        let solves: Vec<TokenStream> = steps
-            .iter()
-            .zip(&exprs.coefficients)
-            .enumerate()
-            .map(|(s, (step, coefficients))| {
-                let computed = &statements[s];
-                let values: Vec<Emitted> = outputs.by_ref().take(coefficients.len()).collect();
-                let vectors = super::closed_forms::complex_values(&values);
-                let sign = step.case.has_branches().then(|| {
-                    let choice = choices.next();
-                    quote!(, #choice.sign::<T>())
-                });
-                let [a, b] = step.unknowns.map(|u| &self.model.unknowns[u].name);
-                let [direction_a, direction_b] = step.unknowns.map(|u| self.direction(u));
-                let (solver, pattern) = match step.case {
-                    Case::TwoLengths { .. } => ("two_lengths", quote!([#a, #b])),
-                    Case::TwoAngles { .. } => {
-                        ("two_directions", quote!((#direction_a, #direction_b)))
-                    }
-                    Case::LengthAndOwnAngle { .. } => {
-                        ("length_and_own_direction", quote!((#a, #direction_b)))
-                    }
-                    Case::LengthAndOtherAngle { .. } => {
-                        ("length_and_other_direction", quote!((#a, #direction_b)))
-                    }
-                };
-                let solver = Ident::new(solver, proc_macro2::Span::call_site());
-                let directions = &direction_bindings[s + 1];
-                let angles = step
-                    .unknowns
-                    .iter()
-                    .filter(|&&u| {
-                        solved_angles.contains(&u)
-                            && (listed.contains(&u)
-                                || block.used.contains(&Var::Value(SymbolRef::Unknown(u))))
-                    })
-                    .map(|&u| {
-                        let name = &self.model.unknowns[u].name;
-                        let direction = self.direction(u);
-                        quote!(let #name = #direction.angle();)
-                    });
-                quote! {
-                    #(#computed)*
-                    let #pattern = ::mechgen::closed::#solver(#(#vectors),* #sign)
-                        .map_err(|#failure| #failure.at(#input))?;
-                    #(#directions)*
-                    #(#angles)*
-                }
-            })
-            .collect();
-
-        let (rates, accelerations) = (local("rates"), local("accelerations"));
-        let rate_solves = if order >= Order::Rate {
-            let jacobian: Vec<Emitted> = outputs.by_ref().take(n * n).collect();
-            let velocity_rhs: Vec<Emitted> = outputs.by_ref().take(n).collect();
-            let velocity_solve = self.solves(&jacobian, &[(&velocity_rhs, rates.clone())]);
-            let rate_names = &self.unknown_dots;
-            let before = &statements[last];
-            let velocity = quote! {
-                #(#before)*
-                #velocity_solve
-                let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
-            };
-            if order >= Order::Acceleration {
-                let acceleration_rhs: Vec<Emitted> = outputs.by_ref().take(n).collect();
-                let solve =
-                    self.reuse_solves(&jacobian, &[(&acceleration_rhs, accelerations.clone())]);
-                let after = &statements[last + 1];
-                let ddot_names = &self.unknown_ddots;
-                quote! {
-                    #velocity
-                    #(#after)*
-                    #solve
-                    let [#(#ddot_names),*] =
-                        ::mechgen::__private::finite(#accelerations, "acceleration")?;
-                }
-            } else {
-                velocity
-            }
-        } else {
-            let before = &statements[last];
-            quote!(#(#before)*)
-        };
-        // What reads the last solve's results.
-        let after_rates: &[TokenStream] = match order {
-            Order::Acceleration => &statements[last + 2],
-            Order::Rate => &statements[last + 1],
-            Order::Value => &[],
-        };
-
-        // The outputs, in the order listed; points checked finite together.
-        let point_values: Vec<Emitted> = outputs.collect();
-        let mut point_values = point_values.chunks(2);
-        let mut point_components = Vec::new();
+        // Outputs in the order listed, checked finite together.
+        let mut values = values.into_iter();
+        let mut checked = Vec::new();
         let fields: Vec<TokenStream> = scene
             .items
             .iter()
             .map(|item| {
                 let field = &item.field;
+                let count = if matches!(item.quantity, Quantity::Point(_)) {
+                    2
+                } else {
+                    1
+                };
+                let parts: Vec<TokenStream> = values
+                    .by_ref()
+                    .take(count)
+                    .map(|value| {
+                        let index = Literal::usize_unsuffixed(checked.len());
+                        checked.push(quote!(#value));
+                        let checked_values = local("values");
+                        quote!(#checked_values[#index])
+                    })
+                    .collect();
                 match item.quantity {
-                    Quantity::Unknown(u) => {
-                        let value = match item.order {
-                            Order::Value => self.model.unknowns[u].name.clone(),
-                            Order::Rate => self.unknown_dots[u].clone(),
-                            Order::Acceleration => self.unknown_ddots[u].clone(),
-                        };
-                        if field.unraw() == value.unraw() {
-                            quote!(#value)
-                        } else {
-                            quote!(#field: #value)
-                        }
-                    }
                     Quantity::Point(_) => {
-                        let pair = point_values.next().unwrap_or_default();
-                        point_components.extend(pair.iter().map(|e| quote!(#e)));
-                        let k = Literal::usize_unsuffixed(point_components.len() - 2);
-                        let k1 = Literal::usize_unsuffixed(point_components.len() - 1);
-                        let points = local("values");
-                        quote!(#field: ::mechgen::Vec2 { x: #points[#k], y: #points[#k1] })
+                        let [x, y] = [&parts[0], &parts[1]];
+                        quote!(#field: ::mechgen::Vec2 { x: #x, y: #y })
+                    }
+                    Quantity::Unknown(_) => {
+                        let value = &parts[0];
+                        quote!(#field: #value)
                     }
                 }
             })
             .collect();
-        let values = local("values");
-        let point_check = (!point_components.is_empty()).then(|| {
-            quote! {
-                let #values = ::mechgen::__private::finite([#(#point_components),*], "point")?;
-            }
-        });
+        let checked_values = local("values");
+        let check = quote! {
+            let #checked_values = ::mechgen::__private::finite_all([#(#checked),*], "scene output")
+                .map_err(|error| ::mechgen::__private::blame(#inputs, error))?;
+        };
 
+        let steps = self.equations.closed_form.as_deref().unwrap_or_default();
         let branch_parameter = self.branch_parameter(steps);
         let mut arguments = Vec::new();
-        let input_label = format!("input `{}`", input.unraw());
-        let mut checks = vec![quote!((#input, #input_label))];
         if order >= Order::Rate {
             arguments.push(quote!(#input_dot: T,));
-            let label = format!("input rate `{input_dot}`");
-            checks.push(quote!((#input_dot, #label)));
         }
         if order >= Order::Acceleration {
             arguments.push(quote!(#input_ddot: T,));
-            let label = format!("input acceleration `{input_ddot}`");
-            checks.push(quote!((#input_ddot, #label)));
         }
         let output_type = self.scene_output_type(scene);
         let name = &scene.name;
@@ -516,56 +478,67 @@ impl Generator<'_> {
             #docs
             ///
             #errors
-            #[allow(unused_variables)]
             #[inline]
             pub fn #name(
                 &self,
                 #input: T #branch_parameter,
                 #(#arguments)*
             ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
-                ::mechgen::__private::check_finite(&[#(#checks),*])?;
+                #input_trig
                 #(#constant_bindings)*
                 #parameter_bindings
-                #(#solves)*
-                #rate_solves
-                #(#after_rates)*
-                #point_check
+                #(#body)*
+                #check
                 ::core::result::Result::Ok(#output_type { #(#fields),* })
             }
         }
     }
 }
 
-/// Every expression some scene evaluates.
-fn all_scene_roots(scenes: &[Scene], exprs: &SceneExprs) -> Vec<ExprId> {
-    let order = scenes.iter().map(Scene::order).max().unwrap_or(Order::Value);
-    let mut roots: Vec<ExprId> = exprs.coefficients.concat();
-    if order >= Order::Rate {
-        roots.extend(exprs.jacobian.iter().chain(&exprs.velocity_rhs));
-    }
-    if order >= Order::Acceleration {
-        roots.extend(&exprs.acceleration_rhs);
-    }
-    for item in scenes.iter().flat_map(|scene| &scene.items) {
-        if let Quantity::Point(p) = item.quantity {
-            roots.extend(exprs.points[p][item.order as usize]);
-        }
-    }
-    roots
+/// A scene's outputs, in the order listed (a point's x then y).
+fn scene_outputs(scene: &Scene, straight: &Straight) -> Vec<ExprId> {
+    scene
+        .items
+        .iter()
+        .flat_map(|item| match (item.quantity, item.order) {
+            (Quantity::Unknown(u), Order::Value) => vec![straight.values[u]],
+            (Quantity::Unknown(u), Order::Rate) => vec![straight.rates[u]],
+            (Quantity::Unknown(u), Order::Acceleration) => vec![straight.accelerations[u]],
+            (Quantity::Point(p), order) => straight.points[p][order as usize].to_vec(),
+        })
+        .collect()
 }
 
-/// Which nodes depend on the dimensions alone (parameters and numbers).
-fn fixed_nodes(graph: &Graph) -> Vec<bool> {
-    let mut fixed = vec![false; graph.len()];
-    // Children come before parents in the arena.
-    for i in 0..graph.len() {
-        fixed[i] = match graph.node(ExprId::from_index(i)) {
-            Node::Const(_) | Node::Var(Var::Value(SymbolRef::Param(_))) => true,
-            Node::Var(_) => false,
-            node => children(node).all(|c| fixed[c.index()]),
-        };
+/// What an auxiliary value is computed from.
+fn aux_arguments(kind: &AuxKind) -> Vec<ExprId> {
+    match *kind {
+        AuxKind::BranchRoot { plus, minus, .. } => vec![plus, minus],
+        AuxKind::Inverse(x) => vec![x],
+        AuxKind::InverseDeterminant {
+            det, inverse_norms, ..
+        } => vec![det, inverse_norms],
+        AuxKind::Angle { y, x } => vec![y, x],
     }
-    fixed
+}
+
+/// The auxiliary values `outputs` read, directly or through other auxiliary values, in
+/// order.
+fn needed_aux(graph: &Graph, straight: &Straight, outputs: &[ExprId]) -> BTreeSet<usize> {
+    let mut needed = BTreeSet::new();
+    let mut seen = vec![false; graph.len()];
+    let mut stack = outputs.to_vec();
+    while let Some(id) = stack.pop() {
+        if std::mem::replace(&mut seen[id.index()], true) {
+            continue;
+        }
+        if let Node::Var(Var::Aux(k)) = graph.node(id)
+            && needed.insert(k as usize)
+        {
+            stack.extend(aux_arguments(&straight.aux[k as usize]));
+        }
+        stack.extend(children(graph.node(id)));
+    }
+    needed
 }
 
 /// The presets (of `presets`) that `roots` read, stopping at presets.

@@ -8,85 +8,52 @@
 //! unknown) with coefficient ±1 in an angle becomes a factor `e^{±iθ}` of its own; whatever
 //! is left (constants, parameters, moving names with other coefficients) stays one angle.
 
-use std::collections::HashMap;
-
 use crate::model::SymbolRef;
 
 use super::graph::{ExprId, Graph, Node, Var};
+use super::rewrite::Rewriter;
 
 /// `roots`, rewritten with every sine and cosine of a sum taken apart.
 pub fn expand(graph: &mut Graph, roots: &[ExprId]) -> Vec<ExprId> {
-    let mut expander = Expander {
-        graph,
-        memo: HashMap::new(),
-    };
-    roots.iter().map(|&root| expander.expr(root)).collect()
+    Rewriter::new(|graph, id| match graph.node(id) {
+        Node::Cos(angle) => Some(unit(graph, angle)[0]),
+        Node::Sin(angle) => Some(unit(graph, angle)[1]),
+        _ => None,
+    })
+    .all(graph, roots)
 }
 
-struct Expander<'a> {
-    graph: &'a mut Graph,
-    memo: HashMap<ExprId, ExprId>,
-}
-
-impl Expander<'_> {
-    fn expr(&mut self, id: ExprId) -> ExprId {
-        if let Some(&done) = self.memo.get(&id) {
-            return done;
+/// `(cos, sin)` of `angle` as a product of one unit vector per moving name and one for the
+/// rest of the sum.
+fn unit(graph: &mut Graph, angle: ExprId) -> [ExprId; 2] {
+    let mut terms = Vec::new();
+    collect_terms(graph, angle, false, &mut terms);
+    let mut rest = graph.constant(0.0);
+    let mut turns = Vec::new();
+    for (term, negated) in terms {
+        match graph.node(term) {
+            Node::Var(var @ Var::Value(SymbolRef::Input | SymbolRef::Unknown(_))) => {
+                turns.push((var, negated))
+            }
+            _ if negated => rest = graph.sub(rest, term),
+            _ => rest = graph.add(rest, term),
         }
-        let rewritten = match self.graph.node(id) {
-            Node::Const(_) | Node::Var(_) => id,
-            Node::Neg(a) => {
-                let a = self.expr(a);
-                self.graph.neg(a)
-            }
-            Node::Add(a, b) => {
-                let (a, b) = (self.expr(a), self.expr(b));
-                self.graph.add(a, b)
-            }
-            Node::Mul(a, b) => {
-                let (a, b) = (self.expr(a), self.expr(b));
-                self.graph.mul(a, b)
-            }
-            Node::Cos(angle) => self.unit(angle)[0],
-            Node::Sin(angle) => self.unit(angle)[1],
-        };
-        self.memo.insert(id, rewritten);
-        rewritten
     }
-
-    /// `(cos, sin)` of `angle` as a product of one unit vector per moving name and one for
-    /// the rest of the sum.
-    fn unit(&mut self, angle: ExprId) -> [ExprId; 2] {
-        let graph = &mut *self.graph;
-        let mut terms = Vec::new();
-        collect_terms(graph, angle, false, &mut terms);
-        let mut rest = graph.constant(0.0);
-        let mut turns = Vec::new();
-        for (term, negated) in terms {
-            match graph.node(term) {
-                Node::Var(var @ Var::Value(SymbolRef::Input | SymbolRef::Unknown(_))) => {
-                    turns.push((var, negated))
-                }
-                _ if negated => rest = graph.sub(rest, term),
-                _ => rest = graph.add(rest, term),
-            }
-        }
-        if turns.is_empty() {
-            return [graph.cos(angle), graph.sin(angle)];
-        }
-        let mut unit = [graph.cos(rest), graph.sin(rest)];
-        for (var, negated) in turns {
-            let var = graph.var(var);
-            let (cos, sin) = (graph.cos(var), graph.sin(var));
-            let sin = if negated { graph.neg(sin) } else { sin };
-            // (a + ib)(c + id) = (ac − bd) + i(ad + bc)
-            let [a, b] = unit;
-            let (ac, bd) = (graph.mul(a, cos), graph.mul(b, sin));
-            let (ad, bc) = (graph.mul(a, sin), graph.mul(b, cos));
-            unit = [graph.sub(ac, bd), graph.add(ad, bc)];
-        }
-        unit
+    if turns.is_empty() {
+        return [graph.cos(angle), graph.sin(angle)];
     }
+    let mut unit = [graph.cos(rest), graph.sin(rest)];
+    for (var, negated) in turns {
+        let var = graph.var(var);
+        let (cos, sin) = (graph.cos(var), graph.sin(var));
+        let sin = if negated { graph.neg(sin) } else { sin };
+        // (a + ib)(c + id) = (ac − bd) + i(ad + bc)
+        let [a, b] = unit;
+        let (ac, bd) = (graph.mul(a, cos), graph.mul(b, sin));
+        let (ad, bc) = (graph.mul(a, sin), graph.mul(b, cos));
+        unit = [graph.sub(ac, bd), graph.add(ad, bc)];
+    }
+    unit
 }
 
 /// The terms of a sum, each with whether it is subtracted.

@@ -9,6 +9,7 @@
 use crate::model::{Model, SymbolRef, VectorSum};
 
 use super::graph::{ExprId, Graph, Var};
+use super::straight::Straight;
 
 /// A tracked point's position, velocity and acceleration as `(x, y)` expressions, and its
 /// acceleration split into tangential, normal, sliding and Coriolis parts.
@@ -38,7 +39,7 @@ pub struct Equations {
     /// The loops in the order they solve in closed form, if every one does.
     pub closed_form: Option<Vec<super::closed_form::Step>>,
     /// What scene kernels evaluate, when the declaration has scenes and a closed form.
-    pub scenes: Option<SceneExprs>,
+    pub scenes: Option<Straight>,
 }
 
 /// The expressions scene kernels evaluate: those of the closed form, the rates and the
@@ -129,9 +130,13 @@ impl Equations {
         let closed_form = super::closed_form::plan(model, &mut graph);
         let scenes = match &closed_form {
             Some(steps) if !model.scenes.is_empty() => {
+                graph.group_fixed_factors();
                 let mut expand = |roots: &[ExprId]| super::angles::expand(&mut graph, roots);
                 Some(SceneExprs {
-                    coefficients: steps.iter().map(|s| expand(&s.case.coefficients())).collect(),
+                    coefficients: steps
+                        .iter()
+                        .map(|s| expand(&s.case.coefficients()))
+                        .collect(),
                     jacobian: expand(&jacobian.concat()),
                     velocity_rhs: expand(&velocity_rhs),
                     acceleration_rhs: expand(&acceleration_rhs),
@@ -148,6 +153,10 @@ impl Equations {
             }
             _ => None,
         };
+        let scenes = scenes.map(|exprs| {
+            let steps = closed_form.as_deref().unwrap_or_default();
+            super::straight::build(&mut graph, steps, &exprs)
+        });
         Equations {
             closed_form,
             scenes,

@@ -19,6 +19,10 @@ pub enum Var {
     Rate(SymbolRef),
     /// Second time derivative of the input or an unknown.
     Accel(SymbolRef),
+    /// A value a straight-line kernel gets from a checked runtime helper (a square root that
+    /// may say "cannot assemble", a reciprocal that may say "singular"): see
+    /// [`super::straight`].
+    Aux(u32),
 }
 
 impl Var {
@@ -29,7 +33,7 @@ impl Var {
             Var::Value(SymbolRef::Param(_)) => None,
             Var::Value(symbol) => Some(Var::Rate(symbol)),
             Var::Rate(symbol) => Some(Var::Accel(symbol)),
-            Var::Accel(_) => None,
+            Var::Accel(_) | Var::Aux(_) => None,
         }
     }
 }
@@ -58,6 +62,11 @@ pub enum Node {
     Neg(ExprId),
     Sin(ExprId),
     Cos(ExprId),
+    /// `1/x`: only straight-line kernels build it, for reciprocals that are hoisted or
+    /// shared.
+    Recip(ExprId),
+    /// `√x` of a non-negative `x`: only straight-line kernels build it.
+    Sqrt(ExprId),
 }
 
 #[derive(Default)]
@@ -65,6 +74,10 @@ pub struct Graph {
     nodes: Vec<Node>,
     index: HashMap<Node, ExprId>,
     partials: HashMap<(ExprId, Var), ExprId>,
+    /// Whether each node depends on the dimensions alone (parameters and numbers).
+    fixed: Vec<bool>,
+    /// While set, products keep their fixed factors together (see [`Graph::mul`]).
+    group_fixed: bool,
 }
 
 /// Values within this of 0 or ±1 after folding `sin`/`cos` of a constant are snapped, so that
@@ -101,9 +114,30 @@ impl Graph {
             return id;
         }
         let id = ExprId::from_index(self.nodes.len());
+        let fixed = match node {
+            Node::Const(_) | Node::Var(Var::Value(SymbolRef::Param(_))) => true,
+            Node::Var(_) => false,
+            Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Recip(a) | Node::Sqrt(a) => {
+                self.fixed[a.index()]
+            }
+            Node::Add(a, b) | Node::Mul(a, b) => self.fixed[a.index()] && self.fixed[b.index()],
+        };
         self.nodes.push(node);
+        self.fixed.push(fixed);
         self.index.insert(node, id);
         id
+    }
+
+    /// Whether `id` depends on the dimensions alone.
+    pub fn is_fixed(&self, id: ExprId) -> bool {
+        self.fixed[id.index()]
+    }
+
+    /// From now on, build products as (fixed factors)·(the others), so that what depends on
+    /// the dimensions alone is one subexpression that a kernel can compute once per
+    /// mechanism. Expressions built before keep their form.
+    pub fn group_fixed_factors(&mut self) {
+        self.group_fixed = true;
     }
 
     pub fn constant(&mut self, value: f64) -> ExprId {
@@ -193,11 +227,32 @@ impl Graph {
         for side in [a, b] {
             self.collect_factors(side, &mut factors, &mut constant);
         }
-        factors.sort_unstable();
-        let mut product = factors[0];
-        for &factor in &factors[1..] {
-            product = self.intern(Node::Mul(product, factor));
+        if self.group_fixed && constant.abs() != 1.0 {
+            // The constant is one of the fixed factors; only its sign stays outside.
+            factors.push(self.constant(constant.abs()));
+            constant = constant.signum();
         }
+        factors.sort_unstable();
+        let product = if self.group_fixed {
+            let (fixed, moving): (Vec<ExprId>, Vec<ExprId>) =
+                factors.iter().partition(|&&f| self.fixed[f.index()]);
+            let [fixed, moving] = [fixed, moving].map(|group| {
+                group
+                    .into_iter()
+                    .reduce(|product, factor| self.intern(Node::Mul(product, factor)))
+            });
+            match (fixed, moving) {
+                (Some(fixed), Some(moving)) => self.intern(Node::Mul(fixed, moving)),
+                (Some(only), None) | (None, Some(only)) => only,
+                (None, None) => self.constant(1.0),
+            }
+        } else {
+            let mut product = factors[0];
+            for &factor in &factors[1..] {
+                product = self.intern(Node::Mul(product, factor));
+            }
+            product
+        };
         match constant {
             1.0 => product,
             -1.0 => self.neg(product),
@@ -251,6 +306,28 @@ impl Graph {
         }
     }
 
+    pub fn recip(&mut self, a: ExprId) -> ExprId {
+        match self.node(a) {
+            Node::Const(bits) if f64::from_bits(bits) != 0.0 => {
+                self.constant(1.0 / f64::from_bits(bits))
+            }
+            Node::Neg(x) => {
+                let inverse = self.recip(x);
+                self.neg(inverse)
+            }
+            _ => self.intern(Node::Recip(a)),
+        }
+    }
+
+    pub fn sqrt(&mut self, a: ExprId) -> ExprId {
+        match self.node(a) {
+            Node::Const(bits) if f64::from_bits(bits) >= 0.0 => {
+                self.constant(f64::from_bits(bits).sqrt())
+            }
+            _ => self.intern(Node::Sqrt(a)),
+        }
+    }
+
     /// `∂e/∂var`, memoised per (node, variable) so shared subgraphs are differentiated once.
     pub fn partial(&mut self, e: ExprId, var: Var) -> ExprId {
         if let Some(&d) = self.partials.get(&(e, var)) {
@@ -283,6 +360,19 @@ impl Graph {
                 let sine = self.sin(a);
                 let product = self.mul(sine, da);
                 self.neg(product)
+            }
+            Node::Recip(a) => {
+                let da = self.partial(a, var);
+                let square = self.mul(e, e);
+                let product = self.mul(square, da);
+                self.neg(product)
+            }
+            Node::Sqrt(a) => {
+                let da = self.partial(a, var);
+                let two = self.constant(2.0);
+                let twice = self.mul(two, e);
+                let inverse = self.recip(twice);
+                self.mul(inverse, da)
             }
         };
         self.partials.insert((e, var), d);

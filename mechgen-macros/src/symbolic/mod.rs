@@ -5,7 +5,10 @@ mod angles;
 mod closed_form;
 mod equations;
 mod graph;
+mod rewrite;
+mod straight;
 
 pub use closed_form::{Case, Step};
 pub use equations::{Equations, PointExprs, SceneExprs};
 pub use graph::{ExprId, Graph, Node, Var};
+pub use straight::{AuxKind, Straight, Threshold};

@@ -1,0 +1,369 @@
+//! Straight-line kernels: a closed-form plan, the rate solves and the points as one
+//! expression graph, so that every product is formed once, everything that depends on the
+//! dimensions alone can be computed once per mechanism, and nothing is computed that an
+//! output does not read.
+//!
+//! Each loop's closed form (Chace's cases, as `mechgen::closed` solves them) is written out
+//! as expressions; where it needs a value that can fail (a square root that says the loop
+//! cannot close, a reciprocal that says the configuration is degenerate or singular) the
+//! value is an auxiliary variable ([`Var::Aux`]) computed by a checked runtime helper. A
+//! solved angle is read through its unit vector `(cos θ, sin θ)`; the angle itself is an
+//! `atan2` of it, computed only if an output needs it. The rates then come from the Jacobian,
+//! block lower-triangular in plan order, by Cramer's rule on each loop's 2×2 block, with the
+//! block's reciprocal determinant checked once and shared by velocity and acceleration.
+
+use std::collections::HashMap;
+
+use crate::model::SymbolRef;
+
+use super::SceneExprs;
+use super::closed_form::{Case, Complex, Step};
+use super::graph::{ExprId, Graph, Node, Var};
+use super::rewrite::Rewriter;
+
+/// How an auxiliary variable is computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AuxKind {
+    /// `±√(plus − minus)` with the sign of branch `branch`; a radicand below zero by more
+    /// than rounding of `plus + |minus|` means the loop cannot close.
+    BranchRoot {
+        plus: ExprId,
+        minus: ExprId,
+        branch: usize,
+    },
+    /// `1/x`; a zero `x` is a degenerate configuration.
+    Inverse(ExprId),
+    /// `1/det` of a 2×2 block whose columns' norms multiply to `1/inverse_norms`; singular
+    /// where the relative determinant `|det|·inverse_norms` is at or below the threshold.
+    InverseDeterminant {
+        det: ExprId,
+        inverse_norms: ExprId,
+        threshold: Threshold,
+    },
+    /// A solved angle from its unit vector `(x, y)`, as `atan2(y, x)` would give it.
+    Angle { y: ExprId, x: ExprId },
+}
+
+/// Where a 2×2 block counts as singular.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Threshold {
+    /// Two unknown lengths along parallel directions: within rounding of parallel.
+    Position,
+    /// The rates: `mechgen::singular_threshold()`, as every rate solve.
+    Rates,
+}
+
+/// A scene's everything, as expressions over the input, its rates and [`Var::Aux`] values.
+pub struct Straight {
+    /// Auxiliary variable `k` is `aux[k]`; each reads only expressions of earlier ones.
+    pub aux: Vec<AuxKind>,
+    /// Each unknown's value: a length's expression, or an angle's `atan2`.
+    pub values: Vec<ExprId>,
+    pub rates: Vec<ExprId>,
+    pub accelerations: Vec<ExprId>,
+    /// Each point's `[position, velocity, acceleration]`, each `(x, y)`.
+    pub points: Vec<[[ExprId; 2]; 3]>,
+}
+
+struct Builder<'g> {
+    graph: &'g mut Graph,
+    aux: Vec<AuxKind>,
+    known: HashMap<AuxKind, ExprId>,
+    /// Nodes of the model's expressions and what they become here.
+    replace: HashMap<ExprId, ExprId>,
+    /// For each closed-form step, `1/(‖c0‖·‖c1‖)` of its loop's Jacobian block: the case
+    /// knows the columns' norms (`|w1|` and `|w2|` for two angles, say), which for fixed
+    /// vectors are constants of the mechanism.
+    inverse_norms: Vec<ExprId>,
+}
+
+impl Builder<'_> {
+    fn aux(&mut self, kind: AuxKind) -> ExprId {
+        if let Some(&var) = self.known.get(&kind) {
+            return var;
+        }
+        let index = u32::try_from(self.aux.len()).expect("auxiliary variables fit in u32");
+        let var = self.graph.var(Var::Aux(index));
+        self.aux.push(kind);
+        self.known.insert(kind, var);
+        var
+    }
+
+    /// `exprs` with every solved quantity so far replaced by its expression.
+    fn substituted(&mut self, exprs: &[ExprId]) -> Vec<ExprId> {
+        let replace = &self.replace;
+        Rewriter::new(|_, id| replace.get(&id).copied()).all(self.graph, exprs)
+    }
+
+    fn dot(&mut self, a: Complex, b: Complex) -> ExprId {
+        let (x, y) = (self.graph.mul(a[0], b[0]), self.graph.mul(a[1], b[1]));
+        self.graph.add(x, y)
+    }
+
+    /// `a × b`, the z component.
+    fn cross(&mut self, a: Complex, b: Complex) -> ExprId {
+        let (x, y) = (self.graph.mul(a[0], b[1]), self.graph.mul(a[1], b[0]));
+        self.graph.sub(x, y)
+    }
+
+    fn scaled(&mut self, a: Complex, s: ExprId) -> Complex {
+        [self.graph.mul(a[0], s), self.graph.mul(a[1], s)]
+    }
+
+    fn plus(&mut self, a: Complex, b: Complex) -> Complex {
+        [self.graph.add(a[0], b[0]), self.graph.add(a[1], b[1])]
+    }
+
+    fn negated(&mut self, a: Complex) -> Complex {
+        [self.graph.neg(a[0]), self.graph.neg(a[1])]
+    }
+
+    /// The unit vector `e^{iq}` that turns `from` onto `to` when `|to| = |from|`:
+    /// `to·conj(from)/|from|²`.
+    fn turn(&mut self, to: Complex, from: Complex) -> Complex {
+        let product = [self.dot(to, from), self.cross(from, to)];
+        let squared = self.dot(from, from);
+        let inverse = self.graph.recip(squared);
+        self.scaled(product, inverse)
+    }
+
+    /// Records an unknown angle's unit vector: its sine and cosine, and (through `atan2`) its
+    /// value, wherever the model's expressions read them.
+    fn solved_angle(&mut self, unknown: usize, unit: Complex, values: &mut [ExprId]) {
+        let var = self.graph.var(Var::Value(SymbolRef::Unknown(unknown)));
+        let angle = self.aux(AuxKind::Angle {
+            y: unit[1],
+            x: unit[0],
+        });
+        values[unknown] = angle;
+        self.replace.insert(var, angle);
+        for (node, value) in [(Node::Cos(var), unit[0]), (Node::Sin(var), unit[1])] {
+            if let Some(id) = self.graph.lookup(node) {
+                self.replace.insert(id, value);
+            }
+        }
+    }
+
+    fn solved_length(&mut self, unknown: usize, value: ExprId, values: &mut [ExprId]) {
+        let var = self.graph.var(Var::Value(SymbolRef::Unknown(unknown)));
+        values[unknown] = value;
+        self.replace.insert(var, value);
+    }
+
+    /// Records `1/(‖c0‖·‖c1‖)` for the step's Jacobian block from its columns' squared norms.
+    fn block_columns(&mut self, squares: [ExprId; 2]) {
+        let [first, second] = squares.map(|square| self.graph.sqrt(square));
+        let product = self.graph.mul(first, second);
+        let inverse = self.graph.recip(product);
+        self.inverse_norms.push(inverse);
+    }
+
+    /// One loop in closed form; `branch` counts the branching loops so far.
+    fn close(
+        &mut self,
+        step: &Step,
+        coefficients: &[ExprId],
+        branch: &mut usize,
+        values: &mut [ExprId],
+    ) {
+        let coefficients = self.substituted(coefficients);
+        let vector = |i: usize| [coefficients[2 * i], coefficients[2 * i + 1]];
+        let [a, b] = step.unknowns;
+        let mut branch_root = |builder: &mut Self, plus: ExprId, minus: ExprId| {
+            let root = builder.aux(AuxKind::BranchRoot {
+                plus,
+                minus,
+                branch: *branch,
+            });
+            *branch += 1;
+            root
+        };
+        match step.case {
+            Case::TwoLengths { .. } => {
+                let (k, v1, v2) = (vector(0), vector(1), vector(2));
+                let det = self.cross(v1, v2);
+                let columns = [self.dot(v1, v1), self.dot(v2, v2)];
+                self.block_columns(columns);
+                let inverse_norms = *self.inverse_norms.last().expect("just recorded");
+                let inverse = self.aux(AuxKind::InverseDeterminant {
+                    det,
+                    inverse_norms,
+                    threshold: Threshold::Position,
+                });
+                let (first, second) = (self.cross(v2, k), self.cross(k, v1));
+                let first = self.graph.mul(first, inverse);
+                let second = self.graph.mul(second, inverse);
+                self.solved_length(a, first, values);
+                self.solved_length(b, second, values);
+            }
+            Case::TwoAngles { .. } => {
+                // P1 = e^{iq1}·w1 and P2 = e^{iq2}·w2 span the chord −K: P1's tip is where
+                // circles of radii |w1| and |w2| about the chord's ends meet. With c = |K|,
+                // P1 = (a·K̂ ± h·iK̂), where a·c = (|w1|² − |w2|² + c²)/2 and
+                // h·c = √(|w1|²·c² − (a·c)²): one square root and one reciprocal, of c².
+                let (k, w1, w2) = (vector(0), vector(1), vector(2));
+                let chord = self.negated(k);
+                let chord_squared = self.dot(chord, chord);
+                let inverse = self.aux(AuxKind::Inverse(chord_squared));
+                let (r1, r2) = (self.dot(w1, w1), self.dot(w2, w2));
+                // ∂/∂q1 = i·e^{iq1}·w1, ∂/∂q2 = i·e^{iq2}·w2.
+                self.block_columns([r1, r2]);
+                let half = self.graph.constant(0.5);
+                let difference = self.graph.sub(r1, r2);
+                let sum = self.graph.add(difference, chord_squared);
+                let along = self.graph.mul(half, sum);
+                let along_squared = self.graph.mul(along, along);
+                let plus = self.graph.mul(r1, chord_squared);
+                let height = branch_root(self, plus, along_squared);
+                let normal = [self.graph.neg(chord[1]), chord[0]];
+                let (on, off) = (self.scaled(chord, along), self.scaled(normal, height));
+                let sum = self.plus(on, off);
+                let p1 = self.scaled(sum, inverse);
+                let minus_p1 = self.negated(p1);
+                let p2 = self.plus(chord, minus_p1);
+                let (e1, e2) = (self.turn(p1, w1), self.turn(p2, w2));
+                self.solved_angle(a, e1, values);
+                self.solved_angle(b, e2, values);
+            }
+            Case::LengthAndOwnAngle { .. } => {
+                // |l·w1 + w0| = |K|: a quadratic in l; then the vector turns onto −K.
+                let (k, w0, w1) = (vector(0), vector(1), vector(2));
+                let quadratic = self.dot(w1, w1);
+                let half_b = self.dot(w1, w0);
+                let k_squared = self.dot(k, k);
+                // ∂/∂l = e^{iq}·w1, ∂/∂q = i·e^{iq}·(l·w1 + w0), of norm |K|.
+                self.block_columns([quadratic, k_squared]);
+                // (w1·w0)² − |w1|²·(|w0|² − |K|²) = |w1|²·|K|² − (w1×w0)² (Lagrange's
+                // identity): no cancellation between large squares.
+                let plus = self.graph.mul(quadratic, k_squared);
+                let skew = self.cross(w1, w0);
+                let minus = self.graph.mul(skew, skew);
+                let root = branch_root(self, plus, minus);
+                let length = self.quadratic_solution(half_b, root, quadratic);
+                let moving = self.scaled(w1, length);
+                let turned = self.plus(moving, w0);
+                let target = self.negated(k);
+                // |turned| = |K|, and a zero |K| leaves the angle undetermined.
+                let product = [self.dot(target, turned), self.cross(turned, target)];
+                let inverse = self.aux(AuxKind::Inverse(k_squared));
+                let unit = self.scaled(product, inverse);
+                self.solved_length(a, length, values);
+                self.solved_angle(b, unit, values);
+            }
+            Case::LengthAndOtherAngle { .. } => {
+                // The point K + l·v on a line meets the circle of radius |w0|.
+                let (k, v, w0) = (vector(0), vector(1), vector(2));
+                let quadratic = self.dot(v, v);
+                let radius_squared = self.dot(w0, w0);
+                // ∂/∂l = v, ∂/∂q = i·e^{iq}·w0.
+                self.block_columns([quadratic, radius_squared]);
+                let half_b = self.dot(v, k);
+                // (v·K)² − |v|²·(|K|² − |w0|²) = |v|²·|w0|² − (v×K)² (Lagrange's identity).
+                let plus = self.graph.mul(quadratic, radius_squared);
+                let skew = self.cross(v, k);
+                let minus = self.graph.mul(skew, skew);
+                let root = branch_root(self, plus, minus);
+                let length = self.quadratic_solution(half_b, root, quadratic);
+                let along = self.scaled(v, length);
+                let point = self.plus(k, along);
+                let target = self.negated(point);
+                let unit = self.turn(target, w0);
+                self.solved_length(a, length, values);
+                self.solved_angle(b, unit, values);
+            }
+        }
+    }
+
+    /// `(−half_b + root) / a`.
+    fn quadratic_solution(&mut self, half_b: ExprId, root: ExprId, a: ExprId) -> ExprId {
+        let numerator = self.graph.sub(root, half_b);
+        let inverse = self.graph.recip(a);
+        self.graph.mul(numerator, inverse)
+    }
+
+    /// Solves `J·x = rhs` block by block in plan order (the Jacobian is block
+    /// lower-triangular in that order), each 2×2 block by Cramer's rule.
+    fn solve(&mut self, steps: &[Step], jacobian: &[ExprId], rhs: &[ExprId]) -> Vec<ExprId> {
+        let n = rhs.len();
+        let entry = |row: usize, column: usize| jacobian[row * n + column];
+        let mut x: Vec<Option<ExprId>> = vec![None; n];
+        for (s, step) in steps.iter().enumerate() {
+            let rows = [2 * step.loop_index, 2 * step.loop_index + 1];
+            let [a, b] = step.unknowns;
+            let right = rows.map(|row| {
+                (0..n).fold(rhs[row], |sum, u| match x[u] {
+                    Some(known) if !self.graph.is_zero(entry(row, u)) => {
+                        let moved = self.graph.mul(entry(row, u), known);
+                        self.graph.sub(sum, moved)
+                    }
+                    _ => sum,
+                })
+            });
+            let [[j00, j01], [j10, j11]] = rows.map(|row| [entry(row, a), entry(row, b)]);
+            let (p, q) = (self.graph.mul(j00, j11), self.graph.mul(j01, j10));
+            let det = self.graph.sub(p, q);
+            let inverse = self.aux(AuxKind::InverseDeterminant {
+                det,
+                inverse_norms: self.inverse_norms[s],
+                threshold: Threshold::Rates,
+            });
+            let first = self.cross([right[0], right[1]], [j01, j11]);
+            let second = self.cross([j00, j10], [right[0], right[1]]);
+            x[a] = Some(self.graph.mul(first, inverse));
+            x[b] = Some(self.graph.mul(second, inverse));
+        }
+        x.into_iter()
+            .map(|value| value.expect("a closed-form plan solves every unknown"))
+            .collect()
+    }
+
+    /// Records the unknowns' rates (or accelerations) where the model's expressions read them.
+    fn solved_derivatives(&mut self, derivative: fn(SymbolRef) -> Var, values: &[ExprId]) {
+        for (u, &value) in values.iter().enumerate() {
+            let var = self.graph.var(derivative(SymbolRef::Unknown(u)));
+            self.replace.insert(var, value);
+        }
+    }
+}
+
+/// Builds the straight-line form of a closed-form plan from the scene expressions
+/// (angle sums already taken apart).
+pub fn build(graph: &mut Graph, steps: &[Step], exprs: &SceneExprs) -> Straight {
+    let n = exprs.velocity_rhs.len();
+    let mut builder = Builder {
+        graph,
+        aux: Vec::new(),
+        known: HashMap::new(),
+        replace: HashMap::new(),
+        inverse_norms: Vec::new(),
+    };
+    let mut values = vec![ExprId::from_index(0); n];
+    let mut branch = 0;
+    for (step, coefficients) in steps.iter().zip(&exprs.coefficients) {
+        builder.close(step, coefficients, &mut branch, &mut values);
+    }
+    let jacobian = builder.substituted(&exprs.jacobian);
+    let velocity_rhs = builder.substituted(&exprs.velocity_rhs);
+    let rates = builder.solve(steps, &jacobian, &velocity_rhs);
+    builder.solved_derivatives(Var::Rate, &rates);
+    let acceleration_rhs = builder.substituted(&exprs.acceleration_rhs);
+    let accelerations = builder.solve(steps, &jacobian, &acceleration_rhs);
+    builder.solved_derivatives(Var::Accel, &accelerations);
+    let points = exprs
+        .points
+        .iter()
+        .map(|point| {
+            point.map(|pair| {
+                let rewritten = builder.substituted(&pair);
+                [rewritten[0], rewritten[1]]
+            })
+        })
+        .collect();
+    Straight {
+        aux: builder.aux,
+        values,
+        rates,
+        accelerations,
+        points,
+    }
+}

@@ -1,0 +1,95 @@
+//! The checked steps of straight-line scene kernels.
+//!
+//! A scene kernel writes a closed form out as arithmetic (see the macro's
+//! `symbolic::straight`); the few steps that can fail are these, each returning the value or
+//! the reason there is none.
+
+use crate::closed::Failure;
+use crate::{Error, Real};
+
+/// The error to report: a non-finite argument if there is one (its NaN or infinity is what
+/// made the computation fail), else `error`. Kernels check their arguments only on this,
+/// the failing path, so the common path pays nothing for it.
+#[cold]
+pub fn blame<T: Real, const N: usize>(arguments: [(T, &'static str); N], error: Error<T>) -> Error<T> {
+    match arguments.iter().find(|(value, _)| !value.is_finite()) {
+        Some(&(_, quantity)) => Error::NonFinite { quantity },
+        None => error,
+    }
+}
+
+/// `values` if they are all finite, else [`Error::NonFinite`] naming `quantity`: one
+/// product and sum per value (an infinity or NaN times zero is NaN), a single comparison.
+#[inline(always)]
+pub fn all_finite<T: Real, const N: usize>(
+    values: [T; N],
+    quantity: &'static str,
+) -> Result<[T; N], Error<T>> {
+    let zero = values
+        .iter()
+        .fold(T::zero(), |sum, value| sum + *value * T::zero());
+    if zero == T::zero() {
+        Ok(values)
+    } else {
+        Err(Error::NonFinite { quantity })
+    }
+}
+
+/// `sign·√(plus − minus)`: a loop's branch-dependent root. A radicand below zero by no more
+/// than rounding of `plus + |minus|` is a tangency (the root is zero); further below, the
+/// loop cannot close.
+#[inline]
+pub fn branch_root<T: Real>(plus: T, minus: T, sign: T) -> Result<T, Failure> {
+    let radicand = plus - minus;
+    if radicand >= T::zero() {
+        Ok(sign * radicand.sqrt())
+    } else if radicand >= -T::constant(16.0) * T::epsilon() * (plus.abs() + minus.abs()) {
+        Ok(T::zero())
+    } else {
+        Err(Failure::CannotClose)
+    }
+}
+
+/// `1/x`, where a zero `x` (a zero-length chord) leaves the solution undetermined.
+#[inline]
+pub fn inverse<T: Real>(x: T) -> Result<T, Failure> {
+    if x == T::zero() {
+        Err(Failure::Degenerate)
+    } else {
+        Ok(x.recip())
+    }
+}
+
+/// `1/det` of a 2×2 block whose columns' norms multiply to `1/inverse_norms`, or
+/// [`Error::Singular`] where the relative determinant `|det|·inverse_norms` is at or below
+/// `threshold` (or not a number).
+#[inline]
+pub fn inverse_determinant<T: Real>(det: T, inverse_norms: T, threshold: T) -> Result<T, Error<T>> {
+    let relative = det * inverse_norms;
+    if relative.abs() > threshold {
+        Ok(det.recip())
+    } else {
+        Err(Error::Singular {
+            determinant: det,
+            relative_determinant: relative.abs(),
+        })
+    }
+}
+
+/// The angle of a unit vector `(x, y)`, in (−π, π] as `atan2(y, x)` gives it, from an arc
+/// sine or arc cosine of whichever component is the smaller (where each is well
+/// conditioned): less than half the cost of `atan2`, to within a few units of rounding of it
+/// for a vector of length 1 to rounding.
+#[inline]
+pub fn unit_angle<T: Real>(y: T, x: T) -> T {
+    if y.abs() <= x.abs() {
+        let angle = y.asin();
+        if x < T::zero() {
+            T::constant(core::f64::consts::PI).copysign(y) - angle
+        } else {
+            angle
+        }
+    } else {
+        x.acos().copysign(y)
+    }
+}
