@@ -6,7 +6,9 @@ mod advantage;
 mod branch;
 pub mod closed;
 mod error;
+pub mod fast;
 pub mod grashof;
+mod kernel;
 mod linear;
 mod newton;
 mod real;
@@ -30,7 +32,10 @@ pub use mechgen_macros::mechanism;
 /// Items the generated code names. Not public API: they may change in any release.
 #[doc(hidden)]
 pub mod __private {
+    pub use crate::kernel::{
+        all_finite as finite_all, blame, branch_root, inverse, inverse_determinant, unit_angle,
+    };
     pub use crate::linear::{Factored, solve_lu, solve2};
-    pub use crate::newton::{Linearisation, all_finite, check_finite, finite, newton};
+    pub use crate::newton::{Linearisation, Turning, all_finite, check_finite, finite, newton};
     pub use core::result::Result::{Err, Ok};
 }

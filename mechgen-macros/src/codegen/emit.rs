@@ -380,6 +380,18 @@ fn id_at(index: usize) -> ExprId {
     ExprId::from_index(index)
 }
 
+/// Which nodes `roots` read, directly or through other nodes.
+pub fn reachable(graph: &Graph, roots: &[ExprId]) -> Vec<bool> {
+    let mut seen = vec![false; graph.len()];
+    let mut stack = roots.to_vec();
+    while let Some(id) = stack.pop() {
+        if !std::mem::replace(&mut seen[id.index()], true) {
+            stack.extend(children(graph.node(id)));
+        }
+    }
+    seen
+}
+
 pub fn children(node: Node) -> impl Iterator<Item = ExprId> {
     let (a, b) = match node {
         Node::Const(_) | Node::Var(_) => (None, None),

@@ -79,8 +79,9 @@ enum Bindings {
 }
 
 /// The generated functions' own argument and local names, besides derived ones.
-const ARGUMENT_NAMES: [&str; 19] = [
+const ARGUMENT_NAMES: [&str; 20] = [
     "converged",
+    "scale",
     "solved_a",
     "solved_b",
     "rates",

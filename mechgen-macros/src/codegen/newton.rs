@@ -6,12 +6,13 @@ use std::collections::BTreeSet;
 
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::quote;
+use syn::ext::IdentExt;
 
 use super::docs::doc;
-use super::emit::{Block, Context, emit, local};
+use super::emit::{Block, Context, emit, local, reachable};
 use super::{Bindings, Generator, arg, matrix};
 use crate::model::SymbolRef;
-use crate::symbolic::{ExprId, Var};
+use crate::symbolic::{ExprId, Node, Var};
 
 impl Generator<'_> {
     pub(super) fn position(&self) -> TokenStream {
@@ -220,6 +221,34 @@ impl Generator<'_> {
             .copied()
             .collect();
         let stage = |var: Var| usize::from(matches!(var, Var::Value(SymbolRef::Unknown(_))));
+        // Each unknown angle's sine and cosine come from a `Turning`, which rotates the last
+        // iterate's by the small step Newton takes instead of calling `sin_cos` again.
+        let graph = &self.equations.graph;
+        let read = reachable(graph, &entries);
+        let mut turned: Vec<(ExprId, Ident, usize)> = Vec::new();
+        let mut turnings = Vec::new();
+        let mut turns = Vec::new();
+        for (u, unknown) in self.model.unknowns.iter().enumerate() {
+            let Some(var) = graph.lookup(Node::Var(Var::Value(SymbolRef::Unknown(u)))) else {
+                continue;
+            };
+            let stem = unknown.name.unraw().to_string();
+            let names = [Node::Sin(var), Node::Cos(var)].map(|node| {
+                let id = graph.lookup(node).filter(|id| read[id.index()])?;
+                let prefix = if matches!(node, Node::Sin(_)) { "sin" } else { "cos" };
+                let name = local(&format!("{prefix}_{stem}"));
+                turned.push((id, name.clone(), 1));
+                Some(name)
+            });
+            if names.iter().all(Option::is_none) {
+                continue;
+            }
+            let [sin, cos] = names.map(|name| name.map_or(quote!(_), |name| quote!(#name)));
+            let turning = local(&format!("turning_{stem}"));
+            let name = &unknown.name;
+            turnings.push(quote!(let mut #turning = ::mechgen::__private::Turning::new();));
+            turns.push(quote!(let (#sin, #cos) = #turning.sin_cos(#name);));
+        }
         let (
             bindings,
             Block {
@@ -228,7 +257,8 @@ impl Generator<'_> {
                 named,
                 used,
             },
-        ) = self.block_with(&entries, Bindings::ParametersOnly, &[], &stage);
+        ) = self.block_with(&entries, Bindings::ParametersOnly, &turned, &stage);
+        let named: Vec<(ExprId, Ident, usize)> = turned.into_iter().chain(named).collect();
         statements.resize(2, Vec::new());
         let (hoisted, per_iterate) = (&statements[0], &statements[1]);
         let (residual, rest) = outputs.split_at(n);
@@ -239,11 +269,28 @@ impl Generator<'_> {
             quote!(#m.abs())
         });
         let names = self.model.unknowns.iter().map(|u| &u.name);
+        // The payload carries what is dear to compute again (the sines and cosines); the
+        // rates redo the odd product rather than copy it out of every evaluation.
+        let named: Vec<(ExprId, Ident, usize)> = named
+            .into_iter()
+            .filter(|(id, _, stage)| {
+                *stage == 0 || matches!(graph.node(*id), Node::Sin(_) | Node::Cos(_))
+            })
+            .collect();
         let payload: Vec<&Ident> = named
             .iter()
             .filter(|(_, _, stage)| *stage == 1)
             .map(|(_, name, _)| name)
             .collect();
+        // The loops' scale depends on the dimensions alone, most often: then it is computed
+        // once, before the iteration.
+        let fixed_scale = eq.magnitudes.iter().all(|&m| graph.is_fixed(m));
+        let scale_name = local("scale");
+        let (scale_before, scale) = if fixed_scale {
+            (quote!(let #scale_name = #(#scale)+*;), quote!(#scale_name))
+        } else {
+            (TokenStream::new(), quote!(scale: #(#scale)+*))
+        };
         // An empty payload still needs its type.
         let payload = if payload.is_empty() {
             quote!([T::zero(); 0])
@@ -255,15 +302,18 @@ impl Generator<'_> {
             hoisted: quote! {
                 #bindings
                 #(#hoisted)*
+                #scale_before
+                #(#turnings)*
             },
             closure: quote! {
                 |#x: &[T; #count]| {
                     let [#(#names),*] = *#x;
+                    #(#turns)*
                     #(#per_iterate)*
                     ::mechgen::__private::Linearisation {
                         residual: [#(#residual),*],
                         jacobian: #jacobian,
-                        scale: #(#scale)+*,
+                        #scale,
                         payload: #payload,
                     }
                 }
