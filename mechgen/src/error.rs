@@ -79,3 +79,19 @@ impl<T: fmt::Display> fmt::Display for Error<T> {
 }
 
 impl<T: fmt::Debug + fmt::Display> core::error::Error for Error<T> {}
+
+/// A batch (a scene's `*_batch`) stopped: the input at `index` failed with `error`; the
+/// outputs before it are filled in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BatchError<T> {
+    /// The position of the failing input in the batch's inputs.
+    pub index: usize,
+    /// Why it failed, as the scene's kernel says at that input.
+    pub error: Error<T>,
+}
+
+impl<T: fmt::Display> fmt::Display for BatchError<T> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "input {} of the batch: {}", self.index, self.error)
+    }
+}

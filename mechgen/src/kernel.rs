@@ -93,3 +93,30 @@ pub fn unit_angle<T: Real>(y: T, x: T) -> T {
         x.acos().copysign(y)
     }
 }
+
+/// The batch forms of the checked steps: the same values where those succeed, NaN where they
+/// fail, and no branch, so a loop of them vectorises. The batch then redoes any non-finite
+/// lane with the checked kernel, which says why.
+pub mod lanes {
+    use crate::Real;
+
+    /// [`super::branch_root`], with NaN for "cannot close".
+    #[inline(always)]
+    pub fn branch_root<T: Real>(plus: T, minus: T, sign: T) -> T {
+        let radicand = plus - minus;
+        let tolerance = -T::constant(16.0) * T::epsilon() * (plus.abs() + minus.abs());
+        let root = sign * radicand.max(T::zero()).sqrt();
+        if radicand >= tolerance { root } else { T::nan() }
+    }
+
+    /// [`super::inverse_determinant`], with NaN for "singular".
+    #[inline(always)]
+    pub fn inverse_determinant<T: Real>(det: T, inverse_norms: T, threshold: T) -> T {
+        let inverse = det.recip();
+        if (det * inverse_norms).abs() > threshold {
+            inverse
+        } else {
+            T::nan()
+        }
+    }
+}

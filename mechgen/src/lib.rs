@@ -17,7 +17,7 @@ mod vec2;
 
 pub use advantage::MechanicalAdvantage;
 pub use branch::Branch;
-pub use error::Error;
+pub use error::{BatchError, Error};
 pub use linear::{condition, singular_threshold};
 pub use newton::{Motion, NewtonOptions, Solved};
 pub use real::Real;
@@ -33,7 +33,8 @@ pub use mechgen_macros::mechanism;
 #[doc(hidden)]
 pub mod __private {
     pub use crate::kernel::{
-        all_finite as finite_all, blame, branch_root, inverse, inverse_determinant, unit_angle,
+        all_finite as finite_all, blame, branch_root, inverse, inverse_determinant, lanes,
+        unit_angle,
     };
     pub use crate::linear::{Factored, solve_lu, solve2};
     pub use crate::newton::{Linearisation, Turning, all_finite, check_finite, finite, newton};

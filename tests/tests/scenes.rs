@@ -287,3 +287,74 @@ proptest! {
         prop_assert!((path.coupler_point - point).norm() <= angle_tol * size);
     }
 }
+
+/// The batch form of a scene against its kernel over a turn (and beyond it, for a linkage
+/// that cannot turn fully): the same values to rounding, the same errors.
+fn batch_agrees<T: Real>() {
+    let linkage = common::example_1::<T>();
+    let scenes = linkage.scenes().unwrap();
+    let (w, a) = (T::constant(RATE), T::constant(ACCELERATION));
+    let tol = tolerance::<T>();
+    let inputs: Vec<T> = inputs::<T>().collect();
+    let mut paths = vec![Default::default(); inputs.len()];
+    scenes
+        .coupler_path_batch(&inputs, Branch::Open, &mut paths)
+        .unwrap();
+    let mut motions = vec![Default::default(); inputs.len()];
+    scenes
+        .coupler_motion_batch(&inputs, Branch::Open, w, a, &mut motions)
+        .unwrap();
+    let mut angles = vec![Default::default(); inputs.len()];
+    scenes
+        .angles_batch(&inputs, Branch::Open, w, a, &mut angles)
+        .unwrap();
+    let size = T::constant(200.0);
+    for (i, &t) in inputs.iter().enumerate() {
+        let one: mechanisms::FourBarCouplerPath<T> = scenes.coupler_path(t, Branch::Open).unwrap();
+        close2("batch P", t, paths[i].coupler_point, one.coupler_point, size, tol);
+        let one = scenes.coupler_motion(t, Branch::Open, w, a).unwrap();
+        close2("batch Ṗ", t, motions[i].coupler_point_dot, one.coupler_point_dot, size * w, tol);
+        let scale = size * w * w;
+        close2("batch P̈", t, motions[i].coupler_point_ddot, one.coupler_point_ddot, scale, tol);
+        let one = scenes.angles(t, Branch::Open, w, a).unwrap();
+        close("batch θ4", t, angles[i].theta4, one.theta4, T::one(), tol);
+        close("batch α3", t, angles[i].theta3_ddot, one.theta3_ddot, w * w, tol);
+    }
+}
+
+#[test]
+fn batches_agree_with_their_kernels() {
+    batch_agrees::<f64>();
+    batch_agrees::<f32>();
+}
+
+#[test]
+fn a_batch_stops_where_its_kernel_fails_and_says_why() {
+    // Not a Grashof crank: it cannot reach θ2 = π, and its range ends near ±1.76 rad.
+    let scenes = common::four_bar(100.0, 120.0, 90.0, 80.0).scenes().unwrap();
+    let inputs = [0.0, 0.5, 1.0, std::f64::consts::PI, 0.2];
+    let mut out = [Default::default(); 5];
+    let stopped = scenes.coupler_path_batch(&inputs, Branch::Open, &mut out);
+    assert_eq!(
+        stopped,
+        Err(mechgen::BatchError {
+            index: 3,
+            error: mechgen::Error::CannotAssemble {
+                input: std::f64::consts::PI
+            }
+        })
+    );
+    for (i, &t) in inputs[..3].iter().enumerate() {
+        assert_eq!(out[i], scenes.coupler_path(t, Branch::Open).unwrap(), "input {i}");
+    }
+    // A NaN input is blamed as the kernel blames it.
+    let mut out = [Default::default(); 2];
+    let stopped = scenes.coupler_path_batch(&[0.1, f64::NAN], Branch::Open, &mut out);
+    assert!(matches!(
+        stopped,
+        Err(mechgen::BatchError {
+            index: 1,
+            error: mechgen::Error::NonFinite { .. }
+        })
+    ));
+}

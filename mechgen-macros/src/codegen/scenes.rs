@@ -69,7 +69,9 @@ impl Generator<'_> {
             .model
             .scenes
             .iter()
-            .map(|scene| self.kernel(scene, exprs, &constants));
+            .flat_map(|scene| {
+                [false, true].map(|lanes| self.kernel(scene, exprs, &constants, lanes))
+            });
         let docs = doc(&format!(
             "[`{name}`]'s scene kernels (see [`{name}::scenes`]): the mechanism, and what \
              depends on its dimensions alone, computed once."
@@ -269,6 +271,7 @@ impl Generator<'_> {
         emitted: &mut impl Iterator<Item = Emitted>,
         branches: &mut [TokenStream],
         inputs: &TokenStream,
+        lanes: bool,
     ) -> TokenStream {
         let input = &self.model.input.name;
         let failure = arg("failure");
@@ -276,6 +279,23 @@ impl Generator<'_> {
         let kind = &straight.aux[k];
         let args: Vec<Emitted> = emitted.by_ref().take(aux_arguments(kind).len()).collect();
         let value = match kind {
+            AuxKind::BranchRoot { branch, .. } if lanes => {
+                let choice = branches.get_mut(*branch).map(std::mem::take);
+                let [plus, minus] = [&args[0], &args[1]];
+                quote!(::mechgen::__private::lanes::branch_root(#plus, #minus, #choice.sign::<T>()))
+            }
+            AuxKind::Inverse(_) if lanes => {
+                let x = args[0].receiver();
+                quote!(#x.recip())
+            }
+            AuxKind::InverseDeterminant { threshold, .. } if lanes => {
+                let [det, inverse_norms] = [&args[0], &args[1]];
+                let threshold = match threshold {
+                    Threshold::Position => quote!(T::constant(8.0) * T::epsilon()),
+                    Threshold::Rates => quote!(::mechgen::singular_threshold::<T>()),
+                };
+                quote!(::mechgen::__private::lanes::inverse_determinant(#det, #inverse_norms, #threshold))
+            }
             AuxKind::BranchRoot { branch, .. } => {
                 let choice = branches.get_mut(*branch).map(std::mem::take);
                 let [plus, minus] = [&args[0], &args[1]];
@@ -312,7 +332,18 @@ impl Generator<'_> {
 
     /// One scene's kernel: the auxiliary values it needs, each after the statements its
     /// arguments read, then its outputs.
-    fn kernel(&self, scene: &Scene, straight: &Straight, constants: &Constants) -> TokenStream {
+    ///
+    /// With `lanes`, the scene's batch form instead: the same arithmetic over a slice of
+    /// inputs, with no branch or early return in the loop (a failing step gives NaN, and the
+    /// branch-free [`mechgen::fast::sin_cos`]), so the compiler can vectorise it; lanes that
+    /// come out non-finite are done again by the checked kernel, which gives the error.
+    fn kernel(
+        &self,
+        scene: &Scene,
+        straight: &Straight,
+        constants: &Constants,
+        lanes: bool,
+    ) -> TokenStream {
         let graph = &self.equations.graph;
         let input = &self.model.input.name;
         let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
@@ -345,7 +376,11 @@ impl Generator<'_> {
                     }
                 }
                 reserved.extend([sin.to_string(), cos.to_string()]);
-                quote!(let (#sin, #cos) = #input.sin_cos();)
+                if lanes {
+                    quote!(let (#sin, #cos) = ::mechgen::fast::sin_cos(#input);)
+                } else {
+                    quote!(let (#sin, #cos) = #input.sin_cos();)
+                }
             });
         // Auxiliary value k is known from stage k + 1.
         let stage = |var: Var| match var {
@@ -387,7 +422,14 @@ impl Generator<'_> {
         for (k, stage_statements) in statements.iter().enumerate() {
             body.extend(stage_statements.iter().cloned());
             if needed.contains(&k) {
-                body.push(self.aux_definition(k, straight, &mut emitted, &mut branches, &inputs));
+                body.push(self.aux_definition(
+                    k,
+                    straight,
+                    &mut emitted,
+                    &mut branches,
+                    &inputs,
+                    lanes,
+                ));
             }
         }
         let values: Vec<Emitted> = emitted.collect();
@@ -423,6 +465,9 @@ impl Generator<'_> {
                     .by_ref()
                     .take(count)
                     .map(|value| {
+                        if lanes {
+                            return quote!(#value);
+                        }
                         let index = Literal::usize_unsuffixed(checked.len());
                         checked.push(quote!(#value));
                         let checked_values = local("values");
@@ -468,6 +513,14 @@ impl Generator<'_> {
                 .collect::<Vec<_>>()
                 .join(", ")
         );
+        if lanes {
+            return self.batch(scene, &branch_parameter, &arguments, BatchParts {
+                input_trig,
+                bindings: quote!(#(#constant_bindings)* #parameter_bindings),
+                body,
+                fields,
+            });
+        }
         let docs = docs_or(&scene.docs, &fallback);
         let errors = doc(
             "Errors: [`mechgen::Error::CannotAssemble`] outside the range of motion; \
@@ -493,6 +546,100 @@ impl Generator<'_> {
             }
         }
     }
+
+    /// `{scene}_batch(inputs, branch, …, out)`: the scene at every input, into `out`.
+    fn batch(
+        &self,
+        scene: &Scene,
+        branch_parameter: &TokenStream,
+        arguments: &[TokenStream],
+        parts: BatchParts,
+    ) -> TokenStream {
+        let BatchParts {
+            input_trig,
+            bindings,
+            body,
+            fields,
+        } = parts;
+        let input = &self.model.input.name;
+        let output_type = self.scene_output_type(scene);
+        let name = &scene.name;
+        let batch = format_ident!("{}_batch", name.unraw());
+        let (inputs, out, slot, index, error) = (
+            local("inputs"),
+            local("out"),
+            local("slot"),
+            local("index"),
+            local("error"),
+        );
+        // The checked kernel's arguments, as the batch took them.
+        let order = scene.order();
+        let steps = self.equations.closed_form.as_deref().unwrap_or_default();
+        let mut pass = Vec::new();
+        match steps.iter().filter(|step| step.case.has_branches()).count() {
+            0 => {}
+            1 => pass.push(arg("branch")),
+            _ => pass.push(arg("branches")),
+        }
+        if order >= Order::Rate {
+            pass.push(self.input_dot.clone());
+        }
+        if order >= Order::Acceleration {
+            pass.push(self.input_ddot.clone());
+        }
+        let finite = scene.items.iter().map(|item| {
+            let field = &item.field;
+            match item.quantity {
+                Quantity::Point(_) => quote!(#slot.#field.x.is_finite() && #slot.#field.y.is_finite()),
+                Quantity::Unknown(_) => quote!(#slot.#field.is_finite()),
+            }
+        });
+        let docs = doc(&format!(
+            "[`Self::{}`] at every input of `inputs`, into the matching entry of `out` (the \
+             shorter of the two sets how many): the same arithmetic in a loop the compiler can \
+             vectorise, with the branch-free [`mechgen::fast::sin_cos`] (an input must be \
+             within [`mechgen::fast::sin_cos_limit`] to take the fast path). An input where \
+             that gives a non-finite value is done again by [`Self::{}`], whose result is \
+             kept, or whose error is returned with the input's index.",
+            name.unraw(),
+            name.unraw()
+        ));
+        quote! {
+            #docs
+            pub fn #batch(
+                &self,
+                #inputs: &[T] #branch_parameter,
+                #(#arguments)*
+                #out: &mut [#output_type<T>],
+            ) -> ::core::result::Result<(), ::mechgen::BatchError<T>> {
+                #bindings
+                for (#slot, &#input) in #out.iter_mut().zip(#inputs) {
+                    #input_trig
+                    #(#body)*
+                    *#slot = #output_type { #(#fields),* };
+                }
+                for (#index, (#slot, &#input)) in #out.iter_mut().zip(#inputs).enumerate() {
+                    if !(#(#finite)&&*) {
+                        match self.#name(#input #(, #pass)*) {
+                            ::core::result::Result::Ok(value) => *#slot = value,
+                            ::core::result::Result::Err(#error) => {
+                                return ::core::result::Result::Err(::mechgen::BatchError { #index, #error });
+                            }
+                        }
+                    }
+                }
+                ::core::result::Result::Ok(())
+            }
+        }
+    }
+}
+
+/// A batch's pieces, from [`Generator::kernel`].
+struct BatchParts {
+    input_trig: Option<TokenStream>,
+    bindings: TokenStream,
+    body: Vec<TokenStream>,
+    fields: Vec<TokenStream>,
 }
 
 /// A scene's outputs, in the order listed (a point's x then y).
