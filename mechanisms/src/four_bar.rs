@@ -56,6 +56,8 @@ mechanism! {
         generate: position, velocity, acceleration;
         /// The coupler's and rocker's angles, rates and accelerations.
         scene angles: theta3, theta4, theta3_dot, theta4_dot, theta3_ddot, theta4_ddot;
+        /// The moving joints' positions, A and B, as drawing the linkage needs.
+        scene joints: crank_pin, rocker_pin;
         /// The coupler point's position alone, as drawing the coupler curve needs.
         scene coupler_path: coupler_point;
         /// The coupler point's position, velocity and acceleration.

@@ -33,8 +33,8 @@ mod slider_crank;
 
 pub use dimensions::DimensionError;
 pub use four_bar::{
-    DeadCentre, FourBar, FourBarAngles, FourBarCouplerMotion, FourBarCouplerPath, FourBarPoints,
-    FourBarScenes, FourBarUnknowns, LimitAngles, TransmissionExtremes,
+    DeadCentre, FourBar, FourBarAngles, FourBarCouplerMotion, FourBarCouplerPath, FourBarJoints,
+    FourBarPoints, FourBarScenes, FourBarUnknowns, LimitAngles, TransmissionExtremes,
 };
 pub use inverted_slider_crank::{
     InvertedSliderCrank, InvertedSliderCrankPoints, InvertedSliderCrankScenes,

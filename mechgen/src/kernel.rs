@@ -100,13 +100,12 @@ pub fn unit_angle<T: Real>(y: T, x: T) -> T {
 pub mod lanes {
     use crate::Real;
 
-    /// [`super::branch_root`], with NaN for "cannot close".
+    /// [`super::branch_root`], with NaN for "cannot close" and for a tangency within
+    /// rounding (a slightly negative radicand): the checked kernel redoes those lanes and
+    /// decides.
     #[inline(always)]
     pub fn branch_root<T: Real>(plus: T, minus: T, sign: T) -> T {
-        let radicand = plus - minus;
-        let tolerance = -T::constant(16.0) * T::epsilon() * (plus.abs() + minus.abs());
-        let root = sign * radicand.max(T::zero()).sqrt();
-        if radicand >= tolerance { root } else { T::nan() }
+        sign * (plus - minus).sqrt()
     }
 
     /// [`super::inverse_determinant`], with NaN for "singular".

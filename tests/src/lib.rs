@@ -2,6 +2,8 @@
 //! cases of `tests/reference/cases.csv` and how mechgen's answers compare with them.
 
 pub mod baselines;
+pub mod batch_baseline;
 pub mod examples;
+pub mod kernels;
 pub mod reference;
 pub mod scenes;

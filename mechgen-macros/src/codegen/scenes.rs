@@ -587,13 +587,13 @@ impl Generator<'_> {
         if order >= Order::Acceleration {
             pass.push(self.input_ddot.clone());
         }
-        let finite = scene.items.iter().map(|item| {
+        let finite: Vec<TokenStream> = scene.items.iter().map(|item| {
             let field = &item.field;
             match item.quantity {
                 Quantity::Point(_) => quote!(#slot.#field.x.is_finite() && #slot.#field.y.is_finite()),
                 Quantity::Unknown(_) => quote!(#slot.#field.is_finite()),
             }
-        });
+        }).collect();
         let docs = doc(&format!(
             "[`Self::{}`] at every input of `inputs`, into the matching entry of `out` (the \
              shorter of the two sets how many): the same arithmetic in a loop the compiler can \
@@ -617,6 +617,12 @@ impl Generator<'_> {
                     #input_trig
                     #(#body)*
                     *#slot = #output_type { #(#fields),* };
+                }
+                // One pass with no early exit finds whether any lane failed (the common
+                // answer, no); only then are the failed ones found and redone.
+                let failed = #out.iter().fold(false, |failed, #slot| failed | !(#(#finite)&&*));
+                if !failed {
+                    return ::core::result::Result::Ok(());
                 }
                 for (#index, (#slot, &#input)) in #out.iter_mut().zip(#inputs).enumerate() {
                     if !(#(#finite)&&*) {
