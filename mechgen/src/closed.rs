@@ -223,7 +223,12 @@ pub fn two_angles<T: Real>(
     sign: T,
 ) -> Result<(T, T, Vec2<T>, Vec2<T>), Failure> {
     let (direction1, direction2) = two_directions(k, w1, w2, sign)?;
-    Ok((direction1.angle(), direction2.angle(), direction1, direction2))
+    Ok((
+        direction1.angle(),
+        direction2.angle(),
+        direction1,
+        direction2,
+    ))
 }
 
 /// [`two_angles`] without the angles: `((cos q1, sin q1), (cos q2, sin q2))`, with no arc

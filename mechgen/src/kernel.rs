@@ -11,7 +11,10 @@ use crate::{Error, Real};
 /// made the computation fail), else `error`. Kernels check their arguments only on this,
 /// the failing path, so the common path pays nothing for it.
 #[cold]
-pub fn blame<T: Real, const N: usize>(arguments: [(T, &'static str); N], error: Error<T>) -> Error<T> {
+pub fn blame<T: Real, const N: usize>(
+    arguments: [(T, &'static str); N],
+    error: Error<T>,
+) -> Error<T> {
     match arguments.iter().find(|(value, _)| !value.is_finite()) {
         Some(&(_, quantity)) => Error::NonFinite { quantity },
         None => error,

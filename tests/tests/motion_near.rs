@@ -29,8 +29,20 @@ fn four_bar_agrees<T: Real>() {
         let at = linkage.motion_at(t, &position.value, w, a).unwrap();
         agree("ω3", t, near.value.velocity.theta3, at.velocity.theta3, w);
         agree("ω4", t, near.value.velocity.theta4, at.velocity.theta4, w);
-        agree("α3", t, near.value.acceleration.theta3, at.acceleration.theta3, w * w);
-        agree("α4", t, near.value.acceleration.theta4, at.acceleration.theta4, w * w);
+        agree(
+            "α3",
+            t,
+            near.value.acceleration.theta3,
+            at.acceleration.theta3,
+            w * w,
+        );
+        agree(
+            "α4",
+            t,
+            near.value.acceleration.theta4,
+            at.acceleration.theta4,
+            w * w,
+        );
         // The next guess from the velocity predictor.
         let q = near.value.position;
         let v = near.value.velocity;
@@ -59,7 +71,12 @@ fn coupled_loops_motion_near_matches_position_and_motion_at() {
         assert_eq!(near.value.position, position.value);
         let at = linkage.motion_at(t, &position.value, w, a).unwrap();
         let kappa = position.condition;
-        let rates = near.value.velocity.to_array().into_iter().zip(at.velocity.to_array());
+        let rates = near
+            .value
+            .velocity
+            .to_array()
+            .into_iter()
+            .zip(at.velocity.to_array());
         for (got, want) in rates {
             agree("rate", t, got, want, w * kappa);
         }

@@ -53,14 +53,19 @@ fn four_bar_scenes_agree<T: Real>() {
 
         let points = linkage.points(t, &q).unwrap();
         let velocities = linkage.point_velocities(t, &q, w, &v).unwrap();
-        let accelerations = linkage
-            .point_accelerations(t, &q, w, &v, a, &acc)
-            .unwrap();
+        let accelerations = linkage.point_accelerations(t, &q, w, &v, a, &acc).unwrap();
         let size = T::constant(200.0);
         let path = scenes.coupler_path(t, Branch::Open).unwrap();
         close2("P", t, path.coupler_point, points.coupler_point, size, tol);
         let moving = scenes.coupler_motion(t, Branch::Open, w, a).unwrap();
-        close2("P", t, moving.coupler_point, points.coupler_point, size, tol);
+        close2(
+            "P",
+            t,
+            moving.coupler_point,
+            points.coupler_point,
+            size,
+            tol,
+        );
         close2(
             "Ṗ",
             t,
@@ -164,7 +169,14 @@ fn watt_scene_agrees<T: Real>() {
     for t in inputs::<T>() {
         let motion = linkage.motion(t, branches, w, a).unwrap();
         let output = scenes.output(t, branches, w, a).unwrap();
-        close("θ6", t, output.theta6, motion.position.theta6, T::one(), tol);
+        close(
+            "θ6",
+            t,
+            output.theta6,
+            motion.position.theta6,
+            T::one(),
+            tol,
+        );
         close("ω6", t, output.theta6_dot, motion.velocity.theta6, w, tol);
         let alpha = motion.acceleration.theta6;
         close("α6", t, output.theta6_ddot, alpha, w * w, tol);
@@ -199,9 +211,23 @@ fn jansen_scenes_agree<T: Real>() {
         close2("foot", t, path.foot, foot, size, tol);
         let moving = scenes.foot_motion(t, branches, w, a).unwrap();
         close2("foot", t, moving.foot, foot, size, tol);
-        close2("foot velocity", t, moving.foot_dot, foot_velocity, size * w * kappa, tol);
+        close2(
+            "foot velocity",
+            t,
+            moving.foot_dot,
+            foot_velocity,
+            size * w * kappa,
+            tol,
+        );
         let scale = size * w * w * kappa * kappa;
-        close2("foot acceleration", t, moving.foot_ddot, foot_acceleration, scale, tol);
+        close2(
+            "foot acceleration",
+            t,
+            moving.foot_ddot,
+            foot_acceleration,
+            scale,
+            tol,
+        );
     }
 }
 
@@ -311,14 +337,42 @@ fn batch_agrees<T: Real>() {
     let size = T::constant(200.0);
     for (i, &t) in inputs.iter().enumerate() {
         let one: mechanisms::FourBarCouplerPath<T> = scenes.coupler_path(t, Branch::Open).unwrap();
-        close2("batch P", t, paths[i].coupler_point, one.coupler_point, size, tol);
+        close2(
+            "batch P",
+            t,
+            paths[i].coupler_point,
+            one.coupler_point,
+            size,
+            tol,
+        );
         let one = scenes.coupler_motion(t, Branch::Open, w, a).unwrap();
-        close2("batch Ṗ", t, motions[i].coupler_point_dot, one.coupler_point_dot, size * w, tol);
+        close2(
+            "batch Ṗ",
+            t,
+            motions[i].coupler_point_dot,
+            one.coupler_point_dot,
+            size * w,
+            tol,
+        );
         let scale = size * w * w;
-        close2("batch P̈", t, motions[i].coupler_point_ddot, one.coupler_point_ddot, scale, tol);
+        close2(
+            "batch P̈",
+            t,
+            motions[i].coupler_point_ddot,
+            one.coupler_point_ddot,
+            scale,
+            tol,
+        );
         let one = scenes.angles(t, Branch::Open, w, a).unwrap();
         close("batch θ4", t, angles[i].theta4, one.theta4, T::one(), tol);
-        close("batch α3", t, angles[i].theta3_ddot, one.theta3_ddot, w * w, tol);
+        close(
+            "batch α3",
+            t,
+            angles[i].theta3_ddot,
+            one.theta3_ddot,
+            w * w,
+            tol,
+        );
     }
 }
 
@@ -345,7 +399,11 @@ fn a_batch_stops_where_its_kernel_fails_and_says_why() {
         })
     );
     for (i, &t) in inputs[..3].iter().enumerate() {
-        assert_eq!(out[i], scenes.coupler_path(t, Branch::Open).unwrap(), "input {i}");
+        assert_eq!(
+            out[i],
+            scenes.coupler_path(t, Branch::Open).unwrap(),
+            "input {i}"
+        );
     }
     // A NaN input is blamed as the kernel blames it.
     let mut out = [Default::default(); 2];

@@ -235,7 +235,11 @@ impl Generator<'_> {
             let stem = unknown.name.unraw().to_string();
             let names = [Node::Sin(var), Node::Cos(var)].map(|node| {
                 let id = graph.lookup(node).filter(|id| read[id.index()])?;
-                let prefix = if matches!(node, Node::Sin(_)) { "sin" } else { "cos" };
+                let prefix = if matches!(node, Node::Sin(_)) {
+                    "sin"
+                } else {
+                    "cos"
+                };
                 let name = local(&format!("{prefix}_{stem}"));
                 turned.push((id, name.clone(), 1));
                 Some(name)

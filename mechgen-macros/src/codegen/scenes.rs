@@ -65,13 +65,9 @@ impl Generator<'_> {
             .scenes
             .iter()
             .map(|scene| self.scene_output(scene));
-        let kernels = self
-            .model
-            .scenes
-            .iter()
-            .flat_map(|scene| {
-                [false, true].map(|lanes| self.kernel(scene, exprs, &constants, lanes))
-            });
+        let kernels = self.model.scenes.iter().flat_map(|scene| {
+            [false, true].map(|lanes| self.kernel(scene, exprs, &constants, lanes))
+        });
         let docs = doc(&format!(
             "[`{name}`]'s scene kernels (see [`{name}::scenes`]): the mechanism, and what \
              depends on its dimensions alone, computed once."
@@ -514,12 +510,17 @@ impl Generator<'_> {
                 .join(", ")
         );
         if lanes {
-            return self.batch(scene, &branch_parameter, &arguments, BatchParts {
-                input_trig,
-                bindings: quote!(#(#constant_bindings)* #parameter_bindings),
-                body,
-                fields,
-            });
+            return self.batch(
+                scene,
+                &branch_parameter,
+                &arguments,
+                BatchParts {
+                    input_trig,
+                    bindings: quote!(#(#constant_bindings)* #parameter_bindings),
+                    body,
+                    fields,
+                },
+            );
         }
         let docs = docs_or(&scene.docs, &fallback);
         let errors = doc(
@@ -531,7 +532,7 @@ impl Generator<'_> {
             #docs
             ///
             #errors
-            #[inline]
+            #[inline(always)]
             pub fn #name(
                 &self,
                 #input: T #branch_parameter,
@@ -587,13 +588,19 @@ impl Generator<'_> {
         if order >= Order::Acceleration {
             pass.push(self.input_ddot.clone());
         }
-        let finite: Vec<TokenStream> = scene.items.iter().map(|item| {
-            let field = &item.field;
-            match item.quantity {
-                Quantity::Point(_) => quote!(#slot.#field.x.is_finite() && #slot.#field.y.is_finite()),
-                Quantity::Unknown(_) => quote!(#slot.#field.is_finite()),
-            }
-        }).collect();
+        let finite: Vec<TokenStream> = scene
+            .items
+            .iter()
+            .map(|item| {
+                let field = &item.field;
+                match item.quantity {
+                    Quantity::Point(_) => {
+                        quote!(#slot.#field.x.is_finite() && #slot.#field.y.is_finite())
+                    }
+                    Quantity::Unknown(_) => quote!(#slot.#field.is_finite()),
+                }
+            })
+            .collect();
         let docs = doc(&format!(
             "[`Self::{}`] at every input of `inputs`, into the matching entry of `out` (the \
              shorter of the two sets how many): the same arithmetic in a loop the compiler can \

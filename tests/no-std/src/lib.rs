@@ -331,8 +331,16 @@ pub mod example1 {
         let s = kernels::scene_coupler_motion(&scenes, theta2, omega2, alpha2)
             .map_err(T::failure("scene_coupler_motion"))?;
         vector(out, "scene_coupler_motion.coupler_point", s.coupler_point)?;
-        vector(out, "scene_coupler_motion.coupler_point_dot", s.coupler_point_dot)?;
-        vector(out, "scene_coupler_motion.coupler_point_ddot", s.coupler_point_ddot)?;
+        vector(
+            out,
+            "scene_coupler_motion.coupler_point_dot",
+            s.coupler_point_dot,
+        )?;
+        vector(
+            out,
+            "scene_coupler_motion.coupler_point_ddot",
+            s.coupler_point_ddot,
+        )?;
         Ok(())
     }
 

@@ -116,7 +116,10 @@ fn main() {
             d(a.crank_pin, b.crank_pin).max(d(a.rocker_pin, b.rocker_pin))
         })
         .fold(0f64, f64::max);
-    assert!(generated_worst <= 1e-12, "the generated batch disagrees by {generated_worst:e} mm");
+    assert!(
+        generated_worst <= 1e-12,
+        "the generated batch disagrees by {generated_worst:e} mm"
+    );
 
     println!("generated_batch_ns_per_step {generated:.3}");
     println!("hand_batch_ns_per_step {hand:.3}");
