@@ -82,7 +82,8 @@ fn normalise<T: Real, const N: usize>(a: &mut [[T; N]; N], b: &mut [T; N]) -> Re
 fn unscaled_columns2<T: Real>(a: &[[T; 2]; 2]) -> Option<T> {
     let [[a00, a01], [a10, a11]] = *a;
     let product = (a00 * a00 + a10 * a10) * (a01 * a01 + a11 * a11);
-    product.is_normal().then(|| product.sqrt())
+    // Normal and finite, in two comparisons (false for NaN, zero, subnormals and infinity).
+    (product >= T::min_positive_value() && product <= T::max_value()).then(|| product.sqrt())
 }
 
 /// The signed relative determinant from the scaled determinant and [`normalise`]'s column

@@ -4,6 +4,8 @@
 //! short (it only evaluates the residual and Jacobian) and every mechanism gets the same
 //! stopping rules.
 
+use core::cmp::Ordering;
+
 use crate::linear::Factored;
 use crate::{Error, Real};
 
@@ -145,15 +147,15 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             });
         }
         let jacobian = Factored::new(here.jacobian)?;
-        let step = jacobian.solve(here.residual);
         let relative_determinant = jacobian.relative();
         let positive = relative_determinant > T::zero();
         let started_positive = *orientation.get_or_insert(positive);
-        let condition = T::one() / relative_determinant.abs();
+        // κ, wanted only at the end and by the convergence test: no division per iteration.
+        let condition = || T::one() / relative_determinant.abs();
         let floor = rounding_floor * here.scale;
         // Only a point within the tolerance, but above the rounding floor, needs the test.
         if residual_norm <= options.tolerance.max(floor)
-            && (residual_norm <= floor || kantorovich(&here, condition) <= quarter)
+            && (residual_norm <= floor || kantorovich(&here, condition()) <= quarter)
         {
             if keep_orientation && positive != started_positive {
                 return Err(Error::OtherBranch);
@@ -163,7 +165,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                     value: x,
                     iterations,
                     residual_norm,
-                    condition,
+                    condition: condition(),
                 },
                 at: here,
                 jacobian,
@@ -175,38 +177,44 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 residual_norm,
             });
         }
+        let step = jacobian.solve(here.residual);
         if !all_finite(&step) {
             return Err(Error::NonFinite {
                 quantity: "Newton step",
             });
         }
-        // Take the largest of 1, 1/2, 1/4, ... times the step that lowers the residual.
-        let mut fraction = T::one();
-        let mut accepted = None;
-        for _ in 0..=MAX_HALVINGS {
+        // The full step, which the common path takes; else the largest of 1/2, 1/4, ...
+        // times it that lowers the residual.
+        let stepped = |fraction: T| {
             let mut trial = x;
             for (t, d) in trial.iter_mut().zip(step) {
                 *t = *t - fraction * d;
             }
-            let there = linearise(&trial);
-            if max_abs(&there.residual) < residual_norm {
-                accepted = Some((trial, there));
-                break;
-            }
-            fraction = fraction * T::constant(0.5);
-        }
-        let Some((next, there)) = accepted else {
-            // No step lowers the residual: a local minimum of |f| that is not a root. Near a
-            // singular Jacobian that is a toggle the loops cannot pass.
-            return Err(if kantorovich(&here, condition) > quarter {
-                Error::CannotAssemble { input }
-            } else {
-                Error::NoConvergence {
-                    iterations,
-                    residual_norm,
-                }
-            });
+            trial
         };
+        let mut next = stepped(T::one());
+        let mut there = linearise(&next);
+        let mut fraction = T::one();
+        let mut halvings = 0;
+        // Not lower (a NaN residual is not lower either).
+        while max_abs(&there.residual).partial_cmp(&residual_norm) != Some(Ordering::Less) {
+            if halvings == MAX_HALVINGS {
+                // No step lowers the residual: a local minimum of |f| that is not a root.
+                // Near a singular Jacobian that is a toggle the loops cannot pass.
+                return Err(if kantorovich(&here, condition()) > quarter {
+                    Error::CannotAssemble { input }
+                } else {
+                    Error::NoConvergence {
+                        iterations,
+                        residual_norm,
+                    }
+                });
+            }
+            halvings += 1;
+            fraction = fraction * T::constant(0.5);
+            next = stepped(fraction);
+            there = linearise(&next);
+        }
         x = next;
         here = there;
         iterations += 1;
