@@ -4,13 +4,20 @@
 //! `f32` against `f64::sin_cos`. Dense grids, random points (fixed seed), the floats nearest
 //! every multiple of π/2 up to the limit (where the reduction cancels most), and the edges.
 //!
+//! `mechgen::fast::unit_angle` likewise, against a double-double `atan2` (the platform's,
+//! refined by a Newton step with the double-double `sin` and `cos`) for `f64` and against
+//! `f64::atan2` for `f32`: unit vectors `(cos θ, sin θ)` rounded on dense grids (with finer
+//! ones around every multiple of π/4: the axes, and the diagonals where the method
+//! switches), random points, the pairs next to `|y| = |x|`, `f32` pairs `(y, √(1 − y²))`
+//! rounded, and vectors of length `1 ± k·ε`.
+//!
 //! `cargo test -p mechgen-tests --release --test fast_math -- --ignored` also runs every
 //! `f32` in the range (about 2.3·10⁹ inputs) and 2·10⁸ random `f64` inputs, a few minutes
-//! on two cores.
+//! on two cores, and `unit_angle` on every `f32` pair `(y, √(1 − y²))`.
 
 use std::f64::consts::FRAC_2_PI;
 
-use mechgen::fast::{sin_cos, sin_cos_limit};
+use mechgen::fast::{sin_cos, sin_cos_limit, unit_angle};
 
 /// The bound `sin_cos`'s documentation states, in ulps of the exact result, for both types.
 const BOUND_ULPS: f64 = 0.9;
@@ -548,5 +555,349 @@ fn within_one_ulp_of_the_platform() {
             let apart = (a.to_bits() as i64 - b.to_bits() as i64).unsigned_abs();
             assert!(apart <= 1 || a == b, "{x:e}: {a:e} vs {b:e}");
         }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// unit_angle.
+
+/// The bound `unit_angle`'s documentation states for unit vectors (components of
+/// `(cos θ, sin θ)` rounded, or any pair of length `1 ± ε`), in ulps of the exact
+/// `atan2(y, x)` of the given components, for both types.
+const ANGLE_BOUND_ULPS: f64 = 1.0;
+
+/// The reference `atan2(y, x)` in double-double: the platform's `atan2` refined by one
+/// Newton step with double-double `sin` and `cos` of it, `φ + (y·cos φ − x·sin φ)/(x·cos φ
+/// + y·sin φ)` (the step is below an ulp, so `atan` of it is the step itself to 2^-150).
+fn reference_atan2(y: f64, x: f64) -> Dd {
+    let phi = y.atan2(x);
+    let (s, c) = reference(phi);
+    let y_dd = Dd { hi: y, lo: 0.0 };
+    let x_dd = Dd { hi: x, lo: 0.0 };
+    let num = y_dd.mul(c).add(x_dd.mul(s).neg());
+    let den = x * c.hi + y * s.hi;
+    Dd::new(phi, 0.0).add(Dd::new(num.hi / den, 0.0))
+}
+
+/// Largest error seen, with where.
+#[derive(Debug, Default)]
+struct WorstAngle {
+    ulps: f64,
+    at: (f64, f64),
+    points: u64,
+    correctly_rounded: u64,
+}
+
+impl WorstAngle {
+    fn record(&mut self, y: f64, x: f64, ulps: f64, bound: f64) {
+        assert!(
+            ulps <= bound,
+            "unit_angle({y:e}, {x:e}) off by {ulps} ulp (bound {bound})"
+        );
+        if ulps > self.ulps {
+            self.ulps = ulps;
+            self.at = (y, x);
+        }
+        self.points += 1;
+        if ulps <= 0.5 {
+            self.correctly_rounded += 1;
+        }
+    }
+
+    fn report(&self, what: &str) {
+        eprintln!(
+            "{what}: {} points, max error {:.4} ulp at (y, x) = ({:e}, {:e}), correctly \
+             rounded at {:.2}%",
+            self.points,
+            self.ulps,
+            self.at.0,
+            self.at.1,
+            100.0 * self.correctly_rounded as f64 / self.points as f64
+        );
+    }
+}
+
+fn angle_ulps_f64(y: f64, x: f64) -> f64 {
+    ulps_f64(unit_angle(y, x), reference_atan2(y, x))
+}
+
+fn angle_ulps_f32(y: f32, x: f32) -> f64 {
+    ulps_f32(unit_angle(y, x), f64::from(y).atan2(f64::from(x)))
+}
+
+fn check_angle_f64(worst: &mut WorstAngle, y: f64, x: f64) {
+    worst.record(y, x, angle_ulps_f64(y, x), ANGLE_BOUND_ULPS);
+}
+
+fn check_angle_f32(worst: &mut WorstAngle, y: f32, x: f32) {
+    worst.record(
+        f64::from(y),
+        f64::from(x),
+        angle_ulps_f32(y, x),
+        ANGLE_BOUND_ULPS,
+    );
+}
+
+/// The unit vector at `theta`, each component rounded.
+fn unit_f64(theta: f64) -> (f64, f64) {
+    theta.sin_cos()
+}
+
+fn unit_f32(theta: f64) -> (f32, f32) {
+    let (s, c) = theta.sin_cos();
+    (s as f32, c as f32)
+}
+
+/// Angles on a grid of `n` steps over (−π, π], plus `m` steps of `step` either side of
+/// every multiple of π/4 (the axes, where the result's binade changes, and the diagonals,
+/// where the method switches between arc sine and arc cosine).
+fn angle_grid(n: u32, m: u32, step: f64) -> impl Iterator<Item = f64> {
+    let pi = std::f64::consts::PI;
+    let grid = (0..=n).map(move |i| -pi + 2.0 * pi * f64::from(i) / f64::from(n.max(1)));
+    let near = (-4..=4).flat_map(move |j| {
+        let centre = f64::from(j) * std::f64::consts::FRAC_PI_4;
+        (0..=2 * m).map(move |i| centre + (f64::from(i) - f64::from(m)) * step)
+    });
+    grid.chain(near)
+}
+
+#[test]
+fn the_atan2_reference_agrees_with_the_platform() {
+    let mut rng = SplitMix(11);
+    for _ in 0..100_000 {
+        let (y, x) = unit_f64((rng.unit() * 2.0 - 1.0) * std::f64::consts::PI);
+        let r = reference_atan2(y, x);
+        assert!(ulps_f64(y.atan2(x), r) < 1.0, "{y:e}, {x:e}");
+        // Newton's step converged: a second one changes nothing.
+        let (s, c) = reference(r.hi);
+        let num = Dd { hi: y, lo: 0.0 }
+            .mul(c)
+            .add(Dd { hi: x, lo: 0.0 }.mul(s).neg());
+        let step = num.hi / (x * c.hi + y * s.hi);
+        assert!(
+            (step - r.lo).abs() <= 2f64.powi(-100) * r.hi.abs(),
+            "{y:e}, {x:e}"
+        );
+    }
+}
+
+#[test]
+fn unit_angle_f64_grids_and_random_points() {
+    let mut worst = WorstAngle::default();
+    for theta in angle_grid(2_000_000, 20_000, 1e-9).chain(angle_grid(0, 20_000, 1e-15)) {
+        let (y, x) = unit_f64(theta);
+        check_angle_f64(&mut worst, y, x);
+    }
+    let mut rng = SplitMix(4242);
+    for _ in 0..1_000_000 {
+        let (y, x) = unit_f64((rng.unit() * 2.0 - 1.0) * std::f64::consts::PI);
+        check_angle_f64(&mut worst, y, x);
+    }
+    worst.report("unit_angle f64 (cos θ, sin θ)");
+}
+
+/// `k` with `|(x, y)| = 1 ± k·ε`, from the double-double `x² + y²`.
+fn length_in_epsilons(y: f64, x: f64) -> f64 {
+    let (x, y) = (Dd { hi: x, lo: 0.0 }, Dd { hi: y, lo: 0.0 });
+    let excess = x.mul(x).add(y.mul(y)).add(Dd { hi: -1.0, lo: 0.0 });
+    (excess.hi / 2.0).abs() / f64::EPSILON
+}
+
+#[test]
+fn unit_angle_f64_at_the_switch() {
+    // |y| = |x| exactly and up to 8 ulps either side, all four diagonals: the nearest
+    // doubles to the unit circle there and their neighbours, of length 1 ± k·ε for k up to
+    // about 10, held to the bound for length 1 ± k·ε.
+    let mut worst = WorstAngle::default();
+    let mut d = std::f64::consts::FRAC_1_SQRT_2;
+    for _ in 0..8 {
+        d = d.next_down();
+    }
+    for _ in 0..17 {
+        let mut e = d;
+        for _ in 0..4 {
+            e = e.next_down();
+        }
+        for _ in 0..9 {
+            for (y, x) in [(d, e), (e, d)] {
+                let k = length_in_epsilons(y, x);
+                let bound = ANGLE_BOUND_ULPS + k.max(1.0) * ANGLE_EXTRA_ULPS_PER_EPSILON;
+                for (sy, sx) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+                    let (y, x) = (sy * y, sx * x);
+                    worst.record(y, x, angle_ulps_f64(y, x), bound);
+                }
+            }
+            e = e.next_up();
+        }
+        d = d.next_up();
+    }
+    worst.report("unit_angle f64 at |y| = |x|");
+}
+
+/// For length `1 ± k·ε`, the bound grows by `k` times this many ulps (the first-order
+/// correction for the length leaves its slope's 0.06% error and second-order terms).
+const ANGLE_EXTRA_ULPS_PER_EPSILON: f64 = 0.002;
+
+#[test]
+fn unit_angle_off_the_unit_circle() {
+    let mut rng = SplitMix(77);
+    for k in [1.0, 4.0, 16.0, 64.0, 256.0, 1024.0] {
+        let bound = ANGLE_BOUND_ULPS + k * ANGLE_EXTRA_ULPS_PER_EPSILON;
+        let (mut worst, mut worst32) = (WorstAngle::default(), WorstAngle::default());
+        for i in 0..200_000 {
+            let theta = if i % 2 == 0 {
+                (rng.unit() * 2.0 - 1.0) * std::f64::consts::PI
+            } else {
+                // Near the diagonals, where the length matters most.
+                f64::from((rng.next() % 8) as u32) * std::f64::consts::FRAC_PI_4
+                    - std::f64::consts::PI
+                    + (rng.unit() - 0.5) * 1e-3
+            };
+            let sign = if rng.next() & 1 == 0 { 1.0 } else { -1.0 };
+            let scale = 1.0 + sign * k * f64::EPSILON;
+            let (y, x) = unit_f64(theta);
+            let (y, x) = (y * scale, x * scale);
+            worst.record(y, x, angle_ulps_f64(y, x), bound);
+            // f32: scaled in f64, then rounded (which adds up to about ε/2 either way).
+            let scale = 1.0 + sign * k * f64::from(f32::EPSILON);
+            let (y, x) = theta.sin_cos();
+            let (y, x) = ((y * scale) as f32, (x * scale) as f32);
+            worst32.record(
+                f64::from(y),
+                f64::from(x),
+                angle_ulps_f32(y, x),
+                bound + 0.5 * ANGLE_EXTRA_ULPS_PER_EPSILON,
+            );
+        }
+        worst.report(&format!("unit_angle f64, length 1 ± {k}ε"));
+        worst32.report(&format!("unit_angle f32, length 1 ± {k}ε"));
+    }
+}
+
+/// Every `stride`th f32 `y` in [0, 1] with `x = √(1 − y²)` rounded, all four signs and both
+/// orders.
+fn f32_unit_pairs(stride: u32) -> WorstAngle {
+    let mut worst = WorstAngle::default();
+    let mut bits = 0;
+    while bits <= 1f32.to_bits() {
+        let y = f32::from_bits(bits);
+        let x = (1.0 - f64::from(y).powi(2)).sqrt() as f32;
+        for (sy, sx) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+            check_angle_f32(&mut worst, sy * y, sx * x);
+            check_angle_f32(&mut worst, sy * x, sx * y);
+        }
+        bits += stride;
+    }
+    worst
+}
+
+#[test]
+#[ignore = "8.5e9 inputs: run with --release --ignored"]
+fn unit_angle_f32_every_unit_pair() {
+    f32_unit_pairs(1).report("unit_angle f32 (y, √(1 − y²)), every y");
+}
+
+#[test]
+fn unit_angle_f32_grids_and_unit_pairs() {
+    let mut worst = WorstAngle::default();
+    for theta in angle_grid(2_000_000, 20_000, 1e-6).chain(angle_grid(0, 20_000, 1e-9)) {
+        let (y, x) = unit_f32(theta);
+        check_angle_f32(&mut worst, y, x);
+    }
+    worst.report("unit_angle f32 (cos θ, sin θ)");
+    f32_unit_pairs(97).report("unit_angle f32 (y, √(1 − y²)), every 97th y");
+}
+
+#[test]
+fn unit_angle_signed_zeros_axes_and_nan() {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    for (y, x, want) in [
+        (0.0f64, 1.0f64, 0.0f64),
+        (-0.0, 1.0, -0.0),
+        (0.0, -1.0, PI),
+        (-0.0, -1.0, -PI),
+        (1.0, 0.0, FRAC_PI_2),
+        (1.0, -0.0, FRAC_PI_2),
+        (-1.0, 0.0, -FRAC_PI_2),
+        (-1.0, -0.0, -FRAC_PI_2),
+    ] {
+        let got = unit_angle(y, x);
+        assert_eq!(
+            got.to_bits(),
+            want.to_bits(),
+            "unit_angle({y}, {x}) = {got}"
+        );
+        assert_eq!(got.to_bits(), y.atan2(x).to_bits());
+        let got = unit_angle(y as f32, x as f32);
+        assert_eq!(
+            got.to_bits(),
+            (want as f32).to_bits(),
+            "f32 ({y}, {x}) = {got}"
+        );
+        assert_eq!(got.to_bits(), (y as f32).atan2(x as f32).to_bits());
+    }
+    for (y, x) in [
+        (f64::NAN, 1.0),
+        (1.0, f64::NAN),
+        (f64::NAN, f64::NAN),
+        (f64::NAN, 0.0),
+        (0.0, f64::NAN),
+        (f64::NAN, -1.0),
+        (-1.0, f64::NAN),
+    ] {
+        assert!(unit_angle(y, x).is_nan(), "({y}, {x})");
+        assert!(unit_angle(-y, -x).is_nan(), "({y}, {x})");
+        assert!(unit_angle(y as f32, x as f32).is_nan(), "({y}, {x})");
+    }
+}
+
+/// Against the platform's own `atan2`, in whole ulps: never more than one apart.
+#[test]
+fn unit_angle_within_one_ulp_of_atan2() {
+    let mut rng = SplitMix(5);
+    for _ in 0..1_000_000 {
+        let theta = (rng.unit() * 2.0 - 1.0) * std::f64::consts::PI;
+        let (y, x) = unit_f64(theta);
+        let (a, b) = (unit_angle(y, x), y.atan2(x));
+        let apart = (a.to_bits() as i64 - b.to_bits() as i64).unsigned_abs();
+        assert!(apart <= 1 || a == b, "({y:e}, {x:e}): {a:e} vs {b:e}");
+        let (y, x) = unit_f32(theta);
+        let (a, b) = (unit_angle(y, x), y.atan2(x));
+        let apart = (i64::from(a.to_bits() as i32) - i64::from(b.to_bits() as i32)).unsigned_abs();
+        assert!(apart <= 1 || a == b, "({y:e}, {x:e}): {a:e} vs {b:e}");
+    }
+}
+
+/// A batch loop over slices: it vectorises (packed `mulpd`/`addpd`/`andpd`/`orpd`, no call)
+/// when built with `--release`; see `cargo rustc --release -p mechgen-tests --test fast_math
+/// -- --emit asm`.
+#[inline(never)]
+fn unit_angles_f64(ys: &[f64], xs: &[f64], out: &mut [f64]) {
+    for ((o, &y), &x) in out.iter_mut().zip(ys).zip(xs) {
+        *o = unit_angle(y, x);
+    }
+}
+
+#[inline(never)]
+fn unit_angles_f32(ys: &[f32], xs: &[f32], out: &mut [f32]) {
+    for ((o, &y), &x) in out.iter_mut().zip(ys).zip(xs) {
+        *o = unit_angle(y, x);
+    }
+}
+
+#[test]
+fn unit_angle_batch_matches_scalar() {
+    let thetas: Vec<f64> = (0..1001).map(|i| -3.0 + 0.006 * f64::from(i)).collect();
+    let (ys, xs): (Vec<f64>, Vec<f64>) = thetas.iter().map(|&t| unit_f64(t)).unzip();
+    let mut out = vec![0.0; ys.len()];
+    unit_angles_f64(&ys, &xs, &mut out);
+    for i in 0..ys.len() {
+        assert_eq!(out[i].to_bits(), unit_angle(ys[i], xs[i]).to_bits());
+    }
+    let (ys, xs): (Vec<f32>, Vec<f32>) = thetas.iter().map(|&t| unit_f32(t)).unzip();
+    let mut out = vec![0.0; ys.len()];
+    unit_angles_f32(&ys, &xs, &mut out);
+    for i in 0..ys.len() {
+        assert_eq!(out[i].to_bits(), unit_angle(ys[i], xs[i]).to_bits());
     }
 }

@@ -318,6 +318,11 @@ impl Generator<'_> {
                         .map_err(|error| ::mechgen::__private::blame(#inputs, error))?
                 }
             }
+            // In a batch, the branch-free angle vectorises; alone, an arc sine is cheaper.
+            AuxKind::Angle { .. } if lanes => {
+                let (y, x) = (&args[0], &args[1]);
+                quote!(::mechgen::fast::unit_angle(#y, #x))
+            }
             AuxKind::Angle { .. } => {
                 let (y, x) = (&args[0], &args[1]);
                 quote!(::mechgen::__private::unit_angle(#y, #x))

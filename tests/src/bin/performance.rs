@@ -753,7 +753,8 @@ fn targets_section(
     let mut out = String::from(
         "\n## Targets\n\nJudged on instructions per call (callgrind), which are deterministic; \
          wall-clock ratios from the same criterion run alongside. `performance -- check` fails \
-         if a target other than a stretch goal is missed.\n\n\
+         if a target published here as met is missed; one published as missed is a known gap, \
+         which it reports without failing until the target is met and this file regenerated.\n\n\
          | target | what | instructions ratio | time ratio | met |\n|---|---|---|---|---|\n",
     );
     let mut missed = Vec::new();
