@@ -16,8 +16,8 @@
 //!
 //! Multi-loop mechanisms, declared with several loops sharing unknowns:
 //! [`WattSixBar`] (two loops solved one after the other in closed form, a branch each, rates
-//! solved block by block), [`StephensonSixBar`] (two coupled loops: Newton on all four
-//! unknowns) and [`JansenLeg`] (Theo Jansen's walking leg with his published lengths, three
+//! solved block by block), [`StephensonSixBar`] (two coupled loops: Newton on two unknowns,
+//! the other loop in closed form inside each iteration) and [`JansenLeg`] (Theo Jansen's walking leg with his published lengths, three
 //! loops in closed form, the foot's trajectory, velocity and acceleration).
 //!
 //! Conventions (KINEMATICS.md in the project's notes): vectors are `r @ θ` = `r·e^{iθ}`,

@@ -1,5 +1,6 @@
 //! Six-bar linkages: a Watt six-bar, solved loop by loop in closed form, and a Stephenson
-//! six-bar whose two loops are coupled, solved by Newton on the four unknowns together.
+//! six-bar whose two loops are coupled, solved by Newton on two unknowns with the other
+//! loop in closed form inside each iteration.
 
 use mechgen::{Real, mechanism};
 
@@ -105,9 +106,10 @@ mechanism! {
     /// a ternary floating link with B, C and D (`bc` from B to C at `theta5`, `cd` from C to
     /// D at `theta5 + beta`); rocker `l4` from O4 = (l1, 0) to C; rocker `l6` from the ground
     /// pivot O6 = `g @ phi` to D. The two ternary links (ground and the floating one) are not
-    /// joined, so each loop holds three unknowns: neither closes on its own, and
-    /// [`position`](Self::position) solves the four unknowns together by Newton on the 4×4
-    /// Jacobian (an LU on the stack). Build one with [`StephensonSixBar::new`].
+    /// joined, so each loop holds three unknowns: neither closes on its own. The generated
+    /// [`position`](Self::position) iterates on `theta3` and `theta4` alone (a 2×2 Newton whose
+    /// Jacobian is the Schur complement of the full one), solving the second loop for `theta5`
+    /// and `theta6` in closed form at every iterate. Build one with [`StephensonSixBar::new`].
     ///
     /// Loops: `l2 @ theta2 + l3 @ theta3 + bc @ theta5 - l4 @ theta4 - l1 @ 0 = 0` and
     /// `l1 @ 0 + l4 @ theta4 + cd @ (theta5 + beta) - l6 @ theta6 - g @ phi = 0`.

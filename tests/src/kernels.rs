@@ -928,7 +928,7 @@ pub static KERNELS: &[Kernel] = &[
         origin: Origin::Generated,
         float: Float::F64,
         mechanism: STEPHENSON_DIMENSIONS,
-        description: "`motion_near(θ2, &guess, &NewtonOptions::default(), ω, α)`: Newton on the coupled 4×4 system from the predicted guess",
+        description: "`motion_near(θ2, &guess, &NewtonOptions::default(), ω, α)`: Newton on θ3 and θ4 (the other loop in closed form inside each iteration) from the predicted guess",
         compared_with: Some("motion"),
         build: || summed(stephenson_motion_near()),
         outputs: || listed(stephenson_motion_near()),

@@ -12,6 +12,7 @@ mod evaluators;
 mod newton;
 mod points;
 mod rates;
+mod reduced;
 mod scenes;
 mod types;
 

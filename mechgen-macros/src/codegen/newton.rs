@@ -16,6 +16,15 @@ use crate::symbolic::{ExprId, Node, Var};
 
 impl Generator<'_> {
     pub(super) fn position(&self) -> TokenStream {
+        match &self.equations.reduction {
+            Some(reduction) => self.reduced_position(reduction),
+            None => self.full_position(true),
+        }
+    }
+
+    /// Newton on every unknown together: `position` itself (`public`), or the private
+    /// fallback of a reduced `position` (see `super::reduced`).
+    pub(super) fn full_position(&self, public: bool) -> TokenStream {
         let input = &self.model.input.name;
         let (guess, options, x, solved) = (arg("guess"), arg("options"), arg("x"), arg("solved"));
         let (unknowns, _, _) = self.signature_types();
@@ -32,17 +41,28 @@ impl Generator<'_> {
         let Linearised {
             hoisted, closure, ..
         } = self.linearisation(&x);
-        let doc = doc(&format!(
-            "Solves the loops for the unknowns at `{input}` by a safeguarded Newton-Raphson from \
-             `guess` (see `mechgen::__private::newton`: halved steps, a certified root, \
-             stagnation reported).{branch_doc}\n\n\
-             Errors: a non-finite parameter, input or guess; a singular Jacobian on the way; \
-             [`mechgen::Error::CannotAssemble`] where the iterates press against a toggle the \
-             loops cannot pass; no convergence within `options.max_iterations`."
-        ));
+        let (doc, signature) = if public {
+            let doc = doc(&format!(
+                "Solves the loops for the unknowns at `{input}` by a safeguarded Newton-Raphson \
+                 from `guess` (see `mechgen::__private::newton`: halved steps, a certified root, \
+                 stagnation reported).{branch_doc}\n\n\
+                 Errors: a non-finite parameter, input or guess; a singular Jacobian on the way; \
+                 [`mechgen::Error::CannotAssemble`] where the iterates press against a toggle \
+                 the loops cannot pass; no convergence within `options.max_iterations`."
+            ));
+            (doc, quote!(pub fn position))
+        } else {
+            let fallback = self.fallback_name();
+            let doc = doc(
+                "Newton-Raphson on every unknown together, as for a mechanism without a \
+                 reduction: what [`Self::position`] falls back to where its closed forms \
+                 cannot close at the guess.",
+            );
+            (doc, quote!(fn #fallback))
+        };
         quote! {
             #doc
-            pub fn position(
+            #signature(
                 &self,
                 #input: T,
                 #guess: &#unknowns,
@@ -89,6 +109,9 @@ impl Generator<'_> {
     /// the rates at its solution with the sines, cosines and factored Jacobian of its last
     /// evaluation, so nothing is evaluated or factored twice.
     pub(super) fn motion_near(&self) -> TokenStream {
+        if let Some(reduction) = &self.equations.reduction {
+            return self.reduced_motion_near(reduction);
+        }
         let input = &self.model.input.name;
         let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
         let (guess, options, x) = (arg("guess"), arg("options"), arg("x"));

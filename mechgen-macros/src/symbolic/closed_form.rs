@@ -87,23 +87,33 @@ pub struct Step {
 /// loop never comes down to one of the cases (it needs Newton).
 pub fn plan(model: &Model, graph: &mut Graph) -> Option<Vec<Step>> {
     let mut solved = vec![false; model.unknowns.len()];
+    let steps = plan_from(model, graph, &mut solved);
+    (steps.len() == model.loops.len()).then_some(steps)
+}
+
+/// [`plan`] with the unknowns marked in `solved` already known: the loops that then come
+/// down, one after another, to a closed form, in order, as far as they go. `solved` ends
+/// with every unknown they solve marked; the loops left out are those that never do.
+pub fn plan_from(model: &Model, graph: &mut Graph, solved: &mut [bool]) -> Vec<Step> {
     let mut done = vec![false; model.loops.len()];
     let mut steps = Vec::new();
     while done.iter().any(|d| !d) {
-        let next = (0..model.loops.len()).filter(|&i| !done[i]).find_map(|i| {
-            let open = open_unknowns(&model.loops[i], &solved);
+        let Some(next) = (0..model.loops.len()).filter(|&i| !done[i]).find_map(|i| {
+            let open = open_unknowns(&model.loops[i], solved);
             let [a, b] = <[usize; 2]>::try_from(open).ok()?;
             classify(model, graph, &model.loops[i], a, b).map(|(unknowns, case)| Step {
                 loop_index: i,
                 unknowns,
                 case,
             })
-        })?;
+        }) else {
+            break;
+        };
         done[next.loop_index] = true;
         next.unknowns.iter().for_each(|&u| solved[u] = true);
         steps.push(next);
     }
-    Some(steps)
+    steps
 }
 
 /// The unknowns a loop still depends on, in declaration order.

@@ -38,6 +38,9 @@ pub struct Equations {
     pub points: Vec<PointExprs>,
     /// The loops in the order they solve in closed form, if every one does.
     pub closed_form: Option<Vec<super::closed_form::Step>>,
+    /// Without a closed form, the fewest unknowns Newton can iterate on, the rest solved in
+    /// closed form inside each evaluation, if the loops allow it.
+    pub reduction: Option<super::reduction::Reduction>,
     /// What scene kernels evaluate, when the declaration has scenes and a closed form.
     pub scenes: Option<Straight>,
 }
@@ -128,6 +131,15 @@ impl Equations {
             .collect();
 
         let closed_form = super::closed_form::plan(model, &mut graph);
+        let reduction = closed_form.is_none().then(|| {
+            let full = super::reduction::Full {
+                residual: &residual,
+                jacobian: &jacobian,
+                velocity_rhs: &velocity_rhs,
+                acceleration_rhs: &acceleration_rhs,
+            };
+            super::reduction::find(model, &mut graph, &full)
+        });
         let scenes = match &closed_form {
             Some(steps) if !model.scenes.is_empty() => {
                 graph.group_fixed_factors();
@@ -159,6 +171,7 @@ impl Equations {
         });
         Equations {
             closed_form,
+            reduction: reduction.flatten(),
             scenes,
             graph,
             residual,

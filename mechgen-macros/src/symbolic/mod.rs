@@ -5,10 +5,12 @@ mod angles;
 mod closed_form;
 mod equations;
 mod graph;
+mod reduction;
 mod rewrite;
 mod straight;
 
 pub use closed_form::{Case, Step};
 pub use equations::{Equations, PointExprs, SceneExprs};
 pub use graph::{ExprId, Graph, Node, Var};
+pub use reduction::Reduction;
 pub use straight::{AuxKind, Straight, Threshold};
