@@ -416,3 +416,146 @@ fn a_batch_stops_where_its_kernel_fails_and_says_why() {
         })
     ));
 }
+
+mod declarations {
+    //! Scenes on declarations the shipped mechanisms do not exercise: a length as the input,
+    //! Chace's linear case (two unknown lengths), constant offsets and scaled magnitudes in
+    //! the loop, an angle with a constant offset read by a point.
+
+    use mechgen::{Branch, mechanism};
+
+    mechanism! {
+        /// A slider-crank driven by its slider (a length input).
+        pub struct SliderDriven {
+            params: l2, l3;
+            input: d: length;
+            unknowns: theta2: angle, theta3: angle;
+            loop: -d @ 0 + l2 @ theta2 + l3 @ theta3;
+            point pin = l2 @ theta2;
+            scene all: theta2, theta3, theta2_dot, theta3_ddot, pin, pin_dot, pin_ddot;
+        }
+    }
+
+    mechanism! {
+        /// A cross-slide: two unknown lengths in one loop.
+        pub struct CrossSlide {
+            params: r;
+            input: theta: angle;
+            unknowns: x: length, y: length;
+            loop: r @ theta - x @ 0 - y @ pi / 2;
+            scene all: x, y, x_dot, y_dot, x_ddot, y_ddot;
+        }
+    }
+
+    mechanism! {
+        /// A four-bar written with offsets: the rocker's angle from +y, a scaled coupler,
+        /// a crank offset, and a point on the coupler at a fixed angle.
+        pub struct Rewritten {
+            params: l1, l2, half_l3, l4, offset: angle, a, delta: angle;
+            input: phi: angle;
+            unknowns: theta3: angle, psi: angle;
+            loop: l2 @ (phi + offset) + 2 * half_l3 @ theta3 - l4 @ (psi + pi / 2) - l1 @ 0;
+            point p = l2 @ (phi + offset) + a @ (theta3 + delta);
+            scene all: psi, psi_dot, psi_ddot, p, p_dot, p_ddot;
+        }
+    }
+
+    fn close(what: &str, at: f64, got: f64, want: f64, scale: f64) {
+        assert!(
+            (got - want).abs() <= 1e-12 * scale,
+            "{what} at {at}: scene {got}, general {want}"
+        );
+    }
+
+    #[test]
+    fn a_length_input_gets_its_scene() {
+        let linkage = SliderDriven {
+            l2: 50.0,
+            l3: 150.0,
+        };
+        let scenes = linkage.scenes().unwrap();
+        for k in 0..50 {
+            let d = 110.0 + 85.0 * f64::from(k) / 50.0;
+            let m = linkage.motion(d, Branch::Open, 3.0, -1.0).unwrap();
+            let s = scenes.all(d, Branch::Open, 3.0, -1.0).unwrap();
+            close("θ2", d, s.theta2, m.position.theta2, 1.0);
+            close("θ3", d, s.theta3, m.position.theta3, 1.0);
+            close("ω2", d, s.theta2_dot, m.velocity.theta2, 1.0);
+            close("α3", d, s.theta3_ddot, m.acceleration.theta3, 1.0);
+            let q = m.position;
+            let pin = linkage.points(d, &q).unwrap().pin;
+            let pin_dot = linkage
+                .point_velocities(d, &q, 3.0, &m.velocity)
+                .unwrap()
+                .pin;
+            let pin_ddot = linkage
+                .point_accelerations(d, &q, 3.0, &m.velocity, -1.0, &m.acceleration)
+                .unwrap()
+                .pin;
+            for (got, want) in [(s.pin, pin), (s.pin_dot, pin_dot), (s.pin_ddot, pin_ddot)] {
+                close("pin", d, got.x, want.x, 200.0);
+                close("pin", d, got.y, want.y, 200.0);
+            }
+        }
+        // Pushed beyond the reach of crank and rod: the scene says so, as `motion` does.
+        assert_eq!(
+            scenes.all(250.0, Branch::Open, 1.0, 0.0).map(|_| ()),
+            linkage.motion(250.0, Branch::Open, 1.0, 0.0).map(|_| ())
+        );
+    }
+
+    #[test]
+    fn two_unknown_lengths_get_their_scene() {
+        let table = CrossSlide { r: 2.0 };
+        let scenes = table.scenes().unwrap();
+        for k in 0..36 {
+            let t = f64::from(10 * k).to_radians();
+            let s = scenes.all(t, 0.7, 0.2).unwrap();
+            let m = table.motion(t, 0.7, 0.2).unwrap();
+            close("x", t, s.x, m.position.x, 2.0);
+            close("y", t, s.y, m.position.y, 2.0);
+            close("ẋ", t, s.x_dot, m.velocity.x, 2.0);
+            close("ẏ", t, s.y_dot, m.velocity.y, 2.0);
+            close("ẍ", t, s.x_ddot, m.acceleration.x, 2.0);
+            close("ÿ", t, s.y_ddot, m.acceleration.y, 2.0);
+        }
+    }
+
+    #[test]
+    fn offsets_and_scaled_magnitudes_get_their_scene() {
+        let linkage = Rewritten {
+            l1: 180.0,
+            l2: 80.0,
+            half_l3: 100.0,
+            l4: 150.0,
+            offset: 0.3,
+            a: 60.0,
+            delta: -0.4,
+        };
+        let scenes = linkage.scenes().unwrap();
+        for branch in [Branch::Open, Branch::Crossed] {
+            for k in 0..36 {
+                let phi = f64::from(10 * k).to_radians();
+                let m = linkage.motion(phi, branch, 10.0, 2.0).unwrap();
+                let s = scenes.all(phi, branch, 10.0, 2.0).unwrap();
+                close("ψ", phi, s.psi, m.position.psi, 1.0);
+                close("ψ̇", phi, s.psi_dot, m.velocity.psi, 10.0);
+                close("ψ̈", phi, s.psi_ddot, m.acceleration.psi, 100.0);
+                let q = m.position;
+                let p = linkage.points(phi, &q).unwrap().p;
+                let v = linkage
+                    .point_velocities(phi, &q, 10.0, &m.velocity)
+                    .unwrap()
+                    .p;
+                let a = linkage
+                    .point_accelerations(phi, &q, 10.0, &m.velocity, 2.0, &m.acceleration)
+                    .unwrap()
+                    .p;
+                for (got, want, scale) in [(s.p, p, 300.0), (s.p_dot, v, 3e3), (s.p_ddot, a, 3e4)] {
+                    close("p", phi, got.x, want.x, scale);
+                    close("p", phi, got.y, want.y, scale);
+                }
+            }
+        }
+    }
+}
