@@ -76,10 +76,13 @@ pub fn resolve(
         .into_iter()
         .map(|(docs, name, outputs)| {
             let text = name.unraw().to_string();
-            if RESERVED.contains(&text.as_str()) {
+            if RESERVED.contains(&text.as_str()) || text.ends_with("_batch") {
                 errors.error_at(
                     &name,
-                    format!("`{name}` names a generated item already: call the scene otherwise"),
+                    format!(
+                        "`{name}` names a generated item already (each scene `s` also makes \
+                         `s_batch`): call the scene otherwise"
+                    ),
                 );
             } else if !scene_names.insert(text) {
                 errors.error_at(&name, format!("scene `{name}` is declared twice"));

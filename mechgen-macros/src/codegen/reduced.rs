@@ -11,6 +11,11 @@
 //! on another assembly is `Error::OtherBranch`. Where the closed forms cannot close at the
 //! guess itself there is nothing to iterate on, and the functions fall back to Newton on
 //! every unknown.
+//!
+//! At the solution, the loops' full Jacobian gives `condition`, the singular check and the
+//! rates through its blocks (see [`block_solver`]): the closed-form loops' 2×2 blocks and the
+//! reduced Jacobian Newton has already factored, with the full Jacobian factored whole only
+//! where the blocks are ill-conditioned or the full one is near the singular threshold.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -54,6 +59,8 @@ struct Finish {
     after_rates: TokenStream,
     /// The loops' Jacobian, as a matrix.
     jacobian: TokenStream,
+    /// Its entries, row by row.
+    entries: Vec<Emitted>,
     extra: Vec<Emitted>,
 }
 
@@ -79,7 +86,10 @@ impl Generator<'_> {
         let after = self.roots_after(reduction, &[]);
         let iteration = self.reduced_iteration(reduction, &fall_back, &after);
         let Finish {
-            solves, jacobian, ..
+            solves,
+            jacobian,
+            entries,
+            ..
         } = self.finish(reduction, &iteration, &[], false);
         let Iteration { check, solve, .. } = iteration;
         let unknown_names = self.model.unknowns.iter().map(|u| &u.name);
@@ -97,6 +107,18 @@ impl Generator<'_> {
             self.reduction_doc(reduction)
         ));
         let full = self.full_position(false);
+        let (factor, relative) = if reduction.after.is_empty() {
+            let relative = local("block_relative");
+            (
+                block_solver(reduction, &self.equations.graph, &entries),
+                quote!(#relative),
+            )
+        } else {
+            (
+                quote!(let #factored = ::mechgen::__private::Factored::new(#jacobian)?;),
+                quote!(#factored.relative()),
+            )
+        };
         quote! {
             #doc
             pub fn position(
@@ -108,12 +130,12 @@ impl Generator<'_> {
                 #check
                 #solve
                 #solves
-                let #factored = ::mechgen::__private::Factored::new(#jacobian)?;
+                #factor
                 ::core::result::Result::Ok(::mechgen::Solved {
                     value: #ty { #(#unknown_names),* },
                     iterations: #converged.solved.iterations,
                     residual_norm: #converged.solved.residual_norm,
-                    condition: T::one() / #factored.relative().abs(),
+                    condition: T::one() / #relative.abs(),
                 })
             }
             #full
@@ -121,7 +143,8 @@ impl Generator<'_> {
     }
 
     /// `motion_near` by the reduced iteration: the rates at its solution from the loops'
-    /// Jacobian, evaluated and factored once there from the values its last evaluation named.
+    /// Jacobian, from the values its last evaluation named, solved through its blocks (see
+    /// [`block_solver`]).
     pub(super) fn reduced_motion_near(&self, reduction: &Reduction) -> TokenStream {
         let input = &self.model.input.name;
         let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
@@ -148,6 +171,7 @@ impl Generator<'_> {
             solves,
             after_rates,
             jacobian,
+            entries,
             extra,
         } = self.finish(reduction, &iteration, &right_sides, true);
         let Iteration { check, solve, .. } = iteration;
@@ -156,6 +180,36 @@ impl Generator<'_> {
         let unknown_names = self.model.unknowns.iter().map(|u| &u.name);
         let (rates, accelerations) = (local("rates"), local("accelerations"));
         let (converged, factored) = (arg("converged"), arg("jacobian"));
+        let graph = &self.equations.graph;
+        // Through the blocks where there is no loop solved after the iteration.
+        let (factor, velocity, acceleration, relative) = if reduction.after.is_empty() {
+            let zeros =
+                |ids: &[ExprId]| ids.iter().map(|&id| graph.is_zero(id)).collect::<Vec<_>>();
+            let relative = local("block_relative");
+            (
+                block_solver(reduction, graph, &entries),
+                block_solve(
+                    reduction,
+                    graph,
+                    velocity_rhs,
+                    &zeros(&reduction.velocity_rhs),
+                ),
+                block_solve(
+                    reduction,
+                    graph,
+                    acceleration_rhs,
+                    &zeros(&reduction.acceleration_rhs),
+                ),
+                quote!(#relative),
+            )
+        } else {
+            (
+                quote!(let #factored = ::mechgen::__private::Factored::new(#jacobian)?;),
+                quote!(#factored.solve([#(#velocity_rhs),*])),
+                quote!(#factored.solve([#(#acceleration_rhs),*])),
+                quote!(#factored.relative()),
+            )
+        };
         let labels = [
             format!("input rate `{input_dot}`"),
             format!("input acceleration `{input_ddot}`"),
@@ -187,11 +241,11 @@ impl Generator<'_> {
                 ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
                 #solve
                 #solves
-                let #factored = ::mechgen::__private::Factored::new(#jacobian)?;
-                let #rates = #factored.solve([#(#velocity_rhs),*]);
+                #factor
+                let #rates = #velocity;
                 let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
                 #after_rates
-                let #accelerations = #factored.solve([#(#acceleration_rhs),*]);
+                let #accelerations = #acceleration;
                 let #accelerations = ::mechgen::__private::finite(#accelerations, "acceleration")?;
                 ::core::result::Result::Ok(::mechgen::Solved {
                     value: ::mechgen::Motion {
@@ -201,7 +255,7 @@ impl Generator<'_> {
                     },
                     iterations: #converged.solved.iterations,
                     residual_norm: #converged.solved.residual_norm,
-                    condition: T::one() / #factored.relative().abs(),
+                    condition: T::one() / #relative.abs(),
                 })
             }
         }
@@ -442,7 +496,7 @@ impl Generator<'_> {
         let turning_names = turnings.values();
         let n = Literal::usize_unsuffixed(iterated.len());
         let hoisted = &statements[0];
-        // The closed-form angles at the solution: the one `atan2` each.
+        // The closed-form angles at the solution, from their unit vectors.
         let angles = directions.iter().map(|d| {
             let (direction, [sin, cos]) = (&d.direction, &d.trig);
             let value = self.angle_near_guess(d.unknown, direction);
@@ -605,6 +659,7 @@ impl Generator<'_> {
             solves: quote!(#(#solves)*),
             after_rates: quote!(#(#after_rates)*),
             jacobian: super::matrix(&jacobian, n),
+            entries: jacobian,
             extra: outputs.collect(),
         }
     }
@@ -758,16 +813,25 @@ impl Generator<'_> {
     }
 
     /// `let q = …;`: the angle of `direction` within half a turn of the guess's, as Newton
-    /// on every unknown would continue it from there.
+    /// on every unknown would continue it from there. The direction is a unit vector, so its
+    /// angle is `unit_angle`'s (an arc sine or cosine, within rounding of `atan2`), and an
+    /// offset under 3 rad from the guess (the common case) needs no whole turns taken off:
+    /// `round` would give zero there.
     fn angle_near_guess(&self, unknown: usize, direction: &Ident) -> TokenStream {
         let name = &self.model.unknowns[unknown].name;
         let guess = arg("guess");
         let (turn, offset) = (local("turn"), local("offset"));
         quote! {
             let #name = {
-                let #turn = T::constant(::core::f64::consts::TAU);
-                let #offset = #direction.angle() - #guess.#name;
-                #guess.#name + (#offset - (#offset / #turn).round() * #turn)
+                let #offset = ::mechgen::__private::unit_angle(#direction.y, #direction.x)
+                    - #guess.#name;
+                #guess.#name
+                    + if #offset.abs() < T::constant(3.0) {
+                        #offset
+                    } else {
+                        let #turn = T::constant(::core::f64::consts::TAU);
+                        #offset - (#offset / #turn).round() * #turn
+                    }
             };
         }
     }
@@ -870,11 +934,38 @@ fn schur_complement(
                 .map(|y| entry(r, y).map_or_else(|| quote!(T::zero()), |d| quote!(#d)))
         });
         let inner = local(&format!("inner{s}"));
+        let (determinant, squares, relative, inverse, factored) = (
+            local("inner_determinant"),
+            local("inner_squares"),
+            local("inner_relative"),
+            local("inner_inverse"),
+            local("inner_factored"),
+        );
+        // As `Factored::new` would factor it, to the bit: where the squares of the column
+        // norms are normal and finite, the explicit inverse (`Singular` at or below the
+        // threshold), else the scaled LU in `Factored` itself.
         statements.push(quote! {
-            let ::core::result::Result::Ok(#inner) =
-                ::mechgen::__private::Factored::new([[#a, #b], [#c, #d]])
-            else {
-                return #undefined;
+            let #determinant = #a * #d - #b * #c;
+            let #squares = (#a * #a + #c * #c) * (#b * #b + #d * #d);
+            let #inner = if #squares >= T::min_positive_value() && #squares <= T::max_value() {
+                let #relative = #determinant / #squares.sqrt();
+                if #relative.is_nan()
+                    || #relative.abs() <= ::mechgen::singular_threshold::<T>()
+                {
+                    return #undefined;
+                }
+                let #inverse = T::one() / #determinant;
+                ::core::result::Result::Ok([
+                    [#d * #inverse, -#b * #inverse],
+                    [-#c * #inverse, #a * #inverse],
+                ])
+            } else {
+                let ::core::result::Result::Ok(#factored) =
+                    ::mechgen::__private::Factored::new([[#a, #b], [#c, #d]])
+                else {
+                    return #undefined;
+                };
+                ::core::result::Result::Err(#factored)
             };
         });
         let columns = iterated
@@ -884,9 +975,25 @@ fn schur_complement(
                 if !reduction.slopes[s][j] {
                     return None;
                 }
-                let right = rows.map(|r| combination(r, column, j, &w));
+                let [p, q] = rows.map(|r| combination(r, column, j, &w));
                 let name = local(&format!("w{s}_{j}"));
-                statements.push(quote!(let #name = #inner.solve([#(#right),*]);));
+                let (inverse, factored) = (local("inner_inverse"), local("inner_factored"));
+                let (first, second) = (local("inner_p"), local("inner_q"));
+                // `Factored::solve`'s sums, from zero.
+                statements.push(quote! {
+                    let #name = {
+                        let (#first, #second) = (#p, #q);
+                        match #inner {
+                            ::core::result::Result::Ok(#inverse) => [
+                                T::zero() + #inverse[0][0] * #first + #inverse[0][1] * #second,
+                                T::zero() + #inverse[1][0] * #first + #inverse[1][1] * #second,
+                            ],
+                            ::core::result::Result::Err(#factored) => {
+                                #factored.solve([#first, #second])
+                            }
+                        }
+                    };
+                });
                 Some(name)
             })
             .collect();
@@ -905,6 +1012,252 @@ fn schur_complement(
         });
     let jacobian = quote!([#(#rows),*]);
     (quote!(#(#statements)*), jacobian)
+}
+
+/// How the loops' Jacobian `J` at the solution is solved: by its blocks where that is as good
+/// as factoring it whole, else factored whole. The blocks are the closed-form loops' 2×2
+/// `J[G_s,Y_s]` (inverted by Cramer's rule from the last evaluation's entries) and the
+/// reduced Jacobian `R = J[F,S] − J[F,Y]·J[G,Y]⁻¹·J[G,S]` that Newton factored at its
+/// solution, so `|det J| = |det R|·Π|det J[G_s,Y_s]|` (`J[G,Y]` is block lower-triangular)
+/// and, `det R` being its relative determinant times its column norms, `J`'s relative
+/// determinant is
+///
+/// `|det J| / Π‖J col‖ = |rel R|·Π|det J[G_s,Y_s]|·√(Π‖R col‖² / Π‖J col‖²)`.
+///
+/// The blocks are used only where every `J[G_s,Y_s]` has a relative determinant of at least
+/// 1/16 (so solving through them loses at most a few bits to rounding against the whole
+/// `J`), the products of squared column norms are normal and finite (no overflow or
+/// underflow), and `J`'s relative determinant is above twice `mechgen::singular_threshold`;
+/// anywhere else `J` is factored whole, as before, which then decides `Error::Singular` by
+/// its own check. So `Singular` is reported exactly where factoring `J` whole reports it: the
+/// block estimate differs from that one by rounding, far less than the margin. Only its
+/// magnitude is used (for `condition`), so the blocks' order does not matter.
+///
+/// `entries` are `J`'s, row by row. Only for a reduction with no loop solved after the
+/// iteration (`J` is then `[[J[F,S], J[F,Y]], [J[G,S], J[G,Y]]]` up to the order of rows
+/// and columns). Binds `blocks`, `Ok` with each block's inverse determinant or `Err` with
+/// `J` factored, and `block_relative`, `J`'s relative determinant.
+fn block_solver(reduction: &Reduction, graph: &Graph, entries: &[Emitted]) -> TokenStream {
+    let n = reduction.jacobian.len();
+    let (converged, blocks) = (arg("converged"), local("blocks"));
+    let nonzero = |r: usize, c: usize| !graph.is_zero(reduction.jacobian[r][c]);
+    let bindings = (0..n)
+        .flat_map(|r| (0..n).map(move |c| (r, c)))
+        .filter(|&(r, c)| nonzero(r, c))
+        .map(|(r, c)| {
+            let (local, value) = (block_entry(r, c), &entries[r * n + c]);
+            quote!(let #local = #value;)
+        });
+    let entry = |r: usize, c: usize| block_value(graph, reduction, r, c);
+    let (normal, none) = (local("block_normal"), local("block_none"));
+    let inverses: Vec<Ident> = (0..reduction.steps.len())
+        .map(|s| local(&format!("block_inverse{s}")))
+        .collect();
+    let mut statements = Vec::new();
+    let mut determinants = Vec::new();
+    for (s, (step, inverse)) in reduction.steps.iter().zip(&inverses).enumerate() {
+        let rows = [2 * step.loop_index, 2 * step.loop_index + 1];
+        let [[a, b], [c, d]] = rows.map(|r| step.unknowns.map(|y| entry(r, y)));
+        let (determinant, squares) = (
+            local(&format!("block_determinant{s}")),
+            local(&format!("block_squares{s}")),
+        );
+        // |det| ≥ Π‖column‖/16, squared.
+        statements.push(quote! {
+            let #determinant = #a * #d - #b * #c;
+            let #squares = (#a * #a + #c * #c) * (#b * #b + #d * #d);
+            if !(#normal(#squares)
+                && #determinant * #determinant * T::constant(256.0) >= #squares)
+            {
+                break 'blocks #none;
+            }
+            let #inverse = T::one() / #determinant;
+        });
+        determinants.push(determinant);
+    }
+    let m = reduction.iterated.len();
+    let reduced = local("block_reduced");
+    let kept = (0..m).map(|j| {
+        let column = (0..m).map(|i| {
+            let (i, j) = (Literal::usize_unsuffixed(i), Literal::usize_unsuffixed(j));
+            quote!(#reduced[#i][#j] * #reduced[#i][#j])
+        });
+        quote!((#(#column)+*))
+    });
+    let full = (0..n).map(|c| {
+        let squares = (0..n).filter(|&r| nonzero(r, c)).map(|r| {
+            let e = block_entry(r, c);
+            quote!(#e * #e)
+        });
+        quote!((#(#squares)+*))
+    });
+    let product = |factors: Vec<TokenStream>| match factors.split_first() {
+        Some((first, rest)) => quote!(#first #(* #rest)*),
+        None => quote!(T::one()),
+    };
+    let (kept, full) = (product(kept.collect()), product(full.collect()));
+    let (kept_name, full_name, relative) = (
+        local("block_kept"),
+        local("block_full"),
+        local("block_relative"),
+    );
+    let matrix = super::matrix(entries, n);
+    quote! {
+        #(#bindings)*
+        let #blocks = 'blocks: {
+            // (`break 'blocks ::core::…` would not parse with syn as a labelled break.)
+            let #none = ::core::option::Option::None;
+            let #normal = |v: T| v >= T::min_positive_value() && v <= T::max_value();
+            #(#statements)*
+            let #reduced = #converged.at.jacobian;
+            let #kept_name = #kept;
+            let #full_name = #full;
+            if !(#normal(#kept_name) && #normal(#full_name)) {
+                break 'blocks #none;
+            }
+            let #relative = #converged.jacobian.relative() #(* #determinants)*
+                * (#kept_name / #full_name).sqrt();
+            if !(#relative.abs() > T::constant(2.0) * ::mechgen::singular_threshold::<T>()) {
+                break 'blocks #none;
+            }
+            ::core::option::Option::Some(((#(#inverses,)*), #relative))
+        };
+        let #blocks = match #blocks {
+            ::core::option::Option::Some(#blocks) => ::core::result::Result::Ok(#blocks),
+            ::core::option::Option::None => ::core::result::Result::Err(
+                ::mechgen::__private::Factored::new(#matrix)?,
+            ),
+        };
+        let #relative = match &#blocks {
+            ::core::result::Result::Ok((_, #relative)) => *#relative,
+            ::core::result::Result::Err(#full_name) => #full_name.relative(),
+        };
+    }
+}
+
+/// The local [`block_solver`] binds to a structurally non-zero entry of `J`.
+fn block_entry(r: usize, c: usize) -> Ident {
+    local(&format!("block_j{r}_{c}"))
+}
+
+/// An entry of `J` after [`block_solver`]: its local, or zero.
+fn block_value(graph: &Graph, reduction: &Reduction, r: usize, c: usize) -> TokenStream {
+    if graph.is_zero(reduction.jacobian[r][c]) {
+        quote!(T::zero())
+    } else {
+        let local = block_entry(r, c);
+        quote!(#local)
+    }
+}
+
+/// The solution of `J·x = rhs` with [`block_solver`]'s solver: through the blocks, by
+/// forward substitution down the closed-form loops for `z = J[G,Y]⁻¹·rhs[G]`, then
+/// `x[S] = R⁻¹·(rhs[F] − J[F,Y]·z)`, then forward substitution again for
+/// `x[Y] = J[G,Y]⁻¹·(rhs[G] − J[G,S]·x[S])`; or with `J` factored whole. `zeros` says which
+/// of `rhs` are structurally zero, whose terms are left out.
+fn block_solve(
+    reduction: &Reduction,
+    graph: &Graph,
+    rhs: &[Emitted],
+    zeros: &[bool],
+) -> TokenStream {
+    let n = reduction.jacobian.len();
+    let (converged, blocks) = (arg("converged"), local("blocks"));
+    let nonzero = |r: usize, c: usize| !graph.is_zero(reduction.jacobian[r][c]);
+    let entry = |r: usize, c: usize| block_value(graph, reduction, r, c);
+    let b: Vec<Ident> = (0..n).map(|r| local(&format!("block_b{r}"))).collect();
+    let steps = &reduction.steps;
+    let inverses: Vec<Ident> = (0..steps.len())
+        .map(|s| local(&format!("block_inverse{s}")))
+        .collect();
+    // `rhs[r] − Σ J[r, c]·value(c)` over the columns whose value is known and not zero.
+    let row = |r: usize, terms: &[(usize, TokenStream)]| -> Option<TokenStream> {
+        let subtracted: Vec<TokenStream> = terms
+            .iter()
+            .filter(|(c, _)| nonzero(r, *c))
+            .map(|(c, value)| {
+                let e = block_entry(r, *c);
+                quote!(#e * #value)
+            })
+            .collect();
+        let br = &b[r];
+        match (zeros[r], subtracted.split_first()) {
+            (true, None) => None,
+            (false, _) => Some(quote!(#br #(- #subtracted)*)),
+            (true, Some((first, rest))) => Some(quote!(-#first #(- #rest)*)),
+        }
+    };
+    // Step `s`'s 2×2 block solved for `[p, q]` by Cramer's rule.
+    let (p, q) = (local("block_p"), local("block_q"));
+    let cramer = |s: usize, step: &Step, [first, second]: [TokenStream; 2]| {
+        let rows = [2 * step.loop_index, 2 * step.loop_index + 1];
+        let [[a, b], [c, d]] = rows.map(|r| step.unknowns.map(|y| entry(r, y)));
+        let inverse = &inverses[s];
+        quote! {{
+            let (#p, #q) = (#first, #second);
+            [(#d * #p - #b * #q) * #inverse, (#a * #q - #c * #p) * #inverse]
+        }}
+    };
+    let mut statements = Vec::new();
+    // z = J[G,Y]⁻¹·rhs[G], step by step; a step's `None` is zero.
+    let mut known: Vec<(usize, TokenStream)> = Vec::new();
+    for (s, step) in steps.iter().enumerate() {
+        let rows = [2 * step.loop_index, 2 * step.loop_index + 1].map(|r| row(r, &known));
+        if rows.iter().all(Option::is_none) {
+            continue;
+        }
+        let rows = rows.map(|r| r.unwrap_or_else(|| quote!(T::zero())));
+        let z = local(&format!("block_z{s}"));
+        let solved = cramer(s, step, rows);
+        statements.push(quote!(let #z = #solved;));
+        for (k, &y) in step.unknowns.iter().enumerate() {
+            let k = Literal::usize_unsuffixed(k);
+            known.push((y, quote!(#z[#k])));
+        }
+    }
+    let reduced_rhs = reduction
+        .residual_loops
+        .iter()
+        .flat_map(|&l| [2 * l, 2 * l + 1])
+        .map(|r| row(r, &known).unwrap_or_else(|| quote!(T::zero())));
+    let iterated = local("block_x");
+    statements.push(quote!(let #iterated = #converged.jacobian.solve([#(#reduced_rhs),*]);));
+    let mut value: Vec<TokenStream> = vec![quote!(T::zero()); n];
+    let mut known: Vec<(usize, TokenStream)> = Vec::new();
+    for (j, &u) in reduction.iterated.iter().enumerate() {
+        let j = Literal::usize_unsuffixed(j);
+        value[u] = quote!(#iterated[#j]);
+        known.push((u, value[u].clone()));
+    }
+    for (s, step) in steps.iter().enumerate() {
+        let rows = [2 * step.loop_index, 2 * step.loop_index + 1]
+            .map(|r| row(r, &known).unwrap_or_else(|| quote!(T::zero())));
+        let y = local(&format!("block_y{s}"));
+        let solved = cramer(s, step, rows);
+        statements.push(quote!(let #y = #solved;));
+        for (k, &u) in step.unknowns.iter().enumerate() {
+            let k = Literal::usize_unsuffixed(k);
+            value[u] = quote!(#y[#k]);
+            known.push((u, value[u].clone()));
+        }
+    }
+    let full = local("block_full");
+    let bindings = b
+        .iter()
+        .zip(rhs)
+        .zip(zeros)
+        .filter(|(_, zero)| !**zero)
+        .map(|((b, value), _)| quote!(let #b = #value;));
+    quote! {
+        match #blocks {
+            ::core::result::Result::Ok(((#(#inverses,)*), _)) => {
+                #(#bindings)*
+                #(#statements)*
+                [#(#value),*]
+            }
+            ::core::result::Result::Err(#full) => #full.solve([#(#rhs),*]),
+        }
+    }
 }
 
 /// `a`, `a and b`, `a, b and c`.

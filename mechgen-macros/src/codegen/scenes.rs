@@ -2,11 +2,12 @@
 //! outputs it lists.
 //!
 //! What makes them fast: everything that depends on the dimensions alone is computed once,
-//! by `scenes()`, into `{Name}Scenes`; each closed form yields solved angles as unit vectors,
-//! which (with angle sums taken apart, see `symbolic::angles`) are all that positions, rates
-//! and points read, so an `atan2` is paid only for an angle the scene lists; every sine and
-//! cosine is computed once and shared; the parameters were checked when the constants were
-//! made, so a call checks only its own arguments.
+//! by `scenes()`, into `{Name}Scenes`; the closed forms, rates and points are one expression
+//! graph written out as arithmetic (`symbolic::straight`), in which solved angles are read
+//! through their unit vectors, so an angle itself (an arc sine or cosine) is paid for only if
+//! the scene lists it; the parameters were checked when the constants were made, and a call
+//! checks its arguments only on the failing path. Each scene also gets a batch form,
+//! `{scene}_batch`, the same arithmetic in a loop the compiler vectorises.
 
 use std::collections::BTreeSet;
 

@@ -10,6 +10,7 @@ mechanism! {
         scene draw: coupler, couplr, theta2_dot, l3, theta4_dddot;
         scene twice: theta3, theta3;
         scene points: coupler;
+        scene draw_batch: coupler;
         scene draw: theta4;
     }
 }
