@@ -201,6 +201,43 @@ impl<'a> Generator<'a> {
         (quote!(#bindings #(#statements)*), outputs)
     }
 
+    /// Emits `outputs` after another block in the same function: its own temporaries avoid
+    /// the names in `taken`, and it binds from `self` only the parameters that `bound` (what
+    /// the earlier block read, and so bound) lacks. Returns those bindings, the statements
+    /// by stage (at least `stages` of them) and the outputs.
+    fn block_after(
+        &self,
+        outputs: &[ExprId],
+        presets: &[(ExprId, Ident, usize)],
+        stage: &dyn Fn(Var) -> usize,
+        taken: impl IntoIterator<Item = String>,
+        bound: &BTreeSet<Var>,
+        stages: usize,
+    ) -> (TokenStream, Vec<Vec<TokenStream>>, Vec<Emitted>) {
+        let mut reserved = self.reserved.clone();
+        reserved.extend(taken);
+        let context = Context {
+            reserved: &reserved,
+            presets,
+            stage,
+        };
+        let Block {
+            mut statements,
+            outputs,
+            used,
+            ..
+        } = emit(
+            &self.equations.graph,
+            outputs,
+            &|var| self.var_name(var),
+            &context,
+        );
+        statements.resize(stages.max(statements.len()), Vec::new());
+        let unbound: BTreeSet<Var> = used.difference(bound).copied().collect();
+        let bindings = self.parameter_bindings(&unbound, quote!(self));
+        (bindings, statements, outputs)
+    }
+
     /// Emits `outputs`, with the `let`s that bind the parameters and unknowns they read (as
     /// `bindings` says), and the statements by stage (see [`Context::stage`]).
     fn block_with(

@@ -9,7 +9,7 @@ use quote::quote;
 use syn::ext::IdentExt;
 
 use super::docs::doc;
-use super::emit::{Block, Context, emit, local, reachable};
+use super::emit::{Block, local, reachable};
 use super::{Bindings, Generator, arg, matrix};
 use crate::model::SymbolRef;
 use crate::symbolic::{ExprId, Node, Var};
@@ -147,27 +147,9 @@ impl Generator<'_> {
             .collect();
         let stage = |var: Var| usize::from(matches!(var, Var::Rate(SymbolRef::Unknown(_))));
         // Its own temporaries must not shadow the payload's.
-        let mut reserved = self.reserved.clone();
-        reserved.extend(named.iter().map(|(_, name, _)| name.to_string()));
-        let context = Context {
-            reserved: &reserved,
-            presets: &presets,
-            stage: &stage,
-        };
-        let Block {
-            mut statements,
-            outputs,
-            used,
-            ..
-        } = emit(
-            &self.equations.graph,
-            &entries,
-            &|var| self.var_name(var),
-            &context,
-        );
-        let unbound: BTreeSet<Var> = used.difference(&bound).copied().collect();
-        let bindings = self.parameter_bindings(&unbound, quote!(self));
-        statements.resize(2, Vec::new());
+        let taken = named.iter().map(|(_, name, _)| name.to_string());
+        let (bindings, statements, outputs) =
+            self.block_after(&entries, &presets, &stage, taken, &bound, 2);
         let (before, after) = (&statements[0], &statements[1]);
         let (velocity_rhs, acceleration_rhs) = outputs.split_at(n);
         let names = self.model.unknowns.iter().map(|u| &u.name);

@@ -606,27 +606,14 @@ impl Generator<'_> {
             )
             .collect();
         let entries: Vec<ExprId> = self.roots_after(reduction, extra);
-        let mut reserved = self.reserved.clone();
-        reserved.extend(iteration.names.iter().cloned());
-        let context = Context {
-            reserved: &reserved,
-            presets: &presets,
-            stage: &stage,
-        };
-        let Block {
-            mut statements,
-            outputs,
-            used,
-            ..
-        } = emit(
-            &self.equations.graph,
+        let (bindings, statements, outputs) = self.block_after(
             &entries,
-            &|var| self.var_name(var),
-            &context,
+            &presets,
+            &stage,
+            iteration.names.iter().cloned(),
+            &iteration.used,
+            last + 2,
         );
-        statements.resize(last + 2, Vec::new());
-        let unbound: BTreeSet<Var> = used.difference(&iteration.used).copied().collect();
-        let bindings = self.parameter_bindings(&unbound, quote!(self));
         let mut outputs = outputs.into_iter();
         let mut solves = vec![bindings];
         let failure = arg("failure");

@@ -50,6 +50,15 @@ fn best_ns_per_step(steps: usize, mut run: impl FnMut()) -> f64 {
     best
 }
 
+/// The largest distance between matching joints of two sweeps, in mm.
+fn largest_distance(a: &[Joints<f64>], b: &[Joints<f64>]) -> f64 {
+    let distance = |p: Vec2<f64>, q: Vec2<f64>| (p.x - q.x).hypot(p.y - q.y);
+    a.iter()
+        .zip(b)
+        .map(|(a, b)| distance(a.crank_pin, b.crank_pin).max(distance(a.rocker_pin, b.rocker_pin)))
+        .fold(0f64, f64::max)
+}
+
 fn main() {
     let theta2: Vec<f64> = (0..360).map(|k| f64::from(k).to_radians()).collect();
     let theta2_f32: Vec<f32> = theta2.iter().map(|&t| t as f32).collect();
@@ -99,23 +108,16 @@ fn main() {
     });
 
     // They agree (the tests hold them to 1e-12 mm).
-    let worst = out
-        .iter()
-        .zip(&scalar_out)
-        .map(|(a, b)| {
-            let d = |p: Vec2<f64>, q: Vec2<f64>| (p.x - q.x).hypot(p.y - q.y);
-            d(a.crank_pin, b.crank_pin).max(d(a.rocker_pin, b.rocker_pin))
-        })
-        .fold(0f64, f64::max);
+    let worst = largest_distance(&out, &scalar_out);
     assert!(worst <= 1e-12, "kernels disagree by {worst:e} mm");
-    let generated_worst = generated_out
+    let generated_joints: Vec<Joints<f64>> = generated_out
         .iter()
-        .zip(&scalar_out)
-        .map(|(a, b)| {
-            let d = |p: Vec2<f64>, q: Vec2<f64>| (p.x - q.x).hypot(p.y - q.y);
-            d(a.crank_pin, b.crank_pin).max(d(a.rocker_pin, b.rocker_pin))
+        .map(|j| Joints {
+            crank_pin: j.crank_pin,
+            rocker_pin: j.rocker_pin,
         })
-        .fold(0f64, f64::max);
+        .collect();
+    let generated_worst = largest_distance(&generated_joints, &scalar_out);
     assert!(
         generated_worst <= 1e-12,
         "the generated batch disagrees by {generated_worst:e} mm"
