@@ -9,19 +9,8 @@
 set -euo pipefail
 elf="$1"
 
-host="$(rustc -vV | sed -n 's/^host: //p')"
-tools="$(rustc --print sysroot)/lib/rustlib/$host/bin"
-if [ ! -x "$tools/llvm-objdump" ]; then
-    rustup component add llvm-tools >/dev/null 2>&1 || true
-fi
-if [ -x "$tools/llvm-objdump" ] && [ -x "$tools/llvm-nm" ]; then
-    nm=("$tools/llvm-nm") objdump=("$tools/llvm-objdump")
-elif command -v arm-none-eabi-objdump >/dev/null; then
-    nm=(arm-none-eabi-nm) objdump=(arm-none-eabi-objdump)
-else
-    echo "no-panic.sh: no llvm-objdump (rustup component add llvm-tools) nor arm-none-eabi-objdump (apt-get install binutils-arm-none-eabi)" >&2
-    exit 1
-fi
+# shellcheck source=tools.sh
+source "$(dirname "$0")/tools.sh" no-panic.sh
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT

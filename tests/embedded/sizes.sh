@@ -29,19 +29,8 @@ levels=("$@")
 [ ${#levels[@]} -gt 0 ] || levels=(s 3)
 
 # --- tools -----------------------------------------------------------------------------
-host="$(rustc -vV | sed -n 's/^host: //p')"
-tools="$(rustc --print sysroot)/lib/rustlib/$host/bin"
-if [ ! -x "$tools/llvm-objdump" ]; then
-    rustup component add llvm-tools >/dev/null 2>&1 || true
-fi
-if [ -x "$tools/llvm-objdump" ] && [ -x "$tools/llvm-nm" ]; then
-    nm=("$tools/llvm-nm") objdump=("$tools/llvm-objdump")
-elif command -v arm-none-eabi-objdump >/dev/null; then
-    nm=(arm-none-eabi-nm) objdump=(arm-none-eabi-objdump)
-else
-    echo "sizes.sh: no llvm-nm/llvm-objdump (rustup component add llvm-tools) nor arm-none-eabi-objdump (apt-get install binutils-arm-none-eabi)" >&2
-    exit 1
-fi
+# shellcheck source=tools.sh
+source "$here/tools.sh" sizes.sh
 rustup target list --installed | grep -qx "$target" || rustup target add "$target" >&2
 
 # kernel label | generated function | hand-written function

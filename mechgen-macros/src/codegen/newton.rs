@@ -117,7 +117,6 @@ impl Generator<'_> {
         let (guess, options, x) = (arg("guess"), arg("options"), arg("x"));
         let (converged, jacobian) = (arg("converged"), arg("jacobian"));
         let (rates, accelerations) = (local("rates"), local("accelerations"));
-        let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
         let n = self.model.unknowns.len();
         let Linearised {
@@ -154,11 +153,6 @@ impl Generator<'_> {
         let (velocity_rhs, acceleration_rhs) = outputs.split_at(n);
         let names = self.model.unknowns.iter().map(|u| &u.name);
         let rate_names = &self.unknown_dots;
-        let labels = [
-            format!("input rate `{input_dot}`"),
-            format!("input acceleration `{input_ddot}`"),
-        ];
-        let [dot_label, ddot_label] = &labels;
         let docs = doc(&format!(
             "Position by Newton-Raphson from `guess` (as [`Self::position`]), then velocity \
              and acceleration at the solution for the input moving at `{input_dot}` and \
@@ -167,22 +161,7 @@ impl Generator<'_> {
              three without a closed form.\n\nErrors: as [`Self::position`] and \
              [`Self::motion_at`]."
         ));
-        quote! {
-            #docs
-            #[allow(unused_variables)]
-            pub fn motion_near(
-                &self,
-                #input: T,
-                #guess: &#unknowns,
-                #options: &::mechgen::NewtonOptions<T>,
-                #input_dot: T,
-                #input_ddot: T,
-            ) -> ::core::result::Result<
-                ::mechgen::Solved<::mechgen::Motion<#unknowns>, T>,
-                ::mechgen::Error<T>,
-            > {
-                self.mechgen_check_finite(#input)?;
-                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+        let body = quote! {
                 #hoisted
                 let #converged = ::mechgen::__private::newton(
                     #input,
@@ -207,6 +186,50 @@ impl Generator<'_> {
                     velocity: #ty::from_array(#rates),
                     acceleration: #ty::from_array(#accelerations),
                 }))
+        };
+        self.motion_near_function(
+            docs,
+            quote!(#[allow(unused_variables)]),
+            quote!(self.mechgen_check_finite(#input)?;),
+            body,
+        )
+    }
+
+    /// The `motion_near` item around its body: the signature, the check of the arguments
+    /// (`check`, then the input's rate and acceleration), then `body`.
+    pub(super) fn motion_near_function(
+        &self,
+        docs: TokenStream,
+        attrs: TokenStream,
+        check: TokenStream,
+        body: TokenStream,
+    ) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (guess, options) = (arg("guess"), arg("options"));
+        let (unknowns, _, _) = self.signature_types();
+        let labels = [
+            format!("input rate `{input_dot}`"),
+            format!("input acceleration `{input_ddot}`"),
+        ];
+        let [dot_label, ddot_label] = &labels;
+        quote! {
+            #docs
+            #attrs
+            pub fn motion_near(
+                &self,
+                #input: T,
+                #guess: &#unknowns,
+                #options: &::mechgen::NewtonOptions<T>,
+                #input_dot: T,
+                #input_ddot: T,
+            ) -> ::core::result::Result<
+                ::mechgen::Solved<::mechgen::Motion<#unknowns>, T>,
+                ::mechgen::Error<T>,
+            > {
+                #check
+                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                #body
             }
         }
     }

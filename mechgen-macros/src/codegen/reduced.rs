@@ -149,7 +149,6 @@ impl Generator<'_> {
         let input = &self.model.input.name;
         let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
         let (guess, options, solved) = (arg("guess"), arg("options"), arg("solved"));
-        let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
         let n = self.model.unknowns.len();
         let fallback = self.fallback_name();
@@ -210,11 +209,6 @@ impl Generator<'_> {
                 quote!(#factored.relative()),
             )
         };
-        let labels = [
-            format!("input rate `{input_dot}`"),
-            format!("input acceleration `{input_ddot}`"),
-        ];
-        let [dot_label, ddot_label] = &labels;
         let docs = doc(&format!(
             "Position by Newton-Raphson from `guess` (as [`Self::position`]: on the iterated \
              unknowns, the rest in closed form), then velocity and acceleration at the solution \
@@ -224,21 +218,7 @@ impl Generator<'_> {
              all three without a closed form.\n\nErrors: as [`Self::position`] and \
              [`Self::motion_at`]."
         ));
-        quote! {
-            #docs
-            pub fn motion_near(
-                &self,
-                #input: T,
-                #guess: &#unknowns,
-                #options: &::mechgen::NewtonOptions<T>,
-                #input_dot: T,
-                #input_ddot: T,
-            ) -> ::core::result::Result<
-                ::mechgen::Solved<::mechgen::Motion<#unknowns>, T>,
-                ::mechgen::Error<T>,
-            > {
-                #check
-                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+        let body = quote! {
                 #solve
                 #solves
                 #factor
@@ -257,8 +237,8 @@ impl Generator<'_> {
                     residual_norm: #converged.solved.residual_norm,
                     condition: T::one() / #relative.abs(),
                 })
-            }
-        }
+        };
+        self.motion_near_function(docs, TokenStream::new(), check, body)
     }
 
     /// The private Newton on every unknown that the reduced functions fall back to.
