@@ -13,6 +13,7 @@
 //! documents geometrically; the matching `*_sign` function computes that sign at a position,
 //! which is how a position's branch is known.
 
+use crate::real::normaliser;
 use crate::{Real, Vec2};
 
 /// Why a loop could not be closed.
@@ -22,6 +23,8 @@ pub enum Failure {
     CannotClose,
     /// The solution is not determined (a zero-length chord, parallel directions).
     Degenerate,
+    /// A coefficient is not finite, or the solution is too large for the number type.
+    NonFinite,
 }
 
 impl Failure {
@@ -32,6 +35,9 @@ impl Failure {
             Failure::Degenerate => crate::Error::Singular {
                 determinant: T::zero(),
                 relative_determinant: T::zero(),
+            },
+            Failure::NonFinite => crate::Error::NonFinite {
+                quantity: "closed-form solution",
             },
         }
     }
@@ -50,8 +56,8 @@ fn times<T: Real>(a: Vec2<T>, b: Vec2<T>) -> Vec2<T> {
     Vec2::new(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x)
 }
 
-/// `|a|` by a plain square root: `hypot` guards against overflow the closed forms cannot meet
-/// (squares of lengths up to 1e19 in f32 and 1e154 in f64) at several times the cost.
+/// `|a|` by a plain square root, for vectors already brought to a unit scale
+/// ([`to_unit_scale`]), whose squares cannot overflow or lose digits to underflow.
 fn length<T: Real>(a: Vec2<T>) -> T {
     dot(a, a).sqrt()
 }
@@ -60,26 +66,122 @@ fn scaled<T: Real>(a: Vec2<T>, s: T) -> Vec2<T> {
     Vec2::new(a.x * s, a.y * s)
 }
 
-/// The turn `e^{iq}` that carries `from` onto `to`'s direction, as the unit vector
-/// `(cos q, sin q)`: what generated code wants, so no `sin_cos` (and no `atan2`, unless the
-/// angle itself is asked for) of a solved angle is needed after.
-#[inline]
-fn turn<T: Real>(to: Vec2<T>, from: Vec2<T>) -> Vec2<T> {
-    // to·conj(from), normalised.
-    let product = Vec2::new(dot(to, from), cross(from, to));
-    scaled(product, T::one() / length(product))
+fn largest_component<T: Real>(vectors: &[Vec2<T>]) -> T {
+    vectors
+        .iter()
+        .fold(T::zero(), |m, v| m.max(v.x.abs()).max(v.y.abs()))
 }
 
-/// A square root that treats a slightly negative argument, within rounding of `scale`, as a
-/// tangency (zero) rather than a failure.
-fn rooted<T: Real>(discriminant: T, scale: T) -> Result<T, Failure> {
-    if discriminant >= T::zero() {
-        Ok(discriminant.sqrt())
-    } else if discriminant >= -T::constant(16.0) * T::epsilon() * scale {
+/// The power of two that brings the largest component of `vectors` into `[1/2, 1)`, so that
+/// the closed forms square nothing that can overflow or underflow, at any scale from the
+/// smallest to the largest normal number, and give bit-identical angles under power-of-two
+/// scalings of a mechanism. Errors: a component that is not finite; all of them zero.
+fn to_unit_scale<T: Real>(vectors: &[Vec2<T>]) -> Result<T, Failure> {
+    let all_finite = vectors.iter().all(|v| v.x.is_finite() && v.y.is_finite());
+    if !all_finite {
+        return Err(Failure::NonFinite);
+    }
+    let largest = largest_component(vectors);
+    if largest == T::zero() {
+        return Err(Failure::Degenerate);
+    }
+    Ok(normaliser(largest))
+}
+
+/// `v`'s direction and length, `(v/|v|, |v|)`, at any scale. Errors: a zero `v`.
+fn direction_and_length<T: Real>(v: Vec2<T>) -> Result<(Vec2<T>, T), Failure> {
+    let s = to_unit_scale(&[v])?;
+    let unit_scaled = scaled(v, s);
+    let norm = length(unit_scaled);
+    Ok((scaled(unit_scaled, T::one() / norm), norm / s))
+}
+
+/// The turn `e^{iq}` that carries `from` onto `to`'s direction, as the unit vector
+/// `(cos q, sin q)`: what generated code wants, so no `sin_cos` (and no `atan2`, unless the
+/// angle itself is asked for) of a solved angle is needed after. Both at unit scale.
+#[inline]
+fn turn<T: Real>(to: Vec2<T>, from: Vec2<T>) -> Result<Vec2<T>, Failure> {
+    // to·conj(from), normalised.
+    let product = Vec2::new(dot(to, from), cross(from, to));
+    let norm = length(product);
+    if norm == T::zero() {
+        return Err(Failure::Degenerate);
+    }
+    Ok(scaled(product, T::one() / norm))
+}
+
+/// How far below zero, relative to the sizes it is formed from, a gap that can only be
+/// positive for a closing loop may come out by rounding alone: the gap is a sum of three
+/// terms each known to a couple of units of rounding of the largest length.
+const GAP_ROUNDING: f64 = 8.0;
+
+/// How large a closed form's loop residual may be, relative to the sum of the magnitudes of
+/// the loop's vectors, and still be rounding: each solution is backward stable, off by a few
+/// units of rounding of that sum.
+const RESIDUAL_ROUNDING: f64 = 32.0;
+
+/// Whether a gap `gap` (negative where the loop cannot close) is zero to within rounding of
+/// `scale`: then the loop closes at a tangency.
+fn gap_closes<T: Real>(gap: T, scale: T) -> Result<T, Failure> {
+    if gap >= T::zero() {
+        Ok(gap)
+    } else if gap >= -T::constant(GAP_ROUNDING) * T::epsilon() * scale {
         Ok(T::zero())
     } else {
         Err(Failure::CannotClose)
     }
+}
+
+/// The check every closed-form solution passes before it is returned: its loop residual is
+/// at the rounding floor of the loop's magnitudes (a solution that is not is not a solution,
+/// however it came about).
+fn closes<T: Real>(residual: Vec2<T>, magnitudes: T) -> Result<(), Failure> {
+    let size = residual.x.abs() + residual.y.abs();
+    if size <= T::constant(RESIDUAL_ROUNDING) * T::epsilon() * magnitudes {
+        Ok(())
+    } else {
+        Err(Failure::CannotClose)
+    }
+}
+
+/// A length solved at unit scale, brought back: `l / s`, or [`Failure::NonFinite`] if that
+/// is too large for `T`.
+fn unscaled_length<T: Real>(l: T, s: T) -> Result<T, Failure> {
+    let l = l / s;
+    if l.is_finite() {
+        Ok(l)
+    } else {
+        Err(Failure::NonFinite)
+    }
+}
+
+/// Where a point moving along a line meets a circle about the origin: with the point at
+/// `K + L·u` (`u` a unit vector, `K` at unit scale) and the circle's radius `radius`, the
+/// root `L` with `σ·(L − t0) ≥ 0`, `t0 = −u·K` being the foot of the perpendicular from the
+/// centre, and the point itself. Backward stable: the root from the gap `radius − |p|`
+/// (`p` the line's signed distance from the centre), formed as `(radius − |p|)·(radius + |p|)`
+/// rather than as a difference of squares; the root that would cancel against `t0` from the
+/// product of the roots, `(|K| − radius)·(|K| + radius)`; the point from its components along
+/// and across the line, not as `K + L·u`.
+fn line_meets_circle<T: Real>(
+    k: Vec2<T>,
+    u: Vec2<T>,
+    radius: T,
+    sign: T,
+) -> Result<(T, Vec2<T>), Failure> {
+    let foot = -dot(u, k);
+    let offset = cross(u, k);
+    let k_length = length(k);
+    let gap = gap_closes(radius - offset.abs(), radius + k_length)?;
+    let half_chord = (gap * (radius + offset.abs())).sqrt();
+    let along = sign * half_chord;
+    let root = if foot == T::zero() || (foot > T::zero()) == (sign > T::zero()) {
+        foot + along
+    } else {
+        (k_length - radius) * (k_length + radius) / (foot - along)
+    };
+    let normal = Vec2::new(-u.y, u.x);
+    Ok((root, scaled(u, along) + scaled(normal, offset)))
 }
 
 /// `K + l1·v1 + l2·v2 = 0` for the lengths `[l1, l2]`: unique, unless `v1 ∥ v2`.
@@ -91,12 +193,28 @@ fn rooted<T: Real>(discriminant: T, scale: T) -> Result<T, Failure> {
 /// assert_eq!(l, Ok([3.0, 2.0]));
 /// ```
 pub fn two_lengths<T: Real>(k: Vec2<T>, v1: Vec2<T>, v2: Vec2<T>) -> Result<[T; 2], Failure> {
-    let determinant = cross(v1, v2);
-    let scale = length(v1) * length(v2);
-    if determinant.abs() <= T::constant(8.0) * T::epsilon() * scale {
+    let (u1, norm1) = direction_and_length(v1)?;
+    let (u2, norm2) = direction_and_length(v2)?;
+    let determinant = cross(u1, u2);
+    if determinant.abs() <= T::constant(8.0) * T::epsilon() {
         return Err(Failure::Degenerate);
     }
-    Ok([cross(v2, k) / determinant, cross(k, v1) / determinant])
+    let s = match to_unit_scale(&[k]) {
+        Ok(s) => s,
+        Err(Failure::Degenerate) => T::one(),
+        Err(failure) => return Err(failure),
+    };
+    let k = scaled(k, s);
+    let along1 = cross(u2, k) / determinant;
+    let along2 = cross(k, u1) / determinant;
+    closes(
+        k + scaled(u1, along1) + scaled(u2, along2),
+        length(k) + along1.abs() + along2.abs(),
+    )?;
+    Ok([
+        unscaled_length(along1 / norm1, s)?,
+        unscaled_length(along2 / norm2, s)?,
+    ])
 }
 
 /// `K + e^{iq}·(l·w1 + w0) = 0` for `(l, q, (cos q, sin q))`: the vector `l·w1 + w0`, turned by `q`, must be
@@ -132,25 +250,45 @@ pub fn length_and_own_direction<T: Real>(
     w1: Vec2<T>,
     sign: T,
 ) -> Result<(T, Vec2<T>), Failure> {
-    let a = dot(w1, w1);
-    if a == T::zero() {
+    // The point l·w1 + w0 moves along a line and must lie on the circle of radius |K|.
+    let (u, norm) = direction_and_length(w1)?;
+    let s = to_unit_scale(&[k, w0])?;
+    let (k, w0) = (scaled(k, s), scaled(w0, s));
+    let radius = length(k);
+    if radius == T::zero() {
         return Err(Failure::Degenerate);
     }
-    let half_b = dot(w1, w0);
-    let c = dot(w0, w0) - dot(k, k);
-    let discriminant = half_b * half_b - a * c;
-    let scale = half_b * half_b + (a * c).abs();
-    let l = (-half_b + sign * rooted(discriminant, scale)?) / a;
-    let vector = scaled(w1, l) + w0;
-    if vector.x == T::zero() && vector.y == T::zero() {
-        return Err(Failure::Degenerate);
-    }
-    Ok((l, turn(scaled(k, -T::one()), vector)))
+    let (along, point) = line_meets_circle(w0, u, radius, sign)?;
+    let direction = turn(scaled(k, -T::one()), point)?;
+    closes(
+        k + times(direction, scaled(u, along) + w0),
+        radius + along.abs() + length(w0),
+    )?;
+    Ok((unscaled_length(along / norm, s)?, direction))
 }
 
 /// The branch sign of a solution of [`length_and_own_angle`].
 pub fn length_and_own_angle_sign<T: Real>(w0: Vec2<T>, w1: Vec2<T>, l: T) -> T {
-    dot(w1, scaled(w1, l) + w0)
+    dot_sign(w1, scaled(w1, l) + w0)
+}
+
+/// The sign of `a·b`, at any scale.
+fn dot_sign<T: Real>(a: Vec2<T>, b: Vec2<T>) -> T {
+    dot(at_unit_scale(a), at_unit_scale(b))
+}
+
+/// The sign of `a × b`, at any scale.
+fn cross_sign<T: Real>(a: Vec2<T>, b: Vec2<T>) -> T {
+    cross(at_unit_scale(a), at_unit_scale(b))
+}
+
+/// `v` scaled by a power of two to a largest component in `[1/2, 1)` (as it is, if zero or
+/// not finite).
+fn at_unit_scale<T: Real>(v: Vec2<T>) -> Vec2<T> {
+    match to_unit_scale(&[v]) {
+        Ok(s) => scaled(v, s),
+        Err(_) => v,
+    }
 }
 
 /// `K + l·v + e^{iq}·w0 = 0` for `(l, q, (cos q, sin q))`: the point `K + l·v` moves along a line and must lie
@@ -183,22 +321,25 @@ pub fn length_and_other_direction<T: Real>(
     w0: Vec2<T>,
     sign: T,
 ) -> Result<(T, Vec2<T>), Failure> {
-    let a = dot(v, v);
-    let radius_squared = dot(w0, w0);
-    if a == T::zero() || radius_squared == T::zero() {
+    let (u, norm) = direction_and_length(v)?;
+    let s = to_unit_scale(&[k, w0])?;
+    let (k, w0) = (scaled(k, s), scaled(w0, s));
+    let radius = length(w0);
+    if radius == T::zero() {
         return Err(Failure::Degenerate);
     }
-    let half_b = dot(v, k);
-    let c = dot(k, k) - radius_squared;
-    let discriminant = half_b * half_b - a * c;
-    let scale = half_b * half_b + (a * c).abs();
-    let l = (-half_b + sign * rooted(discriminant, scale)?) / a;
-    Ok((l, turn(scaled(k + scaled(v, l), -T::one()), w0)))
+    let (along, point) = line_meets_circle(k, u, radius, sign)?;
+    let direction = turn(scaled(point, -T::one()), w0)?;
+    closes(
+        k + scaled(u, along) + times(direction, w0),
+        length(k) + along.abs() + radius,
+    )?;
+    Ok((unscaled_length(along / norm, s)?, direction))
 }
 
 /// The branch sign of a solution of [`length_and_other_angle`].
 pub fn length_and_other_angle_sign<T: Real>(k: Vec2<T>, v: Vec2<T>, l: T) -> T {
-    dot(v, k + scaled(v, l))
+    dot_sign(v, k + scaled(v, l))
 }
 
 /// `K + e^{iq1}·w1 + e^{iq2}·w2 = 0` for `(q1, q2, (cos q1, sin q1), (cos q2, sin q2))`: the vectors `P1 = e^{iq1}·w1` and
@@ -240,25 +381,51 @@ pub fn two_directions<T: Real>(
     w2: Vec2<T>,
     sign: T,
 ) -> Result<(Vec2<T>, Vec2<T>), Failure> {
+    let s = to_unit_scale(&[k, w1, w2])?;
+    let (k, w1, w2) = (scaled(k, s), scaled(w1, s), scaled(w2, s));
     let chord = scaled(k, -T::one());
-    let chord_squared = dot(chord, chord);
-    if chord_squared == T::zero() {
+    let span = length(chord);
+    let (r1, r2) = (length(w1), length(w2));
+    if span == T::zero() || r1 == T::zero() || r2 == T::zero() {
         return Err(Failure::Degenerate);
     }
-    let span = chord_squared.sqrt();
-    let (r1_squared, r2_squared) = (dot(w1, w1), dot(w2, w2));
-    let along = (r1_squared - r2_squared + chord_squared) / (span + span);
-    let height = sign * rooted(r1_squared - along * along, r1_squared)?;
+    // The triangle of sides r1, r2 and the chord, by Kahan's formula for its area, which
+    // keeps every digit of a thin triangle: with the sides sorted a ≥ b ≥ c,
+    // 16·area² = (a + (b + c))·(c − (a − b))·(c + (a − b))·(a + (b − c)), where only
+    // c − (a − b) can be negative, by no more than rounding where the circles touch.
+    let (a, b, c) = sorted_descending(r1, r2, span);
+    let gap = gap_closes(c - (a - b), a)?;
+    let sixteen_area_squared = (a + (b + c)) * gap * (c + (a - b)) * (a + (b - c));
+    // The height of P1's tip over the chord is 2·area/span, on the branch's side.
+    let height = sign * sixteen_area_squared.sqrt() / (span + span);
+    // Its foot along the chord from each end: (r1² − r2² + span²)/(2·span) with the
+    // difference of squares as (r1 − r2)·(r1 + r2), off by rounding of the perimeter at
+    // most, since |r1 − r2| ≤ span.
+    let along1 = ((r1 - r2) * (r1 + r2) / span + span) * T::constant(0.5);
+    let along2 = ((r2 - r1) * (r1 + r2) / span + span) * T::constant(0.5);
     let unit = scaled(chord, T::one() / span);
     let normal = Vec2::new(-unit.y, unit.x);
-    let p1 = scaled(unit, along) + scaled(normal, height);
-    let p2 = chord - p1;
-    Ok((turn(p1, w1), turn(p2, w2)))
+    let p1 = scaled(unit, along1) + scaled(normal, height);
+    let p2 = scaled(unit, along2) - scaled(normal, height);
+    let (direction1, direction2) = (turn(p1, w1)?, turn(p2, w2)?);
+    closes(
+        k + times(direction1, w1) + times(direction2, w2),
+        span + r1 + r2,
+    )?;
+    Ok((direction1, direction2))
+}
+
+/// `(x, y, z)` in descending order.
+fn sorted_descending<T: Real>(x: T, y: T, z: T) -> (T, T, T) {
+    let (x, y) = if x >= y { (x, y) } else { (y, x) };
+    let (y, z) = if y >= z { (y, z) } else { (z, y) };
+    let (x, y) = if x >= y { (x, y) } else { (y, x) };
+    (x, y, z)
 }
 
 /// The branch sign of a solution of [`two_angles`].
 pub fn two_angles_sign<T: Real>(k: Vec2<T>, w1: Vec2<T>, q1: T) -> T {
     let (sin, cos) = q1.sin_cos();
     let p1 = times(Vec2::new(cos, sin), w1);
-    cross(scaled(k, -T::one()), p1)
+    cross_sign(scaled(k, -T::one()), p1)
 }

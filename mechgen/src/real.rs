@@ -159,3 +159,30 @@ impl Real for f32 {
                     + s4 * ((0.156_255_5 + s * -0.200_214_12) + s2 * 0.149_462_09)))
     }
 }
+
+/// `⌊log₂|x|⌋` for a finite nonzero `x` (subnormals included); 0 for zero.
+pub(crate) fn binary_exponent<T: Real>(x: T) -> i32 {
+    let (mantissa, exponent, _) = x.integer_decode();
+    if mantissa == 0 {
+        return 0;
+    }
+    i32::from(exponent) + 63 - mantissa.leading_zeros() as i32
+}
+
+/// `2^k`, with `k` clamped so that both it and its inverse are normal numbers of `T` (to
+/// ±1020 in f64, ±124 in f32).
+pub(crate) fn power_of_two<T: Real>(k: i32) -> T {
+    let limit = -binary_exponent(T::min_positive_value()) - 2;
+    let k = k.clamp(-limit, limit);
+    // Built from its bits in f64, where it is exact, and exact again in f32 within ±124.
+    T::constant(f64::from_bits(((k + 1023) as u64) << 52))
+}
+
+/// A power of two `s` that brings `largest` (finite, nonzero) into `[1/2, 1)`: multiplying
+/// by it is exact, so a computation done on scaled values and scaled back is the same, bit
+/// for bit, for every power-of-two scaling of its data, and its squares neither overflow
+/// nor underflow. For `largest` beyond what `s` can reach (subnormal numbers), it brings
+/// `largest` as close as it can.
+pub(crate) fn normaliser<T: Real>(largest: T) -> T {
+    power_of_two(-(binary_exponent(largest) + 1))
+}
