@@ -53,6 +53,38 @@ pub fn branch_root<T: Real>(plus: T, minus: T, sign: T) -> Result<T, Failure> {
     }
 }
 
+/// `(scale, 1/scale)`: the power of two that brings the longest of `lengths` to about 1
+/// (1 if there are none, or all are zero). Scene kernels compute with every length times
+/// `scale`, exactly, so no square overflows or underflows at any scale.
+pub fn length_scale<T: Real>(lengths: &[T]) -> (T, T) {
+    let longest = lengths.iter().fold(T::zero(), |m, l| m.max(l.abs()));
+    if longest == T::zero() || !longest.is_finite() {
+        return (T::one(), T::one());
+    }
+    let scale = crate::real::normaliser(longest);
+    (scale, scale.recip())
+}
+
+/// `sign·½·√((sum − span)(sum + span)(span − |difference|)(span + |difference|))`: twice the
+/// area of the triangle with sides `r1`, `r2` and `span`, given `sum = r1 + r2` and
+/// `difference = r1 − r2` (Heron's formula in factors, which keeps the digits of a thin
+/// triangle). Where a gap, `sum − span` or `span − |difference|`, is below zero by no more
+/// than rounding of the sides, the circles touch (the area is zero); further below, they do
+/// not meet and the loop cannot close.
+#[inline]
+pub fn triangle_root<T: Real>(sum: T, difference: T, span: T, sign: T) -> Result<T, Failure> {
+    let difference = difference.abs();
+    let (outer, inner) = (sum - span, span - difference);
+    let band = -T::constant(8.0) * T::epsilon() * (sum + span);
+    if outer >= T::zero() && inner >= T::zero() {
+        Ok(sign * T::constant(0.5) * (outer * (sum + span) * inner * (span + difference)).sqrt())
+    } else if outer >= band && inner >= band {
+        Ok(T::zero())
+    } else {
+        Err(Failure::CannotClose)
+    }
+}
+
 /// `1/x`, where a zero `x` (a zero-length chord) leaves the solution undetermined.
 #[inline]
 pub fn inverse<T: Real>(x: T) -> Result<T, Failure> {
@@ -109,6 +141,18 @@ pub mod lanes {
     #[inline(always)]
     pub fn branch_root<T: Real>(plus: T, minus: T, sign: T) -> T {
         sign * (plus - minus).sqrt()
+    }
+
+    /// [`super::triangle_root`], with NaN where a gap is negative (a tangency within rounding
+    /// included): the checked kernel redoes those lanes and decides.
+    #[inline(always)]
+    pub fn triangle_root<T: Real>(sum: T, difference: T, span: T, sign: T) -> T {
+        let difference = difference.abs();
+        let (outer, inner) = (sum - span, span - difference);
+        // Each gap under its own root: NaN for either negative, however the signs pair up.
+        sign * T::constant(0.5)
+            * (outer * (sum + span)).sqrt()
+            * (inner * (span + difference)).sqrt()
     }
 
     /// [`super::inverse_determinant`], with NaN for "singular".

@@ -34,7 +34,7 @@ pub use mechgen_macros::mechanism;
 pub mod __private {
     pub use crate::kernel::{
         all_finite as finite_all, blame, branch_root, inverse, inverse_determinant, lanes,
-        unit_angle,
+        length_scale, triangle_root, unit_angle,
     };
     pub use crate::linear::{Factored, solve_lu, solve2};
     pub use crate::newton::{Linearisation, Turning, all_finite, check_finite, finite, newton};

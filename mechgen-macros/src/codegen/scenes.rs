@@ -18,7 +18,7 @@ use syn::ext::IdentExt;
 use super::docs::{doc, docs_or};
 use super::emit::{Context, Emitted, children, emit, local};
 use super::{Generator, arg};
-use crate::model::SymbolRef;
+use crate::model::{Kind, SymbolRef};
 use crate::scene::{Order, Quantity, Scene};
 use crate::symbolic::{AuxKind, ExprId, Graph, Node, Straight, Threshold, Var};
 
@@ -78,6 +78,13 @@ impl Generator<'_> {
             #[derive(Clone, Copy, Debug)]
             pub struct #scenes_type<T> {
                 mechanism: #name<T>,
+                /// The mechanism with its lengths times `scale`, a power of two that brings
+                /// the longest to about 1: the kernels compute in these units, where no
+                /// square overflows or underflows, and give the same angles, bit for bit,
+                /// for every power-of-two scaling of a mechanism.
+                scaled: #name<T>,
+                scale: T,
+                unscale: T,
                 constants: [T; #count],
             }
             #(#outputs)*
@@ -106,8 +113,25 @@ impl Generator<'_> {
             stage: &|_| 0,
         };
         let block = emit(graph, &constants.ids, &|var| self.var_name(var), &context);
-        let bindings = self.parameter_bindings(&block.used, quote!(self));
+        let scaled = local("scaled");
+        let bindings = self.parameter_bindings(&block.used, quote!(#scaled));
         let statements = block.statements.concat();
+        let name = &self.model.name;
+        let (scale, unscale) = (local("scale"), local("unscale"));
+        let lengths = self
+            .model
+            .params
+            .iter()
+            .filter(|param| param.kind == Kind::Length)
+            .map(|param| &param.name);
+        let scaled_fields = self.model.params.iter().map(|param| {
+            let field = &param.name;
+            if param.kind == Kind::Length {
+                quote!(#field: self.#field * #scale)
+            } else {
+                quote!(#field: self.#field)
+            }
+        });
         let values = &block.outputs;
         let checks = self.model.params.iter().map(|param| {
             let field = &param.name;
@@ -130,13 +154,21 @@ impl Generator<'_> {
             #docs
             pub fn scenes(&self) -> ::core::result::Result<#scenes_type<T>, ::mechgen::Error<T>> {
                 ::mechgen::__private::check_finite(&[#(#checks),*])?;
+                let (#scale, #unscale) = ::mechgen::__private::length_scale(&[#(self.#lengths),*]);
+                let #scaled = #name { #(#scaled_fields),* };
                 #bindings
                 #(#statements)*
                 let constants = ::mechgen::__private::finite(
                     [#(#values),*],
                     "dimension-derived constant",
                 )?;
-                ::core::result::Result::Ok(#scenes_type { mechanism: *self, constants })
+                ::core::result::Result::Ok(#scenes_type {
+                    mechanism: *self,
+                    scaled: #scaled,
+                    scale: #scale,
+                    unscale: #unscale,
+                    constants,
+                })
             }
         }
     }
@@ -271,6 +303,12 @@ impl Generator<'_> {
         lanes: bool,
     ) -> TokenStream {
         let input = &self.model.input.name;
+        // A length input was scaled with the mechanism; an error reports it as given.
+        let input = if self.model.input.kind == Kind::Length {
+            quote!((#input * self.unscale))
+        } else {
+            quote!(#input)
+        };
         let failure = arg("failure");
         let name = self.var_name(Var::Aux(k as u32));
         let kind = &straight.aux[k];
@@ -280,6 +318,11 @@ impl Generator<'_> {
                 let choice = branches.get_mut(*branch).map(std::mem::take);
                 let [plus, minus] = [&args[0], &args[1]];
                 quote!(::mechgen::__private::lanes::branch_root(#plus, #minus, #choice.sign::<T>()))
+            }
+            AuxKind::TriangleRoot { branch, .. } if lanes => {
+                let choice = branches.get_mut(*branch).map(std::mem::take);
+                let [sum, difference, span] = [&args[0], &args[1], &args[2]];
+                quote!(::mechgen::__private::lanes::triangle_root(#sum, #difference, #span, #choice.sign::<T>()))
             }
             AuxKind::Inverse(_) if lanes => {
                 let x = args[0].receiver();
@@ -298,6 +341,14 @@ impl Generator<'_> {
                 let [plus, minus] = [&args[0], &args[1]];
                 quote! {
                     ::mechgen::__private::branch_root(#plus, #minus, #choice.sign::<T>())
+                        .map_err(|#failure| ::mechgen::__private::blame(#inputs, #failure.at(#input)))?
+                }
+            }
+            AuxKind::TriangleRoot { branch, .. } => {
+                let choice = branches.get_mut(*branch).map(std::mem::take);
+                let [sum, difference, span] = [&args[0], &args[1], &args[2]];
+                quote! {
+                    ::mechgen::__private::triangle_root(#sum, #difference, #span, #choice.sign::<T>())
                         .map_err(|#failure| ::mechgen::__private::blame(#inputs, #failure.at(#input)))?
                 }
             }
@@ -448,7 +499,37 @@ impl Generator<'_> {
                 let k = Literal::usize_unsuffixed(k);
                 quote!(let #name = self.constants[#k];)
             });
-        let parameter_bindings = self.parameter_bindings(&block.used, quote!(self.mechanism));
+        let unscale = local("unscale");
+        let parameter_bindings = self.parameter_bindings(&block.used, quote!(self.scaled));
+        // Lengths come out in the scaled units: unknown lengths, points and their rates.
+        let in_lengths = |item: &crate::scene::SceneItem| match item.quantity {
+            Quantity::Point(_) => true,
+            Quantity::Unknown(u) => self.model.unknowns[u].kind == Kind::Length,
+        };
+        let reads_unscale = scene.items.iter().any(in_lengths)
+            || self.model.input.kind == Kind::Length;
+        let parameter_bindings = if reads_unscale {
+            quote!(#parameter_bindings let #unscale = self.unscale;)
+        } else {
+            parameter_bindings
+        };
+        // A length input, its rate and acceleration, in the scaled units.
+        let scaled_inputs = |names: &[&Ident]| {
+            if self.model.input.kind != Kind::Length {
+                return TokenStream::new();
+            }
+            let names = names.iter();
+            quote!(#(let #names = #names * self.scale;)*)
+        };
+        let mut rate_names = Vec::new();
+        if order >= Order::Rate {
+            rate_names.push(input_dot);
+        }
+        if order >= Order::Acceleration {
+            rate_names.push(input_ddot);
+        }
+        let scaled_rates = scaled_inputs(&rate_names);
+        let scaled_input = scaled_inputs(&[input]);
 
         // Outputs in the order listed, checked finite together.
         let mut values = values.into_iter();
@@ -463,12 +544,18 @@ impl Generator<'_> {
                 } else {
                     1
                 };
+                let in_length = in_lengths(item);
                 let parts: Vec<TokenStream> = values
                     .by_ref()
                     .take(count)
                     .map(|value| {
+                        let value = if in_length {
+                            value.times(&unscale)
+                        } else {
+                            quote!(#value)
+                        };
                         if lanes {
-                            return quote!(#value);
+                            return value;
                         }
                         let index = Literal::usize_unsuffixed(checked.len());
                         checked.push(quote!(#value));
@@ -523,6 +610,8 @@ impl Generator<'_> {
                 BatchParts {
                     input_trig,
                     bindings: quote!(#(#constant_bindings)* #parameter_bindings),
+                    // In the loop, so the redo of a failed lane passes the rates as given.
+                    scaled_input: quote!(#scaled_input #scaled_rates),
                     body,
                     fields,
                 },
@@ -547,6 +636,8 @@ impl Generator<'_> {
                 #input_trig
                 #(#constant_bindings)*
                 #parameter_bindings
+                #scaled_input
+                #scaled_rates
                 #(#body)*
                 #check
                 ::core::result::Result::Ok(#output_type { #(#fields),* })
@@ -565,6 +656,7 @@ impl Generator<'_> {
         let BatchParts {
             input_trig,
             bindings,
+            scaled_input,
             body,
             fields,
         } = parts;
@@ -628,6 +720,7 @@ impl Generator<'_> {
                 #bindings
                 for (#slot, &#input) in #out.iter_mut().zip(#inputs) {
                     #input_trig
+                    #scaled_input
                     #(#body)*
                     *#slot = #output_type { #(#fields),* };
                 }
@@ -657,6 +750,8 @@ impl Generator<'_> {
 struct BatchParts {
     input_trig: Option<TokenStream>,
     bindings: TokenStream,
+    /// A length input, its rate and acceleration, in the scaled units.
+    scaled_input: TokenStream,
     body: Vec<TokenStream>,
     fields: Vec<TokenStream>,
 }
@@ -679,6 +774,12 @@ fn scene_outputs(scene: &Scene, straight: &Straight) -> Vec<ExprId> {
 fn aux_arguments(kind: &AuxKind) -> Vec<ExprId> {
     match *kind {
         AuxKind::BranchRoot { plus, minus, .. } => vec![plus, minus],
+        AuxKind::TriangleRoot {
+            sum,
+            difference,
+            span,
+            ..
+        } => vec![sum, difference, span],
         AuxKind::Inverse(x) => vec![x],
         AuxKind::InverseDeterminant {
             det, inverse_norms, ..

@@ -31,6 +31,17 @@ pub enum AuxKind {
         minus: ExprId,
         branch: usize,
     },
+    /// `±½·√((sum − span)(sum + span)(span − |difference|)(span + |difference|))`, twice the
+    /// area of the triangle with sides `r1`, `r2` and `span` (`sum = r1 + r2`,
+    /// `difference = r1 − r2`), with the sign of branch `branch`: a gap (`sum − span` or
+    /// `span − |difference|`) below zero by more than rounding of the sides means the loop
+    /// cannot close.
+    TriangleRoot {
+        sum: ExprId,
+        difference: ExprId,
+        span: ExprId,
+        branch: usize,
+    },
     /// `1/x`; a zero `x` is a degenerate configuration.
     Inverse(ExprId),
     /// `1/det` of a 2×2 block whose columns' norms multiply to `1/inverse_norms`; singular
@@ -212,9 +223,21 @@ impl Builder<'_> {
                 let difference = self.graph.sub(r1, r2);
                 let sum = self.graph.add(difference, chord_squared);
                 let along = self.graph.mul(half, sum);
-                let along_squared = self.graph.mul(along, along);
-                let plus = self.graph.mul(r1, chord_squared);
-                let height = branch_root(self, plus, along_squared);
+                // h·c is twice the area of the triangle (|w1|, |w2|, c), by Heron's formula
+                // in factors: a thin triangle keeps its digits (|w1|²·c² − (a·c)² would
+                // cancel), and whether the circles meet is decided on the gaps themselves,
+                // in lengths, so the band for rounding is a few units of the sides'.
+                let (n1, n2) = (self.graph.sqrt(r1), self.graph.sqrt(r2));
+                let span = self.graph.sqrt(chord_squared);
+                let sides_sum = self.graph.add(n1, n2);
+                let sides_difference = self.graph.sub(n1, n2);
+                let height = self.aux(AuxKind::TriangleRoot {
+                    sum: sides_sum,
+                    difference: sides_difference,
+                    span,
+                    branch: *branch,
+                });
+                *branch += 1;
                 let normal = [self.graph.neg(chord[1]), chord[0]];
                 let (on, off) = (self.scaled(chord, along), self.scaled(normal, height));
                 let sum = self.plus(on, off);
