@@ -3,7 +3,7 @@
 //! Generated code calls [`solve2`] (closed form, Cramer's rule) for a single loop's 2×2
 //! system and [`solve_lu`] (partial pivoting) for larger ones. Loops give two equations each,
 //! so systems always have an even size. Each solver first scales the system by one factor
-//! (its largest entry), which leaves the solution unchanged and keeps the arithmetic from
+//! (a power of two near its largest entry's inverse), which leaves the solution unchanged and keeps the arithmetic from
 //! overflowing or underflowing for very large or small mechanisms.
 //!
 //! Singularity is measured on the columns, one per unknown: the relative determinant is
@@ -29,7 +29,7 @@ pub fn singular_threshold<T: Real>() -> T {
     T::epsilon().sqrt()
 }
 
-/// Scales `a` and `b` by one factor, `1 / max|a_ij|`, which leaves the solution and the
+/// Scales `a` and `b` by one factor, a power of two near `1 / max|a_ij|`, which leaves the solution and the
 /// relative determinant unchanged and keeps the products below from overflowing or
 /// underflowing for very large or small mechanisms; returns the product of the scaled
 /// matrix's column norms, which divides its determinant into the relative determinant.
@@ -56,7 +56,9 @@ fn normalise<T: Real, const N: usize>(a: &mut [[T; N]; N], b: &mut [T; N]) -> Re
     if largest == T::zero() {
         return Err(singular);
     }
-    let scale = T::one() / largest;
+    // A power of two: exact, so a system scaled here is solved bit for bit as it would be
+    // at any other power-of-two scale (the unscaled fast path included).
+    let scale = crate::real::normaliser(largest);
     let mut column_squares = [T::zero(); N];
     for (row, bi) in a.iter_mut().zip(b.iter_mut()) {
         for (v, square) in row.iter_mut().zip(column_squares.iter_mut()) {
@@ -185,9 +187,12 @@ fn eliminate<T: Real, const N: usize>(lu: &mut [[T; N]; N], pivots: &mut [usize;
 /// right-hand sides: the velocity's and the acceleration's share their Jacobian.
 #[derive(Clone, Copy, Debug)]
 pub struct Factored<T, const N: usize> {
-    /// LU factors, or for a 2×2 matrix its inverse (then `scale` is zero).
+    /// LU factors, or for a 2×2 matrix the inverse of the scaled matrix.
     lu: [[T; N]; N],
     pivots: [usize; N],
+    /// Whether `lu` is an inverse.
+    inverse: bool,
+    /// The power of two the matrix was scaled by, for the right-hand sides.
     scale: T,
     /// The signed relative determinant.
     relative: T,
@@ -199,9 +204,18 @@ impl<T: Real, const N: usize> Factored<T, N> {
         if N == 2 {
             // Two unknowns (one loop): keep the inverse, by Cramer's rule.
             let (i, j) = (0, N - 1);
+            // Scaled (by a power of two, so the inverse is the same, bit for bit, as at any
+            // other scale) only where the squares would overflow or underflow.
+            let mut a = a;
+            let mut scale = T::one();
             let columns = match unscaled_columns2(&[[a[i][i], a[i][j]], [a[j][i], a[j][j]]]) {
                 Some(columns) => columns,
-                None => return Self::by_lu(a),
+                None => {
+                    let mut unit = [T::one(); N];
+                    let columns = normalise(&mut a, &mut unit)?;
+                    scale = unit[0];
+                    columns
+                }
             };
             let determinant = a[i][i] * a[j][j] - a[i][j] * a[j][i];
             let relative = check_determinant(determinant, columns)?;
@@ -214,7 +228,8 @@ impl<T: Real, const N: usize> Factored<T, N> {
             return Ok(Factored {
                 lu,
                 pivots: [0; N],
-                scale: T::zero(),
+                inverse: true,
+                scale,
                 relative,
             });
         }
@@ -233,7 +248,9 @@ impl<T: Real, const N: usize> Factored<T, N> {
         Ok(Factored {
             lu,
             pivots,
-            scale: T::one() / largest,
+            inverse: false,
+            // The factor `normalise` scaled the matrix by, for the right-hand sides.
+            scale: crate::real::normaliser(largest),
             relative,
         })
     }
@@ -246,8 +263,9 @@ impl<T: Real, const N: usize> Factored<T, N> {
 
     /// The solution of `a·x = b`.
     pub fn solve(&self, b: [T; N]) -> [T; N] {
-        if N == 2 && self.scale == T::zero() {
+        if self.inverse {
             // The explicit inverse of `new`'s 2×2 case.
+            let b = b.map(|v| v * self.scale);
             let mut x = b;
             for (xi, row) in x.iter_mut().zip(&self.lu) {
                 *xi = row

@@ -13,10 +13,13 @@ use crate::{Error, Real};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonOptions<T> {
     /// Stop when every component of the loop residual is at most this, in the mechanism's
-    /// length units (the seeds' worked examples use `1e-4` mm). Zero, the default, means
-    /// "as accurate as the floating-point type allows": a tolerance below the rounding floor
-    /// of the residual (`16 ε Σ|link lengths|`) is raised to that floor, so a tight tolerance
-    /// never turns into a spurious failure.
+    /// length units (the seeds' worked examples use `1e-4` mm); a tolerance below the
+    /// rounding floor of the residual (`16 ε Σ|r|` over the loops' vectors) is raised to that
+    /// floor, so a tight tolerance never turns into a spurious failure. Zero, the default,
+    /// means "as accurate as the floating-point type allows": Newton stops at the floor only
+    /// after a step that started within `√ε` of the root (relative), so a step that lands
+    /// on the floor from farther is followed by one more, and a solve restarted from its own
+    /// result polishes it rather than returning it untouched.
     pub tolerance: T,
     /// The most Newton updates to make before giving up with [`Error::NoConvergence`].
     pub max_iterations: u32,
@@ -103,8 +106,12 @@ const MAX_HALVINGS: u32 = 10;
 /// the step and, at the solution, for the rates. The safeguards:
 /// - a step that does not reduce the largest residual component is halved, up to
 ///   10 times; if none does, the iteration has stagnated;
-/// - a point is accepted when its residual is at most the tolerance (raised to the rounding
-///   floor `16 ε Σ|r|`) and, unless it is at that floor, a root is certain to lie near it
+/// - with the default zero tolerance, a point is accepted when its residual is at the
+///   rounding floor `16 ε Σ|r|` and the step to it started within `√ε·Σ|r|` (so, Newton
+///   being quadratic, it is the attainable accuracy), or no step lowers it;
+/// - with a stated tolerance, a point is accepted when its residual is at most the tolerance
+///   (raised to the rounding floor) and, unless it is at that floor, a root is certain to lie
+///   near it
 ///   (Kantorovich's `‖J⁻¹‖²·L·‖f‖ ≤ 1/4`, estimated from the condition `κ` and the
 ///   Jacobian's columns), so a loose tolerance cannot accept a point past a toggle where the
 ///   loops do not close;
@@ -139,9 +146,15 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     let mut here = linearise(&x);
     let mut iterations = 0;
     let mut orientation = None;
+    // The residual before the last step. Newton squares the relative error at each step, so
+    // a residual at the floor is the attainable one only if the step to it started within
+    // √ε of the root; otherwise (a big step that landed near the floor, or no step at all,
+    // as for a guess that is already a solution) a default solve takes one more step, which
+    // polishes the result rather than stopping short of what the float type allows.
+    let mut previous_residual = T::infinity();
     loop {
         let residual_norm = max_abs(&here.residual);
-        if !residual_norm.is_finite() {
+        if !residual_norm.is_finite() || !here.scale.is_finite() {
             return Err(Error::NonFinite {
                 quantity: "loop residual",
             });
@@ -153,25 +166,38 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         // κ, wanted only at the end and by the convergence test: no division per iteration.
         let condition = || T::one() / relative_determinant.abs();
         let floor = rounding_floor * here.scale;
-        // Only a point within the tolerance, but above the rounding floor, needs the test.
-        if residual_norm <= options.tolerance.max(floor)
-            && (residual_norm <= floor || kantorovich(&here, condition()) <= quarter)
-        {
+        let accept = |here: Linearisation<T, N, P>, jacobian: Factored<T, N>, x: [T; N]| {
             if keep_orientation && positive != started_positive {
                 return Err(Error::OtherBranch);
             }
-            return Ok(Converged {
+            Ok(Converged {
                 solved: Solved {
                     value: x,
                     iterations,
                     residual_norm,
-                    condition: condition(),
+                    condition: T::one() / relative_determinant.abs(),
                 },
                 at: here,
                 jacobian,
-            });
+            })
+        };
+        // A stated tolerance is met when the residual is within it (and, above the rounding
+        // floor, a root is certain to be near); the default one when the residual is at the
+        // floor and the steps have stopped shrinking it (or it is zero).
+        let met = if options.tolerance > T::zero() {
+            residual_norm <= options.tolerance.max(floor)
+                && (residual_norm <= floor || kantorovich(&here, condition()) <= quarter)
+        } else {
+            residual_norm == T::zero()
+                || (residual_norm <= floor && previous_residual <= T::epsilon().sqrt() * here.scale)
+        };
+        if met {
+            return accept(here, jacobian, x);
         }
         if iterations >= options.max_iterations {
+            if residual_norm <= floor {
+                return accept(here, jacobian, x);
+            }
             return Err(Error::NoConvergence {
                 iterations,
                 residual_norm,
@@ -198,6 +224,10 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         let mut halvings = 0;
         // Not lower (a NaN residual is not lower either).
         while max_abs(&there.residual).partial_cmp(&residual_norm) != Some(Ordering::Less) {
+            if residual_norm <= floor {
+                // At the rounding floor no step lowers the residual: converged.
+                return accept(here, jacobian, x);
+            }
             if halvings == MAX_HALVINGS {
                 // No step lowers the residual: a local minimum of |f| that is not a root.
                 // Near a singular Jacobian that is a toggle the loops cannot pass.
@@ -215,6 +245,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             next = stepped(fraction);
             there = linearise(&next);
         }
+        previous_residual = residual_norm;
         x = next;
         here = there;
         iterations += 1;

@@ -1,0 +1,252 @@
+//! Issue 12's reproducers for the solvers, each kept as a regression test: inputs just past
+//! the range of motion, thin triangles, scales from 1e-300 to 1e300, non-finite values
+//! inside `Ok`, and Newton stopping short of the attainable accuracy.
+
+use mechanisms::{FourBar, FourBarUnknowns, SliderCrank};
+use mechgen::{Branch, Error, NewtonOptions, Real};
+
+const BRANCHES: [Branch; 2] = [Branch::Open, Branch::Crossed];
+
+/// The four-bar's loop residual at a solution, relative to `size`, the sum of its lengths.
+fn relative_residual<T: Real>(
+    linkage: &FourBar<T>,
+    size: T,
+    input: T,
+    position: &FourBarUnknowns<T>,
+) -> T {
+    let [x, y] = linkage.residual(input, position);
+    x.abs().max(y.abs()) / size
+}
+
+/// Inputs below the toggle of a rocker a thousand times shorter than the coupler: the closed
+/// form used to accept them within a band of rounding in squared lengths, which in f32 was
+/// wider than the rocker itself (Ok, with a residual of 20% of the rocker, and the same point
+/// on both branches).
+#[test]
+fn inputs_just_past_the_toggle_cannot_assemble() {
+    let f32_linkage = FourBar::<f32>::new(1.0, 1000.0, 1000.3, 1.0).unwrap();
+    let scenes = f32_linkage.scenes().unwrap();
+    for branch in BRANCHES {
+        assert_eq!(
+            f32_linkage.assemble(0.4, branch),
+            Err(Error::CannotAssemble { input: 0.4 })
+        );
+        assert_eq!(
+            scenes.angles(0.4, branch, 1.0, 0.0),
+            Err(Error::CannotAssemble { input: 0.4 })
+        );
+    }
+
+    // In f64, 2.5e-3 rad before a toggle at 0.7953984731912886: a residual of 1.3e-3.
+    let linkage = FourBar::new(1.0, 1e6, 1e6 + 0.3, 1.0).unwrap();
+    let scenes = linkage.scenes().unwrap();
+    let beyond = 0.792_934_408_261_189_4;
+    for branch in BRANCHES {
+        assert_eq!(
+            linkage.assemble(beyond, branch),
+            Err(Error::CannotAssemble { input: beyond })
+        );
+        assert_eq!(
+            scenes.angles(beyond, branch, 1.0, 0.0),
+            Err(Error::CannotAssemble { input: beyond })
+        );
+    }
+    // Just inside, it assembles and closes its loop to rounding.
+    let inside = 0.7955;
+    for branch in BRANCHES {
+        let position = linkage.assemble(inside, branch).unwrap();
+        let size = 2e6 + 2.3;
+        assert!(relative_residual(&linkage, size, inside, &position) <= 4.0 * f64::EPSILON);
+        assert_eq!(linkage.branch_of(inside, &position), branch);
+    }
+}
+
+/// Past the range of motion by 1e-12, 1e-9 and 1e-6 rad, in f64, on both branches and in
+/// every solver, the answer is CannotAssemble; as far inside, Ok.
+#[test]
+fn f64_inputs_just_past_each_limit_cannot_assemble() {
+    // A non-Grashof four-bar: its crank swings between ±limit.
+    let linkage = FourBar::new(100.0, 120.0, 90.0, 80.0).unwrap();
+    let limit = linkage.limit_angles().extended.expect("a limit short of π");
+    let scenes = linkage.scenes().unwrap();
+    for offset in [1e-12, 1e-9, 1e-6] {
+        let (outside, inside) = (limit + offset, limit - offset);
+        for branch in BRANCHES {
+            let cannot = Err(Error::CannotAssemble { input: outside });
+            assert_eq!(linkage.assemble(outside, branch), cannot);
+            assert_eq!(
+                linkage
+                    .motion(outside, branch, 1.0, 0.0)
+                    .map(|m| m.position),
+                cannot
+            );
+            assert_eq!(
+                scenes.angles(outside, branch, 1.0, 0.0).err(),
+                Some(Error::CannotAssemble { input: outside })
+            );
+            let position = linkage.assemble(inside, branch).unwrap();
+            assert!(relative_residual(&linkage, 390.0, inside, &position) <= 4.0 * f64::EPSILON);
+        }
+    }
+}
+
+/// A well-conditioned four-bar whose triangle A B O4 is thin (the rocker a thousand times
+/// shorter than the coupler): in f32 the closed form lost every digit of θ4 (0.11 rad off),
+/// in f64 it was 2e-10 rad off. The f64 solution is the reference for f32's; f64 is checked
+/// by closing its loop and by its agreement with Newton polished from it.
+#[test]
+fn thin_triangles_keep_their_digits() {
+    let dimensions = [1.0, 1000.0, 1000.3, 1.0];
+    let [l1, l2, l3, l4] = dimensions;
+    let linkage = FourBar::new(l1, l2, l3, l4).unwrap();
+    let narrow = FourBar::<f32>::new(l1 as f32, l2 as f32, l3 as f32, l4 as f32).unwrap();
+    let limit = linkage.limit_angles().folded.expect("a limit short of 0");
+    let size: f64 = dimensions.iter().sum();
+    for step in 0..50 {
+        let input = limit + 0.01 + 0.05 * f64::from(step);
+        for branch in BRANCHES {
+            let Ok(exact) = linkage.assemble(input, branch) else {
+                continue;
+            };
+            let kappa = linkage.condition(input, &exact);
+            assert!(relative_residual(&linkage, size, input, &exact) <= 4.0 * f64::EPSILON);
+            let polished = linkage
+                .position(input, &exact, &NewtonOptions::default())
+                .unwrap()
+                .value;
+            // The contract weights an angle's error by its link's length.
+            let bound = 16.0 * f64::EPSILON * kappa * dimensions.iter().sum::<f64>();
+            assert!((exact.theta4 - polished.theta4).abs() * l4 <= bound);
+            assert!((exact.theta3 - polished.theta3).abs() * l3 <= bound);
+
+            let input32 = input as f32;
+            let Ok(got) = narrow.assemble(input32, branch) else {
+                continue;
+            };
+            let reference = linkage.assemble(f64::from(input32), branch).unwrap();
+            let bound32 = 16.0 * f64::from(f32::EPSILON) * kappa * dimensions.iter().sum::<f64>();
+            assert!(
+                (f64::from(got.theta4) - reference.theta4).abs() * l4 <= bound32,
+                "f32 θ4 {} against {} at {input32}",
+                got.theta4,
+                reference.theta4
+            );
+        }
+    }
+}
+
+/// Kinematics is scale-invariant: Example 1 with every length times a power of two gives the
+/// same angles and rates, bit for bit, from every solver; times any other factor, the same
+/// to rounding. (Scaled by 1e154 or 1e300 it could not assemble; by 1e-162 it was 6e-5 rad
+/// off; by 1e-300, Singular.)
+#[test]
+fn every_scale_gives_the_same_angles() {
+    let example_1 = [180.0, 80.0, 200.0, 150.0];
+    let at = |factor: f64| {
+        let [l1, l2, l3, l4] = example_1.map(|l| l * factor);
+        let linkage = FourBar::new(l1, l2, l3, l4).unwrap();
+        let input = 60f64.to_radians();
+        let motion = linkage.motion(input, Branch::Open, 10.0, 2.0).unwrap();
+        let angles = linkage
+            .scenes()
+            .unwrap()
+            .angles(input, Branch::Open, 10.0, 2.0)
+            .unwrap();
+        let newton = linkage
+            .position(input, &motion.position, &NewtonOptions::default())
+            .unwrap()
+            .value;
+        [
+            motion.position.theta3,
+            motion.position.theta4,
+            motion.velocity.theta3,
+            motion.velocity.theta4,
+            motion.acceleration.theta3,
+            motion.acceleration.theta4,
+            angles.theta3,
+            angles.theta4,
+            angles.theta3_dot,
+            angles.theta4_dot,
+            angles.theta3_ddot,
+            angles.theta4_ddot,
+            newton.theta3,
+            newton.theta4,
+        ]
+    };
+    let unit = at(1.0);
+    assert!((unit[1] - 72.1377f64.to_radians()).abs() < 1e-5);
+    for power in [-1000, -600, -300, 300, 600, 1000] {
+        assert_eq!(at(2f64.powi(power)), unit, "2^{power}");
+    }
+    for factor in [1e-300, 1e-162, 1e-100, 1e100, 1e154, 1e300] {
+        for (got, want) in at(factor).iter().zip(unit) {
+            assert!(
+                (got - want).abs() <= 64.0 * f64::EPSILON * want.abs().max(1.0),
+                "{factor:e}: {got} against {want}"
+            );
+        }
+    }
+}
+
+/// A slider-crank whose rod is 1.9e19 in f32: its squares overflowed and `assemble` was
+/// `Ok{θ3: NaN, d: inf}`. The slider is at the rod's length from the crank pin.
+#[test]
+fn huge_f32_slider_cranks_are_finite() {
+    let linkage = SliderCrank::<f32>::new(5.0, 1.9e19, 6.0).unwrap();
+    for branch in BRANCHES {
+        let position = linkage.assemble(0.17, branch).unwrap();
+        assert!(position.theta3.is_finite() && position.d.is_finite());
+        assert!((position.d.abs() - 1.9e19).abs() <= 4.0 * f32::EPSILON * 1.9e19);
+    }
+}
+
+/// Lengths whose sum overflows: Newton returned its guess, untouched, as Ok.
+#[test]
+fn newton_says_when_its_numbers_overflow() {
+    let linkage = FourBar::new(5e307, 6e307, 6e307, 3e307).unwrap();
+    let guess = FourBarUnknowns {
+        theta3: 1.0,
+        theta4: 2.0,
+    };
+    let got = linkage.position(0.5, &guess, &NewtonOptions::default());
+    assert!(matches!(got, Err(Error::NonFinite { .. })), "{got:?}");
+}
+
+/// Newton by default goes to the attainable accuracy, and a solve restarted from its own
+/// result polishes it (it used to make no iteration at all).
+#[test]
+fn newton_polishes_what_it_is_given() {
+    let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+    let input = 60f64.to_radians();
+    let exact = linkage.assemble(input, Branch::Open).unwrap();
+    // A loose solve, to 1e-3 mm, then the default from there.
+    let rough = FourBarUnknowns {
+        theta3: exact.theta3 + 1e-4,
+        theta4: exact.theta4 - 1e-4,
+    };
+    let loose = linkage
+        .position(input, &rough, &NewtonOptions::new(1e-3, 50))
+        .unwrap();
+    assert!(loose.residual_norm > 1e-9);
+    let polished = linkage
+        .position(input, &loose.value, &NewtonOptions::default())
+        .unwrap();
+    assert!(polished.iterations >= 1);
+    let size: f64 = 180.0 + 80.0 + 200.0 + 150.0;
+    assert!(polished.residual_norm <= 4.0 * f64::EPSILON * size);
+    for (got, want) in [
+        (polished.value.theta3, exact.theta3),
+        (polished.value.theta4, exact.theta4),
+    ] {
+        assert!(
+            (got - want).abs() <= 4.0 * f64::EPSILON,
+            "{got} against {want}"
+        );
+    }
+    // From its own result: one polishing step, and the same solution to rounding.
+    let again = linkage
+        .position(input, &polished.value, &NewtonOptions::default())
+        .unwrap();
+    assert_eq!(again.iterations, 1);
+    assert!((again.value.theta4 - polished.value.theta4).abs() <= 2.0 * f64::EPSILON);
+}
