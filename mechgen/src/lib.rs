@@ -36,7 +36,7 @@ pub mod __private {
         all_finite as finite_all, blame, branch_root, inverse, inverse_determinant, lanes,
         length_scale, triangle_root, unit_angle,
     };
-    pub use crate::linear::{Factored, solve_lu, solve2};
+    pub use crate::linear::{Factored, orientation, solve_lu, solve2};
     pub use crate::newton::{Linearisation, Turning, all_finite, check_finite, finite, newton};
     pub use core::result::Result::{Err, Ok};
 }

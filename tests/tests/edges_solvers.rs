@@ -250,3 +250,88 @@ fn newton_polishes_what_it_is_given() {
     assert_eq!(again.iterations, 1);
     assert!((again.value.theta4 - polished.value.theta4).abs() <= 2.0 * f64::EPSILON);
 }
+
+/// The angle between two angles, in [0, π].
+fn angle_between(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(std::f64::consts::TAU);
+    d.min(std::f64::consts::TAU - d)
+}
+
+/// A Newton-only six-bar keeps its assembly: started up to 1 rad away from a solution in
+/// every unknown, Newton converges to that solution or says it cannot (OtherBranch,
+/// CannotAssemble, ...); it never returns another assembly as Ok (it did in 10 of 200 tries).
+#[test]
+fn newton_only_mechanisms_keep_their_assembly() {
+    let (six_bar, guess) = mechgen_tests::examples::stephenson_six_bar();
+    let solution = six_bar
+        .position(0.0, &guess, &NewtonOptions::default())
+        .unwrap()
+        .value
+        .to_array();
+    // A fixed sequence of offsets in [−1, 1] rad (a linear congruential generator).
+    let mut state = 12_345_u64;
+    let mut offset = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let mut kept = 0;
+    for _ in 0..200 {
+        let start: [f64; 4] = std::array::from_fn(|i| solution[i] + offset());
+        let start = mechanisms::StephensonSixBarUnknowns::from_array(start);
+        if let Ok(solved) = six_bar.position(0.0, &start, &NewtonOptions::default()) {
+            let apart = solved
+                .value
+                .to_array()
+                .iter()
+                .zip(solution)
+                .map(|(&a, b)| angle_between(a, b))
+                .fold(0.0, f64::max);
+            assert!(apart < 1e-9, "another assembly from {start:?}: {:?}", solved.value);
+            kept += 1;
+        }
+    }
+    assert!(kept >= 150, "only {kept} of 200 converged");
+}
+
+/// Sweeps of the six-bar in steps of up to 120° give the positions of a 1° sweep, or stop.
+#[test]
+fn coarse_six_bar_sweeps_do_not_jump_assembly() {
+    use mechgen::sweep::Sweep;
+    let (six_bar, guess) = mechgen_tests::examples::stephenson_six_bar();
+    let start = six_bar
+        .position(0.0, &guess, &NewtonOptions::default())
+        .unwrap()
+        .value
+        .to_array();
+    let fine: Vec<_> = Sweep::new(
+        &six_bar,
+        0.0,
+        start,
+        1f64.to_radians(),
+        360,
+        NewtonOptions::default(),
+    )
+    .map(|sample| sample.expect("the six-bar turns fully").position)
+    .collect();
+    for degrees in [10u32, 30, 45, 90, 120] {
+        // `steps` steps after the start: to 360°.
+        let steps = 360 / degrees;
+        let coarse = Sweep::new(
+            &six_bar,
+            0.0,
+            start,
+            f64::from(degrees).to_radians(),
+            steps,
+            NewtonOptions::default(),
+        );
+        for (k, sample) in coarse.enumerate() {
+            let Ok(sample) = sample else { break };
+            let reference = fine[k * degrees as usize];
+            for (&got, want) in sample.position.iter().zip(reference) {
+                assert!(angle_between(got, want) < 1e-9, "{degrees}° steps, sample {k}");
+            }
+        }
+    }
+}

@@ -86,15 +86,17 @@ impl Generator<'_> {
     }
 
     /// Whether Newton keeps to the guess's branch through the Jacobian's orientation (one
-    /// loop with two assemblies), and the check after it otherwise (several loops with
-    /// closed-form branches), comparing `solution` with the guess.
+    /// loop, or loops none of which has a closed form with branches: the sign of the
+    /// determinant cannot change along a branch, so a change means another assembly), and
+    /// the check after it otherwise (several loops with closed-form branches), comparing
+    /// `solution` with the guess.
     fn branch_keeping(&self, solution: TokenStream) -> (bool, Option<TokenStream>) {
         let input = &self.model.input.name;
         let guess = arg("guess");
         let branching = self.equations.closed_form.as_ref().map_or(0, |steps| {
             steps.iter().filter(|s| s.case.has_branches()).count()
         });
-        let keep_orientation = branching == 1 && self.model.loops.len() == 1;
+        let keep_orientation = self.model.loops.len() == 1 || branching == 0;
         let check = (branching > 0 && !keep_orientation).then(|| {
             quote! {
                 if self.branch_of(#input, #solution) != self.branch_of(#input, #guess) {

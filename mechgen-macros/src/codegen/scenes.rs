@@ -506,8 +506,8 @@ impl Generator<'_> {
             Quantity::Point(_) => true,
             Quantity::Unknown(u) => self.model.unknowns[u].kind == Kind::Length,
         };
-        let reads_unscale = scene.items.iter().any(in_lengths)
-            || self.model.input.kind == Kind::Length;
+        let reads_unscale =
+            scene.items.iter().any(in_lengths) || self.model.input.kind == Kind::Length;
         let parameter_bindings = if reads_unscale {
             quote!(#parameter_bindings let #unscale = self.unscale;)
         } else {

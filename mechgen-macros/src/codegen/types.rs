@@ -156,10 +156,16 @@ impl Generator<'_> {
                     == self.branch_of(#input_b, &#ty::from_array(#b))
             }
         } else {
-            // No closed form defines branches: the sweep relies on its other checks.
+            // No closed form defines branches: the Jacobian's orientation tells assemblies
+            // apart (it cannot change along one without passing a singular position).
             quote! {
-                let _ = (#input_a, #a, #input_b, #b);
-                true
+                let orientation_a = ::mechgen::__private::orientation(
+                    self.jacobian(#input_a, &#ty::from_array(#a)),
+                );
+                let orientation_b = ::mechgen::__private::orientation(
+                    self.jacobian(#input_b, &#ty::from_array(#b)),
+                );
+                orientation_a.is_some() && orientation_a == orientation_b
             }
         };
         quote! {
