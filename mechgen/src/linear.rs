@@ -29,22 +29,16 @@ pub fn singular_threshold<T: Real>() -> T {
     T::epsilon().sqrt()
 }
 
-/// Scales `a` and `b` by one factor, a power of two near `1 / max|a_ij|`, which leaves the solution and the
-/// relative determinant unchanged and keeps the products below from overflowing or
-/// underflowing for very large or small mechanisms; returns the product of the scaled
-/// matrix's column norms, which divides its determinant into the relative determinant.
-/// Errors: a zero matrix or column, a non-finite entry.
-fn normalise<T: Real, const N: usize>(a: &mut [[T; N]; N], b: &mut [T; N]) -> Result<T, Error<T>> {
-    let mut largest = T::zero();
-    for row in a.iter() {
-        for v in row {
-            largest = largest.max(v.abs());
-        }
-    }
-    if !largest.is_finite()
-        || !crate::newton::all_finite(b)
-        || a.iter().flatten().any(|v| v.is_nan())
-    {
+/// Scales each column of `a` by a power of two that brings its largest entry into
+/// `[1/2, 1)`: the solution of the scaled system, times the same powers, is the solution, to
+/// the bit (they are exact), and the relative determinant is unchanged; but no product below
+/// can overflow or underflow, however large or small the mechanism, and however its
+/// unknowns' units differ (an angle's column is a length, a length's a pure direction).
+/// Returns the product of the scaled matrix's column norms, which divides its determinant
+/// into the relative determinant, and the columns' scales.
+/// Errors: a zero column, a non-finite entry.
+fn normalise<T: Real, const N: usize>(a: &mut [[T; N]; N]) -> Result<(T, [T; N]), Error<T>> {
+    if !a.iter().flatten().all(|v| v.is_finite()) {
         return Err(Error::NonFinite {
             quantity: "linear system",
         });
@@ -53,28 +47,25 @@ fn normalise<T: Real, const N: usize>(a: &mut [[T; N]; N], b: &mut [T; N]) -> Re
         determinant: T::zero(),
         relative_determinant: T::zero(),
     };
-    if largest == T::zero() {
-        return Err(singular);
+    let mut scales = [T::zero(); N];
+    for (j, scale) in scales.iter_mut().enumerate() {
+        let largest = a.iter().fold(T::zero(), |m, row| m.max(row[j].abs()));
+        if largest == T::zero() {
+            return Err(singular);
+        }
+        *scale = crate::real::normaliser(largest);
     }
-    // A power of two: exact, so a system scaled here is solved bit for bit as it would be
-    // at any other power-of-two scale (the unscaled fast path included).
-    let scale = crate::real::normaliser(largest);
     let mut column_squares = [T::zero(); N];
-    for (row, bi) in a.iter_mut().zip(b.iter_mut()) {
-        for (v, square) in row.iter_mut().zip(column_squares.iter_mut()) {
+    for row in a.iter_mut() {
+        for ((v, square), scale) in row.iter_mut().zip(column_squares.iter_mut()).zip(scales) {
             *v = *v * scale;
             *square = *square + *v * *v;
         }
-        *bi = *bi * scale;
     }
-    let mut product = T::one();
-    for square in column_squares {
-        if square == T::zero() {
-            return Err(singular);
-        }
-        product = product * square;
-    }
-    Ok(product.sqrt())
+    let product = column_squares
+        .iter()
+        .fold(T::one(), |product, square| product * *square);
+    Ok((product.sqrt(), scales))
 }
 
 /// The product of a 2×2 matrix's column norms without scaling it, when that is safe: the
@@ -105,10 +96,15 @@ fn check_determinant<T: Real>(scaled_determinant: T, column_norms: T) -> Result<
 /// Solves the 2×2 system `a·x = b` by Cramer's rule; returns `x` and the signed relative
 /// determinant `det / (‖column 0‖·‖column 1‖)`, whose sign is the matrix's orientation.
 #[inline]
-pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<([T; 2], T), Error<T>> {
-    let columns = match unscaled_columns2(&a) {
-        Some(columns) => columns,
-        None => normalise(&mut a, &mut b)?,
+pub fn solve2<T: Real>(mut a: [[T; 2]; 2], b: [T; 2]) -> Result<([T; 2], T), Error<T>> {
+    if !crate::newton::all_finite(&b) {
+        return Err(Error::NonFinite {
+            quantity: "linear system",
+        });
+    }
+    let (columns, scales) = match unscaled_columns2(&a) {
+        Some(columns) => (columns, [T::one(); 2]),
+        None => normalise(&mut a)?,
     };
     let [[a00, a01], [a10, a11]] = a;
     let determinant = a00 * a11 - a01 * a10;
@@ -116,8 +112,8 @@ pub fn solve2<T: Real>(mut a: [[T; 2]; 2], mut b: [T; 2]) -> Result<([T; 2], T),
     let inverse = T::one() / determinant;
     Ok((
         [
-            (b[0] * a11 - a01 * b[1]) * inverse,
-            (a00 * b[1] - b[0] * a10) * inverse,
+            (b[0] * a11 - a01 * b[1]) * inverse * scales[0],
+            (a00 * b[1] - b[0] * a10) * inverse * scales[1],
         ],
         relative,
     ))
@@ -192,8 +188,8 @@ pub struct Factored<T, const N: usize> {
     pivots: [usize; N],
     /// Whether `lu` is an inverse.
     inverse: bool,
-    /// The power of two the matrix was scaled by, for the right-hand sides.
-    scale: T,
+    /// The powers of two the matrix's columns were scaled by, for the solutions.
+    scales: [T; N],
     /// The signed relative determinant.
     relative: T,
 }
@@ -207,16 +203,11 @@ impl<T: Real, const N: usize> Factored<T, N> {
             // Scaled (by a power of two, so the inverse is the same, bit for bit, as at any
             // other scale) only where the squares would overflow or underflow.
             let mut a = a;
-            let mut scale = T::one();
-            let columns = match unscaled_columns2(&[[a[i][i], a[i][j]], [a[j][i], a[j][j]]]) {
-                Some(columns) => columns,
-                None => {
-                    let mut unit = [T::one(); N];
-                    let columns = normalise(&mut a, &mut unit)?;
-                    scale = unit[0];
-                    columns
-                }
-            };
+            let (columns, scales) =
+                match unscaled_columns2(&[[a[i][i], a[i][j]], [a[j][i], a[j][j]]]) {
+                    Some(columns) => (columns, [T::one(); N]),
+                    None => normalise(&mut a)?,
+                };
             let determinant = a[i][i] * a[j][j] - a[i][j] * a[j][i];
             let relative = check_determinant(determinant, columns)?;
             let inverse = T::one() / determinant;
@@ -229,7 +220,7 @@ impl<T: Real, const N: usize> Factored<T, N> {
                 lu,
                 pivots: [0; N],
                 inverse: true,
-                scale,
+                scales,
                 relative,
             });
         }
@@ -239,9 +230,7 @@ impl<T: Real, const N: usize> Factored<T, N> {
     /// LU with partial pivoting on the scaled matrix.
     fn by_lu(a: [[T; N]; N]) -> Result<Self, Error<T>> {
         let mut lu = a;
-        let mut unused = [T::zero(); N];
-        let columns = normalise(&mut lu, &mut unused)?;
-        let largest = a.iter().flatten().fold(T::zero(), |m, v| m.max(v.abs()));
+        let (columns, scales) = normalise(&mut lu)?;
         let mut pivots = [0; N];
         let determinant = eliminate(&mut lu, &mut pivots);
         let relative = check_determinant(determinant, columns)?;
@@ -249,8 +238,7 @@ impl<T: Real, const N: usize> Factored<T, N> {
             lu,
             pivots,
             inverse: false,
-            // The factor `normalise` scaled the matrix by, for the right-hand sides.
-            scale: crate::real::normaliser(largest),
+            scales,
             relative,
         })
     }
@@ -265,17 +253,17 @@ impl<T: Real, const N: usize> Factored<T, N> {
     pub fn solve(&self, b: [T; N]) -> [T; N] {
         if self.inverse {
             // The explicit inverse of `new`'s 2×2 case.
-            let b = b.map(|v| v * self.scale);
             let mut x = b;
-            for (xi, row) in x.iter_mut().zip(&self.lu) {
+            for ((xi, row), scale) in x.iter_mut().zip(&self.lu).zip(self.scales) {
                 *xi = row
                     .iter()
                     .zip(&b)
-                    .fold(T::zero(), |acc, (r, v)| acc + *r * *v);
+                    .fold(T::zero(), |acc, (r, v)| acc + *r * *v)
+                    * scale;
             }
             return x;
         }
-        let mut x = b.map(|v| v * self.scale);
+        let mut x = b;
         // Whole rows were swapped while factoring, multipliers included: P·A = L·U.
         for (k, &pivot) in self.pivots.iter().enumerate() {
             swap(&mut x, k, pivot);
@@ -297,6 +285,9 @@ impl<T: Real, const N: usize> Factored<T, N> {
                     *x_k = sum / diagonal;
                 }
             }
+        }
+        for (xi, scale) in x.iter_mut().zip(self.scales) {
+            *xi = *xi * scale;
         }
         x
     }
@@ -321,8 +312,7 @@ pub fn orientation<T: Real, const N: usize>(a: [[T; N]; N]) -> Option<bool> {
 /// ```
 pub fn condition<T: Real, const N: usize>(jacobian: [[T; N]; N]) -> T {
     let mut a = jacobian;
-    let mut b = [T::zero(); N];
-    let Ok(columns) = normalise(&mut a, &mut b) else {
+    let Ok((columns, _)) = normalise(&mut a) else {
         return T::infinity();
     };
     let mut pivots = [0; N];
