@@ -108,6 +108,10 @@ fn grashof_words(linkage: &FourBar<f64>) -> String {
         Class::Grashof => "class I (Grashof)",
         Class::NonGrashof => "class II (non-Grashof)",
         Class::ChangePoint => "class III (change point)",
+        Class::Flat => "flat (the longest link equals the other three together)",
+        Class::CannotClose => {
+            "cannot close (the longest link is longer than the other three together)"
+        }
     };
     let inversion = match g.inversion {
         Inversion::CrankRocker => "crank-rocker",
@@ -115,6 +119,7 @@ fn grashof_words(linkage: &FourBar<f64>) -> String {
         Inversion::DoubleCrank => "double-crank",
         Inversion::DoubleRocker => "Grashof double-rocker",
         Inversion::TripleRocker => "triple-rocker",
+        Inversion::Immobile => "immobile",
     };
     let special = match g.special {
         Some(Special::Parallelogram) => ", a parallelogram",
