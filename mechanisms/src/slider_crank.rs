@@ -227,6 +227,6 @@ impl<T: Real> SliderCrank<T> {
         position: &SliderCrankUnknowns<T>,
     ) -> Result<MechanicalAdvantage<T>, Error<T>> {
         let rates = self.velocity(theta2, position, T::one())?;
-        Ok(MechanicalAdvantage::from_rates(T::one(), rates.d))
+        MechanicalAdvantage::from_rates(T::one(), rates.d)
     }
 }

@@ -326,7 +326,7 @@ fn mechanical_advantage_is_the_velocity_ratio() {
     }
     assert_eq!(
         MechanicalAdvantage::from_rates(1.0, 0.0),
-        MechanicalAdvantage::Unbounded
+        Ok(MechanicalAdvantage::Unbounded)
     );
 }
 
