@@ -262,7 +262,11 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
         (Some(stroke), Some(ratio)) => {
             println!("The crank turns fully; stroke {stroke:.4} mm, time ratio {ratio:.4}")
         }
-        _ => println!("The crank cannot turn fully (l3 − l2 < |c|)"),
+        (Some(stroke), None) => println!(
+            "The crank turns fully, through a change point where the rod stands perpendicular \
+             to the slide (l3 − l2 = |c|); stroke {stroke:.4} mm, no inner dead centre"
+        ),
+        (None, _) => println!("The crank cannot turn fully (l3 − l2 < |c|)"),
     }
     let solve = |branch| linkage.motion(theta2, branch, args.rate, args.accel);
     let (open, crossed) = match (solve(Branch::Open), solve(Branch::Crossed)) {
