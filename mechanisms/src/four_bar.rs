@@ -1,9 +1,10 @@
 //! The four-bar linkage.
 
-use mechgen::grashof::{self, Grashof, Inversion};
+use mechgen::grashof::{self, Class, Grashof, Inversion, normalised};
 use mechgen::{Branch, Error, MechanicalAdvantage, Real, mechanism};
 
 use crate::dimensions::{DimensionError, finite, non_negative, positive};
+use crate::triangle;
 
 mechanism! {
     /// Four-bar linkage: ground `l1` from O2 = (0, 0) to O4 = (l1, 0), crank `l2` from O2 to
@@ -104,7 +105,7 @@ impl<T: Real> TransmissionExtremes<T> {
 
 /// The input angles at which a crank that cannot turn fully stops (toggles), in (0, π); the
 /// linkage is symmetric, so each also stops at the negative angle. See
-/// [`FourBar::limit_angles`].
+/// [`FourBar::limit_angles`] for the rule at the ends, 0 and π.
 ///
 /// ```
 /// use mechanisms::FourBar;
@@ -137,7 +138,10 @@ impl<T: Real> LimitAngles<T> {
     }
 
     /// Whether the linkage assembles at `theta2`: `|θ2|`, wrapped to [0, π], lies between the
-    /// folded limit (or 0) and the extended limit (or π).
+    /// folded limit (or 0) and the extended limit (or π). The wrapping is exact for any
+    /// finite `theta2`, however large: it is `atan2(|sin θ2|, cos θ2)`, whose sine and cosine
+    /// reduce `θ2` by π itself rather than by its rounded value (`θ2 % τ` with τ rounded is
+    /// off by `θ2/τ` roundings of τ, 0.04 rad at `θ2 = 1e15`). Not finite: false.
     ///
     /// ```
     /// use mechanisms::FourBar;
@@ -147,13 +151,11 @@ impl<T: Real> LimitAngles<T> {
     /// # Ok::<(), mechanisms::DimensionError<f64>>(())
     /// ```
     pub fn reaches(&self, theta2: T) -> bool {
-        let pi = T::constant(core::f64::consts::PI);
-        let wrapped = (theta2 % (pi + pi)).abs();
-        let magnitude = if wrapped > pi {
-            pi + pi - wrapped
-        } else {
-            wrapped
-        };
+        if !theta2.is_finite() {
+            return false;
+        }
+        let (sine, cosine) = theta2.sin_cos();
+        let magnitude = sine.abs().atan2(cosine);
         self.folded.is_none_or(|f| magnitude >= f) && self.extended.is_none_or(|e| magnitude <= e)
     }
 }
@@ -182,14 +184,19 @@ impl<T: Real> FourBar<T> {
     /// A four-bar with the coupler point at the crank pin A (see
     /// [`with_coupler_point`](Self::with_coupler_point)).
     ///
-    /// Errors: a length that is not positive and finite, or lengths that cannot be assembled
-    /// at any crank angle (`|l3 − l4| > l1 + l2` or `l3 + l4 < |l1 − l2|`).
+    /// Errors: a length that is not positive and finite, or lengths that do not make a
+    /// mechanism: a link as long as the other three together or longer (Grashof's classes
+    /// [`Flat`](Class::Flat) and [`CannotClose`](Class::CannotClose), so to within
+    /// [`grashof::default_tolerance`]), which closes the loop only all in line at a single
+    /// crank angle, or not at all. The error names that longest link.
     ///
     /// ```
     /// use mechanisms::FourBar;
     /// assert!(FourBar::new(180.0, 80.0, 200.0, 150.0).is_ok());
     /// assert!(FourBar::new(180.0, f64::NAN, 200.0, 150.0).is_err());
     /// assert_eq!(FourBar::new(500.0, 80.0, 200.0, 150.0).unwrap_err().name, "ground");
+    /// // 6 = 1 + 3 + 2: the links close only flat, at θ2 = π.
+    /// assert_eq!(FourBar::new(1.0, 3.0, 6.0, 2.0).unwrap_err().name, "coupler");
     /// ```
     pub fn new(ground: T, crank: T, coupler: T, rocker: T) -> Result<Self, DimensionError<T>> {
         let linkage = FourBar {
@@ -201,12 +208,25 @@ impl<T: Real> FourBar<T> {
             delta: T::zero(),
         };
         // Z = |A − O4| ranges over [|l1 − l2|, l1 + l2]; B exists for Z in [|l3 − l4|, l3 + l4].
-        let reach = ground + crank;
-        if (coupler - rocker).abs() > reach || coupler + rocker < (ground - crank).abs() {
+        // The two ranges share more than a point unless one link is as long as the other
+        // three together.
+        if matches!(linkage.grashof().class, Class::Flat | Class::CannotClose) {
+            let names = [
+                ("ground", ground),
+                ("crank", crank),
+                ("coupler", coupler),
+                ("rocker", rocker),
+            ];
+            let (name, value) =
+                names.into_iter().fold(
+                    names[0],
+                    |longest, link| if link.1 > longest.1 { link } else { longest },
+                );
             return Err(DimensionError {
-                name: "ground",
-                value: ground,
-                requirement: "such that the linkage assembles at some crank angle",
+                name,
+                value,
+                requirement: "shorter than the other three links together, so that the \
+                              linkage assembles at some crank angle and moves",
             });
         }
         Ok(linkage)
@@ -269,7 +289,8 @@ impl<T: Real> FourBar<T> {
     /// The transmission angle γ between coupler and rocker at a position, in [0, π]: the
     /// interior angle at B of the triangle A B O4,
     /// `cos γ = (l3² + l4² − Z²)/(2·l3·l4)` with `Z = |A − O4|`, computed as
-    /// `γ = acos(cos(θ4 − θ3))`. Force is transmitted best at 90°; keep it within 40° to 140°.
+    /// `γ = atan2(|sin(θ4 − θ3)|, cos(θ4 − θ3))` (the accurate form of `acos(cos(θ4 − θ3))`).
+    /// Force is transmitted best at 90°; keep it within 40° to 140°.
     ///
     /// ```
     /// use mechanisms::FourBar;
@@ -280,14 +301,18 @@ impl<T: Real> FourBar<T> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn transmission_angle(&self, position: &FourBarUnknowns<T>) -> T {
-        (position.theta4 - position.theta3).cos().acos()
+        let (sine, cosine) = (position.theta4 - position.theta3).sin_cos();
+        sine.abs().atan2(cosine)
     }
 
     /// The smallest and largest transmission angles over the whole motion, and the crank
     /// angles where they occur. γ grows with `Z = |A − O4|`, and `Z² = l1² + l2² − 2·l1·l2·cos θ2`
     /// grows with `|θ2|`, so the extremes are at the ends of the reachable range: θ2 = 0 and π
-    /// for a crank that turns fully, else the limit angles (where γ is 0 or π). Both branches
-    /// share them.
+    /// for a crank that turns fully, else the limit angles, where γ is exactly 0 (folded) or π
+    /// (extended). Both branches share them. At θ2 = 0 and π, γ is the angle opposite
+    /// `Z = |l1 ∓ l2|` in the triangle of sides `l3`, `l4`, `Z`, by Kahan's formula (good to a
+    /// few units of rounding, where `acos` of the cosine rule loses half the digits near 0
+    /// and π).
     ///
     /// ```
     /// use mechanisms::FourBar;
@@ -300,19 +325,19 @@ impl<T: Real> FourBar<T> {
     pub fn transmission_extremes(&self) -> TransmissionExtremes<T> {
         let limits = self.limit_angles();
         let pi = T::constant(core::f64::consts::PI);
-        let min_at = limits.folded.unwrap_or(T::zero());
-        let max_at = limits.extended.unwrap_or(pi);
-        let gamma = |theta2: T| {
-            let z_squared = self.l1 * self.l1 + self.l2 * self.l2
-                - (self.l1 + self.l1) * self.l2 * theta2.cos();
-            let cosine = (self.l3 * self.l3 + self.l4 * self.l4 - z_squared)
-                / ((self.l3 + self.l3) * self.l4);
-            cosine.max(-T::one()).min(T::one()).acos()
+        let [l1, l2, l3, l4] = normalised(self.lengths());
+        let (min, min_at) = match limits.folded {
+            Some(at) => (T::zero(), at),
+            None => (triangle::angle(l3, l4, (l1 - l2).abs()), T::zero()),
+        };
+        let (max, max_at) = match limits.extended {
+            Some(at) => (pi, at),
+            None => (triangle::angle(l3, l4, l1 + l2), pi),
         };
         TransmissionExtremes {
-            min: gamma(min_at),
+            min,
             min_at,
-            max: gamma(max_at),
+            max,
             max_at,
         }
     }
@@ -320,7 +345,21 @@ impl<T: Real> FourBar<T> {
     /// The crank angles where coupler and rocker line up, the toggles a crank that cannot turn
     /// fully stops at: `cos θ2 = (l1² + l2² − (l3 ± l4)²)/(2·l1·l2)`, `+` extended and `−`
     /// folded. A toggle exists where the right-hand side lies in (−1, 1); there the Jacobian
-    /// is singular and just beyond it the loop cannot close.
+    /// is singular and just beyond it the loop cannot close. Each is computed as the angle at
+    /// O2 of the triangle O2 O4 A with `|A O4| = l3 ± l4`, by Kahan's formula, on the lengths
+    /// scaled by a power of two: accurate near 0 and π, and at any scale.
+    ///
+    /// At the ends, `|l3 − l4| = |l1 − l2|` or `l3 + l4 = l1 + l2` (by exact comparison), the
+    /// links all line up at θ2 = 0 or π: a change point, which the crank passes through, so
+    /// not a limit (`None`). (The lengths [`FourBar::new`] refuses, which close only flat,
+    /// would give `folded = π` or `extended = 0`, reaching that one angle.)
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// // A kite whose crank meets the coupler and rocker in line at θ2 = 0 and π: a full turn.
+    /// assert!(FourBar::new(100.0, 50.0, 50.0, 100.0)?.limit_angles().full_turn());
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     ///
     /// ```
     /// use mechanisms::FourBar;
@@ -333,22 +372,41 @@ impl<T: Real> FourBar<T> {
     /// # Ok::<(), mechanisms::DimensionError<f64>>(())
     /// ```
     pub fn limit_angles(&self) -> LimitAngles<T> {
-        let toggle = |reach: T| {
-            let cosine = (self.l1 * self.l1 + self.l2 * self.l2 - reach * reach)
-                / ((self.l1 + self.l1) * self.l2);
-            (cosine > -T::one() && cosine < T::one()).then(|| cosine.acos())
-        };
+        let [l1, l2, l3, l4] = normalised(self.lengths());
+        let pi = T::constant(core::f64::consts::PI);
+        // Z = |A − O4| over the crank's turn, from θ2 = 0 to π.
+        let (nearest, farthest) = ((l1 - l2).abs(), l1 + l2);
+        let (folded, extended) = ((l3 - l4).abs(), l3 + l4);
+        let toggle = |reach: T| triangle::angle(l1, l2, reach);
         LimitAngles {
-            folded: toggle((self.l3 - self.l4).abs()),
-            extended: toggle(self.l3 + self.l4),
+            folded: if folded <= nearest {
+                None
+            } else if folded >= farthest {
+                Some(pi)
+            } else {
+                Some(toggle(folded))
+            },
+            extended: if extended >= farthest {
+                None
+            } else if extended <= nearest {
+                Some(T::zero())
+            } else {
+                Some(toggle(extended))
+            },
         }
     }
 
     /// The dead-centre positions of a crank-rocker on `branch`: where crank and coupler line
     /// up, extended (`|O2 B| = l2 + l3`) and folded (`|O2 B| = l3 − l2`), and the rocker stops
     /// (`ω4 = 0`) at its two extremes. B is on the rocker's circle, so
-    /// `cos θ4 = ((l3 ± l2)² − l1² − l4²)/(2·l1·l4)`. `None` unless the linkage is a
-    /// crank-rocker.
+    /// `cos θ4 = ((l3 ± l2)² − l1² − l4²)/(2·l1·l4)`, computed as the supplement of the angle at
+    /// O4 of the triangle O2 O4 B by Kahan's formula (accurate at any scale).
+    ///
+    /// `None` unless the linkage is a class I (Grashof) crank-rocker. A change-point
+    /// (class III) crank-rocker passes one of its two crank-and-coupler line-ups with all four
+    /// links in line, where the branches meet: a change point, where the rocker's rate is not
+    /// determined by the crank's, not a dead centre. For a kite with crank = coupler that
+    /// line-up is B on O2, the fold onto the kite's degenerate branch.
     ///
     /// ```
     /// use mechanisms::FourBar;
@@ -361,28 +419,34 @@ impl<T: Real> FourBar<T> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn dead_centres(&self, branch: Branch) -> Option<[DeadCentre<T>; 2]> {
-        if self.grashof().inversion != Inversion::CrankRocker {
+        let g = self.grashof();
+        if (g.class, g.inversion) != (Class::Grashof, Inversion::CrankRocker) {
             return None;
         }
         let pi = T::constant(core::f64::consts::PI);
+        // The same angles on the linkage scaled by a power of two, where nothing overflows.
+        let [l1, l2, l3, l4] = normalised(self.lengths());
+        let unit = FourBar {
+            l1,
+            l2,
+            l3,
+            l4,
+            a: T::zero(),
+            delta: T::zero(),
+        };
         let at_reach = |reach: T, folded: bool| {
-            let cosine = (reach * reach - self.l1 * self.l1 - self.l4 * self.l4)
-                / ((self.l1 + self.l1) * self.l4);
-            let magnitude = cosine.max(-T::one()).min(T::one()).acos();
+            let magnitude = pi - triangle::angle(l1, l4, reach);
             // Of B's two places on the rocker circle, take the one on `branch`.
             [magnitude, -magnitude].into_iter().find_map(|theta4| {
-                let (bx, by) = (self.l1 + self.l4 * theta4.cos(), self.l4 * theta4.sin());
-                let theta3 = by.atan2(bx);
+                let (sine, cosine) = theta4.sin_cos();
+                let theta3 = (l4 * sine).atan2(l1 + l4 * cosine);
                 let theta2 = if folded { theta3 + pi } else { theta3 };
                 let position = FourBarUnknowns { theta3, theta4 };
-                (self.branch_of(theta2, &position) == branch)
+                (unit.branch_of(theta2, &position) == branch)
                     .then_some(DeadCentre { theta2, theta4 })
             })
         };
-        Some([
-            at_reach(self.l3 + self.l2, false)?,
-            at_reach(self.l3 - self.l2, true)?,
-        ])
+        Some([at_reach(l3 + l2, false)?, at_reach(l3 - l2, true)?])
     }
 
     /// The ideal mechanical advantage at a position, rocker torque over crank torque:
@@ -407,6 +471,6 @@ impl<T: Real> FourBar<T> {
         position: &FourBarUnknowns<T>,
     ) -> Result<MechanicalAdvantage<T>, Error<T>> {
         let rates = self.velocity(theta2, position, T::one())?;
-        Ok(MechanicalAdvantage::from_rates(T::one(), rates.theta4))
+        MechanicalAdvantage::from_rates(T::one(), rates.theta4)
     }
 }

@@ -145,6 +145,6 @@ impl<T: Real> InvertedSliderCrank<T> {
         position: &InvertedSliderCrankUnknowns<T>,
     ) -> Result<MechanicalAdvantage<T>, Error<T>> {
         let rates = self.velocity(theta2, position, T::one())?;
-        Ok(MechanicalAdvantage::from_rates(T::one(), rates.theta4))
+        MechanicalAdvantage::from_rates(T::one(), rates.theta4)
     }
 }

@@ -1,5 +1,6 @@
 //! Theo Jansen's walking linkage, one leg, with the published ("holy") lengths.
 
+use mechgen::grashof::normalised;
 use mechgen::{Branch, Real, mechanism};
 
 use crate::dimensions::{DimensionError, positive};
@@ -103,11 +104,14 @@ impl<T: Real> JansenLeg<T> {
             *value = positive(name, *value)?;
         }
         let [a, b, c, d, e, f, g, h, i, j, k, l, m] = checked;
-        // The angle at a triangle's vertex between sides p and q, opposite r.
+        // The angle at a triangle's vertex between sides p and q, opposite r, from the lengths
+        // scaled by a power of two (the same cosine, bit for bit, where nothing overflows), and
+        // whether the triangle closes decided on the lengths, not on the rounded cosine.
         let angle = |p: T, q: T, r: T, name: &'static str| {
-            let cosine = (p * p + q * q - r * r) / ((p + p) * q);
-            if cosine.abs() <= T::one() {
-                Ok(cosine.acos())
+            let [p, q, r] = normalised([p, q, r]);
+            if r <= p + q && r >= (p - q).abs() {
+                let cosine = (p * p + q * q - r * r) / ((p + p) * q);
+                Ok(cosine.max(-T::one()).min(T::one()).acos())
             } else {
                 Err(DimensionError {
                     name,

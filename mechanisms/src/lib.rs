@@ -30,6 +30,7 @@ mod inverted_slider_crank;
 mod jansen;
 mod six_bar;
 mod slider_crank;
+mod triangle;
 
 pub use dimensions::DimensionError;
 pub use four_bar::{

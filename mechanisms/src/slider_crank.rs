@@ -1,5 +1,6 @@
 //! The slider-crank, with offset.
 
+use mechgen::grashof::normalised;
 use mechgen::{Error, MechanicalAdvantage, Real, mechanism};
 
 use crate::dimensions::{DimensionError, finite, non_negative, positive};
@@ -127,7 +128,9 @@ impl<T: Real> SliderCrank<T> {
 
     /// The transmission angle μ at a position: the complement of the pressure angle between
     /// the rod (the line of the force on the slider) and the slider's direction of travel,
-    /// `μ = acos(|sin θ3|)`, in [0, π/2]. 90° is ideal (the rod pushes along the slide).
+    /// `μ = acos(|sin θ3|)`, in [0, π/2], computed as `atan2(|cos θ3|, |sin θ3|)` (accurate
+    /// near 0, where `acos` loses half the digits). 90° is ideal (the rod pushes along the
+    /// slide).
     ///
     /// ```
     /// use mechanisms::{SliderCrank, SliderCrankUnknowns};
@@ -137,38 +140,70 @@ impl<T: Real> SliderCrank<T> {
     /// # Ok::<(), mechanisms::DimensionError<f64>>(())
     /// ```
     pub fn transmission_angle(&self, position: &SliderCrankUnknowns<T>) -> T {
-        position.theta3.sin().abs().acos()
+        let (sine, cosine) = position.theta3.sin_cos();
+        cosine.abs().atan2(sine.abs())
     }
 
     /// Whether the crank turns fully: the rod reaches the slider line from every crank
-    /// position, `l3 − l2 ≥ |c|`.
+    /// position, `l3 − l2 ≥ |c|`. At `l3 − l2 = |c|` it reaches it just, standing
+    /// perpendicular to the slide at one crank angle, where the two branches meet (a change
+    /// point); with no offset that is a rod equal to the crank, whose slider pin passes
+    /// through the crank pivot O2.
+    ///
+    /// ```
+    /// use mechanisms::SliderCrank;
+    /// assert!(SliderCrank::new(50.0, 150.0, 100.0)?.crank_turns_fully());
+    /// assert!(SliderCrank::new(50.0, 50.0, 0.0)?.crank_turns_fully());
+    /// assert!(!SliderCrank::new(50.0, 150.0, 101.0)?.crank_turns_fully());
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
     pub fn crank_turns_fully(&self) -> bool {
         self.l3 - self.l2 >= self.c.abs()
     }
 
-    /// The slider's stroke for a crank that turns fully: the distance between its dead
-    /// centres, where crank and rod line up extended (`|O2 B| = l2 + l3`) and folded
-    /// (`|O2 B| = l3 − l2`): `√((l2 + l3)² − c²) − √((l3 − l2)² − c²)`. `None` if the crank
-    /// cannot turn fully.
+    /// The slider's stroke for a crank that turns fully: the distance between its extreme
+    /// positions on a branch, where crank and rod line up extended (`|O2 B| = l2 + l3`) and
+    /// folded (`|O2 B| = l3 − l2`): `√((l2 + l3)² − c²) − √((l3 − l2)² − c²)`, each root
+    /// computed as `√((r − |c|)·(r + |c|))` on the dimensions scaled by a power of two
+    /// (accurate, and no square overflows). `None` if the crank cannot turn fully, or if the stroke is too
+    /// long for `T`.
+    ///
+    /// At `l3 − l2 = |c|` the folded end is the change point where the rod stands
+    /// perpendicular to the slide: the slider reaches it with its velocity jumping rather than
+    /// passing through zero, so it is an end of the stroke but not a dead centre.
     ///
     /// ```
     /// use mechanisms::SliderCrank;
     /// // Without offset the stroke is twice the crank.
     /// assert_eq!(SliderCrank::new(50.0, 150.0, 0.0)?.stroke(), Some(100.0));
+    /// // A rod equal to the crank: the slider pin runs from 2·l2 to the crank pivot.
+    /// assert_eq!(SliderCrank::new(50.0, 50.0, 0.0)?.stroke(), Some(100.0));
     /// # Ok::<(), mechanisms::DimensionError<f64>>(())
     /// ```
     pub fn stroke(&self) -> Option<T> {
-        self.crank_turns_fully().then(|| {
-            let c2 = self.c * self.c;
-            let outer = self.l2 + self.l3;
-            let inner = self.l3 - self.l2;
-            (outer * outer - c2).sqrt() - (inner * inner - c2).max(T::zero()).sqrt()
-        })
+        if !self.crank_turns_fully() {
+            return None;
+        }
+        let [l2, l3, c] = normalised([self.l2, self.l3, self.c]);
+        let c = c.abs();
+        let root = |r: T| ((r - c).max(T::zero()) * (r + c)).sqrt();
+        let unit = root(l2 + l3) - root(l3 - l2);
+        // Back to scale: the largest dimension over the largest scaled one is the power of two.
+        let largest = |values: [T; 3]| values.iter().fold(T::zero(), |m, v| m.max(v.abs()));
+        let scale = largest([self.l2, self.l3, self.c]) / largest([l2, l3, c]);
+        let stroke = unit * scale;
+        stroke.is_finite().then_some(stroke)
     }
 
     /// The crank angles at the dead centres on the open branch, `[outer, inner]`: where crank
     /// and rod line up extended, `θ2 = asin(c/(l2 + l3))`, and folded,
-    /// `θ2 = π + asin(c/(l3 − l2))`. `None` if the crank cannot turn fully.
+    /// `θ2 = π + asin(c/(l3 − l2))`, each arc sine computed as
+    /// `atan2(c, √((r − c)·(r + c)))` (accurate near ±π/2). There the slider stops (`ḋ = 0`).
+    ///
+    /// `None` unless `l3 − l2 > |c|`: if the crank cannot turn fully, and also at
+    /// `l3 − l2 = |c|`, where the folded line-up puts the rod perpendicular to the slide, at
+    /// the change point where the two branches meet rather than at a dead centre (a rod equal
+    /// to the crank with no offset passes its slider pin through O2 there, at θ2 = ±π/2).
     ///
     /// ```
     /// use mechanisms::SliderCrank;
@@ -178,23 +213,27 @@ impl<T: Real> SliderCrank<T> {
     ///     let q = linkage.assemble(theta2, Branch::Open)?;
     ///     assert!(linkage.velocity(theta2, &q, 1.0)?.d.abs() < 1e-12);
     /// }
+    /// assert_eq!(SliderCrank::new(50.0, 50.0, 0.0)?.dead_centres(), None);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn dead_centres(&self) -> Option<[T; 2]> {
-        self.crank_turns_fully().then(|| {
-            let pi = T::constant(core::f64::consts::PI);
-            [
-                (self.c / (self.l2 + self.l3)).asin(),
-                pi + (self.c / (self.l3 - self.l2)).asin(),
-            ]
-        })
+        let [l2, l3, c] = normalised([self.l2, self.l3, self.c]);
+        let folded = l3 - l2;
+        if folded <= c.abs() {
+            return None;
+        }
+        let pi = T::constant(core::f64::consts::PI);
+        let arc_sine = |r: T| c.atan2(((r - c) * (r + c)).sqrt());
+        Some([arc_sine(l2 + l3), pi + arc_sine(folded)])
     }
 
     /// The time ratio of an offset slider-crank with a crank turning counter-clockwise at
     /// constant speed: the crank angle of the inward stroke (outer to inner dead centre,
     /// `α = θ_inner − θ_outer`) over that of the outward stroke (`β = 2π − α`). 1 without
-    /// offset; above 1 when the inward stroke is the slower (`c > 0`). `None` if the crank
-    /// cannot turn fully.
+    /// offset; above 1 when the inward stroke is the slower (`c > 0`). `None` where
+    /// [`dead_centres`](Self::dead_centres) is: if the crank cannot turn fully, or if the
+    /// folded line-up is a change point (`l3 − l2 = |c|`), where the slider passes an end of
+    /// its stroke without the dwell the ratio measures to.
     ///
     /// ```
     /// use mechanisms::SliderCrank;
@@ -227,6 +266,6 @@ impl<T: Real> SliderCrank<T> {
         position: &SliderCrankUnknowns<T>,
     ) -> Result<MechanicalAdvantage<T>, Error<T>> {
         let rates = self.velocity(theta2, position, T::one())?;
-        Ok(MechanicalAdvantage::from_rates(T::one(), rates.d))
+        MechanicalAdvantage::from_rates(T::one(), rates.d)
     }
 }

@@ -1,6 +1,6 @@
 //! Mechanical advantage.
 
-use crate::Real;
+use crate::{Error, Real};
 
 /// The ideal (frictionless, massless) mechanical advantage: output effort over input effort,
 /// which by conservation of power is the input rate over the output rate:
@@ -8,9 +8,9 @@ use crate::Real;
 ///
 /// ```
 /// use mechgen::MechanicalAdvantage;
-/// assert_eq!(MechanicalAdvantage::from_rates(10.0, 4.0), MechanicalAdvantage::Finite(2.5));
+/// assert_eq!(MechanicalAdvantage::from_rates(10.0, 4.0), Ok(MechanicalAdvantage::Finite(2.5)));
 /// // At a dead centre the output stops: any output load is held for no input effort.
-/// assert_eq!(MechanicalAdvantage::from_rates(10.0, 0.0), MechanicalAdvantage::Unbounded);
+/// assert_eq!(MechanicalAdvantage::from_rates(10.0, 0.0), Ok(MechanicalAdvantage::Unbounded));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum MechanicalAdvantage<T> {
@@ -23,22 +23,52 @@ pub enum MechanicalAdvantage<T> {
 impl<T: Real> MechanicalAdvantage<T> {
     /// `ω_in / ω_out`, or [`Unbounded`](Self::Unbounded) when the output rate is zero to
     /// rounding (`|ω_out| ≤ 4ε·|ω_in|`) or the ratio overflows.
-    pub fn from_rates(input_rate: T, output_rate: T) -> Self {
+    ///
+    /// Errors: [`Error::NonFinite`] for a rate that is NaN or infinite (`"input rate"`,
+    /// `"output rate"`), or for two rates that are both zero (`"mechanical advantage"`: with
+    /// nothing moving, `0/0` says nothing).
+    ///
+    /// ```
+    /// use mechgen::{Error, MechanicalAdvantage};
+    /// assert_eq!(MechanicalAdvantage::from_rates(0.0, 2.0), Ok(MechanicalAdvantage::Finite(0.0)));
+    /// assert_eq!(
+    ///     MechanicalAdvantage::from_rates(0.0, 0.0),
+    ///     Err(Error::NonFinite { quantity: "mechanical advantage" })
+    /// );
+    /// assert!(MechanicalAdvantage::from_rates(1.0, f64::NAN).is_err());
+    /// ```
+    pub fn from_rates(input_rate: T, output_rate: T) -> Result<Self, Error<T>> {
+        if !input_rate.is_finite() {
+            return Err(Error::NonFinite {
+                quantity: "input rate",
+            });
+        }
+        if !output_rate.is_finite() {
+            return Err(Error::NonFinite {
+                quantity: "output rate",
+            });
+        }
+        if input_rate == T::zero() && output_rate == T::zero() {
+            return Err(Error::NonFinite {
+                quantity: "mechanical advantage",
+            });
+        }
         let ratio = input_rate / output_rate;
         let stationary = output_rate.abs() <= T::constant(4.0) * T::epsilon() * input_rate.abs();
-        if stationary || !ratio.is_finite() {
+        Ok(if stationary || !ratio.is_finite() {
             MechanicalAdvantage::Unbounded
         } else {
             MechanicalAdvantage::Finite(ratio)
-        }
+        })
     }
 
     /// The finite value, if any.
     ///
     /// ```
     /// use mechgen::MechanicalAdvantage;
-    /// assert_eq!(MechanicalAdvantage::from_rates(3.0, 1.5).finite(), Some(2.0));
+    /// assert_eq!(MechanicalAdvantage::from_rates(3.0, 1.5)?.finite(), Some(2.0));
     /// assert_eq!(MechanicalAdvantage::<f64>::Unbounded.finite(), None);
+    /// # Ok::<(), mechgen::Error<f64>>(())
     /// ```
     pub fn finite(self) -> Option<T> {
         match self {

@@ -8,9 +8,14 @@
 //! - `s + l = p + q`, class III (special Grashof, change point): the class I inversions, but
 //!   all four links can line up, where the linkage may change branch. The parallelogram
 //!   (opposite links equal) and the kite or deltoid (adjacent links equal) are such.
+//! - `l = s + p + q`: the links close only all in line, in one position (flat): nothing
+//!   moves. `l > s + p + q`: the loop cannot close at all. Neither is a mechanism.
 //!
 //! Equality is decided within a tolerance relative to the links' total length, so that
 //! lengths that are equal up to rounding classify as the change point they are meant to be.
+//! The lengths are first scaled by a power of two ([`normalised`]), which is exact: the
+//! classification depends only on their ratios, bit for bit the same at any scale, and no
+//! sum overflows or underflows however long or short the links are.
 
 use crate::Real;
 
@@ -23,6 +28,12 @@ pub enum Class {
     NonGrashof,
     /// Class III, `s + l = p + q`: as class I, but the links can all line up (change point).
     ChangePoint,
+    /// `l = s + p + q`: the longest link is as long as the other three together, so the loop
+    /// closes only with all four in line, at a single input: a structure, not a mechanism.
+    Flat,
+    /// `l > s + p + q`: the longest link is longer than the other three together, so the
+    /// loop cannot close at any input.
+    CannotClose,
 }
 
 /// What the input (crank) and output (rocker) links do, relative to the ground link.
@@ -39,6 +50,9 @@ pub enum Inversion {
     DoubleRocker,
     /// Non-Grashof: every link rocks.
     TripleRocker,
+    /// Nothing moves: the links close only flat, at one input ([`Class::Flat`]), or not at
+    /// all ([`Class::CannotClose`]).
+    Immobile,
 }
 
 /// Named special cases of class III.
@@ -125,6 +139,18 @@ pub fn classify<T: Real>(ground: T, input: T, coupler: T, output: T) -> Grashof 
 /// let g = classify_with_tolerance(200.0, 80.0, 200.004, 79.998, 1e-4);
 /// assert_eq!((g.class, g.special), (Class::ChangePoint, Some(Special::Parallelogram)));
 /// ```
+///
+/// A link as long as the other three together closes the loop only flat, and a longer one
+/// not at all: neither moves.
+///
+/// ```
+/// use mechgen::grashof::{classify, Class, Inversion};
+/// // 6 = 1 + 3 + 2: assembles only at θ2 = π, all four links in line.
+/// let g = classify(1.0, 3.0, 6.0, 2.0);
+/// assert_eq!((g.class, g.inversion), (Class::Flat, Inversion::Immobile));
+/// assert!(!g.input_turns_fully());
+/// assert_eq!(classify(1.0, 3.0, 7.0, 2.0).class, Class::CannotClose);
+/// ```
 pub fn classify_with_tolerance<T: Real>(
     ground: T,
     input: T,
@@ -132,15 +158,24 @@ pub fn classify_with_tolerance<T: Real>(
     output: T,
     relative_tolerance: T,
 ) -> Grashof {
-    let links = [ground, input, coupler, output];
+    // Scaled exactly, so that nothing below overflows or underflows and the result is the
+    // same at every scale.
+    let links = normalised([ground, input, coupler, output]);
+    let [ground, input, coupler, output] = links;
     let total = links.iter().fold(T::zero(), |sum, l| sum + *l);
     let margin = relative_tolerance * total;
     let equal = |a: T, b: T| (a - b).abs() <= margin;
     let shortest = links.iter().fold(T::infinity(), |m, l| m.min(*l));
     let longest = links.iter().fold(T::neg_infinity(), |m, l| m.max(*l));
+    // l against s + p + q, the total less l.
+    let overhang = longest - (total - longest);
     // s + l against p + q, where p + q is the total less s and l.
     let excess = (shortest + longest) - (total - shortest - longest);
-    let class = if excess.abs() <= margin {
+    let class = if overhang > margin {
+        Class::CannotClose
+    } else if overhang >= -margin {
+        Class::Flat
+    } else if excess.abs() <= margin {
         Class::ChangePoint
     } else if excess < T::zero() {
         Class::Grashof
@@ -148,20 +183,22 @@ pub fn classify_with_tolerance<T: Real>(
         Class::NonGrashof
     };
     let is_shortest = |l: T| equal(l, shortest);
-    let inversion = if class == Class::NonGrashof {
-        Inversion::TripleRocker
-    } else {
-        // The shortest link turns fully relative to every other, so a link turns fully
-        // relative to the ground when it or the ground is a shortest link.
-        let ground_shortest = is_shortest(ground);
-        match (
-            ground_shortest || is_shortest(input),
-            ground_shortest || is_shortest(output),
-        ) {
-            (true, true) => Inversion::DoubleCrank,
-            (true, false) => Inversion::CrankRocker,
-            (false, true) => Inversion::RockerCrank,
-            (false, false) => Inversion::DoubleRocker,
+    let inversion = match class {
+        Class::Flat | Class::CannotClose => Inversion::Immobile,
+        Class::NonGrashof => Inversion::TripleRocker,
+        Class::Grashof | Class::ChangePoint => {
+            // The shortest link turns fully relative to every other, so a link turns fully
+            // relative to the ground when it or the ground is a shortest link.
+            let ground_shortest = is_shortest(ground);
+            match (
+                ground_shortest || is_shortest(input),
+                ground_shortest || is_shortest(output),
+            ) {
+                (true, true) => Inversion::DoubleCrank,
+                (true, false) => Inversion::CrankRocker,
+                (false, true) => Inversion::RockerCrank,
+                (false, false) => Inversion::DoubleRocker,
+            }
         }
     };
     let special = if equal(ground, coupler) && equal(input, output) {
@@ -178,4 +215,40 @@ pub fn classify_with_tolerance<T: Real>(
         inversion,
         special,
     }
+}
+
+/// `lengths` multiplied by the power of two that brings the largest magnitude into `[1, 2)`.
+///
+/// Multiplying by a power of two is exact (unless a result falls below the normal range,
+/// where it rounds once), so ratios, equalities and the order of sums are as they were, while
+/// squares and sums of the results can neither overflow nor underflow for any ratio below
+/// `2^500` (f64) or `2^60` (f32). Any two arrays that are power-of-two multiples of each
+/// other give the same result, bit for bit. Lengths whose largest magnitude is zero, NaN or
+/// infinite come back unchanged.
+///
+/// ```
+/// use mechgen::grashof::normalised;
+/// assert_eq!(normalised([1e300, 3e299]), normalised([1e300 / 1024.0, 3e299 / 1024.0]));
+/// assert_eq!(normalised([0.75f32, -3.0]), [0.375, -1.5]);
+/// ```
+pub fn normalised<T: Real, const N: usize>(lengths: [T; N]) -> [T; N] {
+    let largest = lengths.iter().fold(T::zero(), |m, l| m.max(l.abs()));
+    let (mantissa, exponent, _) = largest.integer_decode();
+    if mantissa == 0 || !largest.is_finite() {
+        return lengths;
+    }
+    // largest = mantissa·2^exponent, so its leading bit is worth 2^top.
+    let top = i32::from(exponent) + 63 - mantissa.leading_zeros() as i32;
+    // 2^-top in two factors, each a normal number of either type (|top| ≤ 1074).
+    let (first, second) = (-top / 2, -top - (-top / 2));
+    let (first, second) = (power_of_two::<T>(first), power_of_two::<T>(second));
+    // The first product is exact (it stays in the normal range if the second's result is
+    // normal), so each result rounds at most once.
+    lengths.map(|l| l * first * second)
+}
+
+/// `2^k` for `|k| ≤ 538`, exact in f64, and in f32 for `|k| ≤ 126`.
+fn power_of_two<T: Real>(k: i32) -> T {
+    let biased = u64::from((k + 1023).clamp(1, 2046).unsigned_abs());
+    T::constant(f64::from_bits(biased << 52))
 }

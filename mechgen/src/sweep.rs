@@ -31,21 +31,25 @@ pub struct Sample<T, const N: usize> {
 }
 
 /// Why a sweep stopped before its last step. The sweep never crosses to another branch
-/// silently: it stops and says so.
+/// silently, nor steps over inputs where the mechanism cannot be assembled: it stops and
+/// says so.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Stop<T> {
     /// Between `last_input` and `next_input` the mechanism meets a toggle (its Jacobian is
-    /// singular, or the loops stop closing): the input cannot drive it further.
+    /// singular, and beyond it the loops do not close): the input cannot drive it further.
+    /// Also what a sweep whose start cannot be solved reports, with both inputs the start, and
+    /// one whose next input is not finite (`Error::NonFinite` naming `"sweep input"`).
     Toggle {
         /// The last input solved on the branch.
         last_input: T,
         /// The input that could not be reached.
         next_input: T,
-        /// What failed there.
+        /// What failed: the nearest failure past the toggle.
         error: Error<T>,
     },
-    /// The position at `next_input` is on the other branch: the sweep passed a change point
-    /// (all links in line, where the branches meet) or stepped over a toggle.
+    /// Between `last_input` and `next_input` the motion continues only on the other branch:
+    /// the sweep reached a change point (all links in line, where the branches meet), where
+    /// the input does not say which way the linkage goes on.
     BranchChange {
         /// The last input solved on the branch.
         last_input: T,
@@ -55,9 +59,29 @@ pub enum Stop<T> {
 }
 
 /// An allocation-free iterator over a mechanism's positions at `start`, `start + step`, …,
-/// staying on the starting position's branch: each step starts Newton from the previous
-/// position moved along its velocity (a first-order predictor), and checks the result is on
-/// the same branch. It yields `Ok` samples, then, if it cannot go on, one `Err(Stop)`.
+/// staying on the starting position's branch. It yields `Ok` samples, then, if it cannot go
+/// on, one `Err(Stop)`.
+///
+/// Each step is a predictor-corrector walk: Newton starts from the previous position moved
+/// along its velocity, and the result is accepted if it is on the same branch and the path
+/// between is smooth: the change in the unknowns agrees with the piece's length times the
+/// mean of the velocities at its two ends (the trapezoidal rule, exact to third order, dead
+/// centres included) to within an eighth. Otherwise the piece is halved (and grows again,
+/// doubling, after each accepted one); no piece is longer than one unit of the input (a
+/// radian: no piece spans a turn, whose ends alone cannot tell a full turn from a gap in the
+/// motion); a step of more than 2¹⁶ units is walked in pieces of `step/2¹⁶`, checked only for
+/// the branch and Newton's convergence. Only the requested inputs are yielded. So the
+/// sweep follows the motion around sharp turns, never steps over inputs where the loops do
+/// not close, and stops where no piece down to `step·2⁻⁴⁰` (or the input's rounding) gets
+/// further. There it solves at inputs beyond, at distances growing fourfold from
+/// `√ε·max(1, |input|)`, and counts what they say:
+/// - mostly that the loops cannot be solved there: [`Stop::Toggle`], with the nearest such
+///   error;
+/// - mostly a position on the other branch: [`Stop::BranchChange`].
+///
+/// (A gap in the motion narrower than about `√ε` may be taken for a change point; in f32
+/// that is about 10⁻² rad near a change point.) A step that needs no halving costs one Newton
+/// solve and one velocity, as a plain predictor-corrector does.
 ///
 /// ```
 /// use mechgen::{mechanism, sweep::Sweep, NewtonOptions, Branch};
@@ -86,18 +110,41 @@ pub struct Sweep<'a, T, M, const N: usize> {
     start: T,
     step: T,
     steps: u32,
-    /// How many samples have been yielded.
-    index: u32,
-    /// The last solved sample, once the start is solved.
-    last: Option<Sample<T, N>>,
+    /// The index of the next sample to yield, at most `steps`.
+    next: u32,
+    /// The last solved sample and `dq/d(input)` there (if computed yet), once the start is
+    /// solved.
+    last: Option<(Sample<T, N>, Option<[T; N]>)>,
     start_guess: [T; N],
     finished: bool,
+}
+
+/// A piece of a step shorter than this fraction of the step is not halved again.
+const SMALLEST_PIECE: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// A step is walked in pieces of at most one unit of the input, or this fraction of the step
+/// if that is longer (then without the smoothness check, to bound the work).
+const COARSE_PIECE: f64 = 1.0 / 65536.0;
+
+/// How far the change over a piece may differ from the trapezoidal rule's, relative to the
+/// sizes of the change and of the two velocity terms.
+const SMOOTHNESS: f64 = 0.125;
+
+/// Why a piece of a step was refused.
+#[derive(Clone, Copy, Debug)]
+enum Refusal<T> {
+    /// Newton, or the velocity at the piece's end, failed (other than by converging on the
+    /// other branch).
+    Failed(Error<T>),
+    /// Newton converged on the other branch.
+    OtherBranch,
 }
 
 impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
     /// A sweep of `steps` steps of `step` from `start`, beginning near `position` (a solved
     /// position on the branch to follow, such as `assemble`'s), with Newton `options` for each
-    /// step. It yields `steps + 1` samples when nothing stops it.
+    /// solve. It yields `steps + 1` samples when nothing stops it (for any `steps`, up to
+    /// `u32::MAX`).
     pub fn new(
         mechanism: &'a M,
         start: T,
@@ -112,7 +159,7 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             start,
             step,
             steps,
-            index: 0,
+            next: 0,
             last: None,
             start_guess: position,
             finished: false,
@@ -120,9 +167,13 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
     }
 
     fn advance(&mut self) -> Result<Sample<T, N>, Stop<T>> {
-        // From the start each time, so rounding does not accumulate over the steps.
-        let input = self.start + self.step * T::constant(f64::from(self.index));
-        let Some(last) = self.last else {
+        // From the start each time, so rounding does not accumulate over the steps (and the
+        // start is the start, whatever the step).
+        let input = match self.next {
+            0 => self.start,
+            next => self.start + self.step * T::constant(f64::from(next)),
+        };
+        let Some((last, slope)) = self.last else {
             // The start: polish the given position; a failure here is the caller's guess.
             let solved = self
                 .mechanism
@@ -132,40 +183,205 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
                     next_input: input,
                     error,
                 })?;
-            return Ok(Sample {
+            let sample = Sample {
                 input,
                 position: solved.value,
-            });
+            };
+            self.last = Some((sample, None));
+            return Ok(sample);
         };
         let toggle = |error| Stop::Toggle {
             last_input: last.input,
             next_input: input,
             error,
         };
-        let slope = self
-            .mechanism
-            .slope(last.input, last.position)
-            .map_err(toggle)?;
-        let delta = input - last.input;
-        let mut guess = last.position;
-        for (g, s) in guess.iter_mut().zip(slope) {
-            *g = *g + s * delta;
-        }
-        let position = self
-            .mechanism
-            .solve_near(input, guess, &self.options)
-            .map_err(toggle)?
-            .value;
-        if !self
-            .mechanism
-            .same_branch(last.input, last.position, input, position)
-        {
-            return Err(Stop::BranchChange {
-                last_input: last.input,
-                next_input: input,
+        let slope = match slope {
+            Some(slope) => slope,
+            None => self
+                .mechanism
+                .slope(last.input, last.position)
+                .map_err(toggle)?,
+        };
+        let (position, slope) = self.walk(last, slope, input)?;
+        let sample = Sample { input, position };
+        self.last = Some((sample, Some(slope)));
+        Ok(sample)
+    }
+
+    /// Walks from `from` (with velocity `slope`) to `target` in pieces as long as the motion
+    /// allows, returning the position and velocity there.
+    fn walk(
+        &self,
+        from: Sample<T, N>,
+        slope: [T; N],
+        target: T,
+    ) -> Result<([T; N], [T; N]), Stop<T>> {
+        let half = T::constant(0.5);
+        let direction = target - from.input;
+        if !direction.is_finite() {
+            return Err(Stop::Toggle {
+                last_input: from.input,
+                next_input: target,
+                error: Error::NonFinite {
+                    quantity: "sweep input",
+                },
             });
         }
-        Ok(Sample { input, position })
+        let smallest = direction.abs() * T::constant(SMALLEST_PIECE);
+        // No piece is longer than one unit of the input (a radian), so none can span a turn
+        // of an angle input, from whose ends alone a full turn and a gap look alike; except
+        // that a step of more than 2^16 units is walked in 2^16 pieces, each accepted if
+        // Newton converges on the branch, so that the work is bounded.
+        let coarse = direction.abs() * T::constant(COARSE_PIECE);
+        let (longest, roughest) = if coarse > T::one() {
+            (coarse, coarse)
+        } else {
+            (direction.abs().min(T::one()), smallest)
+        };
+        let longest = if direction < T::zero() {
+            -longest
+        } else {
+            longest
+        };
+        let (mut x, mut q, mut m) = (from.input, from.position, slope);
+        let mut piece = longest;
+        loop {
+            let remaining = target - x;
+            let (y, piece_used) = if piece.abs() >= remaining.abs() {
+                (target, remaining)
+            } else {
+                (x + piece, piece)
+            };
+            let shorter = piece_used * half;
+            // The last chance: a shorter piece would be below the resolution, so a rough path
+            // is accepted (Newton converged on the branch: that is all that can be known).
+            let last_chance = shorter.abs() < smallest || x + shorter == x;
+            let rough = shorter.abs() < roughest || x + shorter == x;
+            let refusal = match self.piece(x, q, m, y) {
+                Ok((position, velocity, smooth)) if smooth || rough => {
+                    if y == target {
+                        return Ok((position, velocity));
+                    }
+                    (x, q, m) = (y, position, velocity);
+                    piece = if (piece_used + piece_used).abs() < longest.abs() {
+                        piece_used + piece_used
+                    } else {
+                        longest
+                    };
+                    continue;
+                }
+                Ok(_) => None,
+                Err(refusal) => Some(refusal),
+            };
+            let Some(refusal) = refusal.filter(|_| last_chance) else {
+                piece = shorter;
+                continue;
+            };
+            // Stuck at a singular point just past `x`: what lies beyond it says which.
+            return Err(match self.beyond(x, q, m, piece_used, longest) {
+                Some(Refusal::OtherBranch) => Stop::BranchChange {
+                    last_input: from.input,
+                    next_input: target,
+                },
+                Some(Refusal::Failed(error)) => Stop::Toggle {
+                    last_input: from.input,
+                    next_input: target,
+                    error,
+                },
+                None => match refusal {
+                    Refusal::OtherBranch => Stop::BranchChange {
+                        last_input: from.input,
+                        next_input: target,
+                    },
+                    Refusal::Failed(error) => Stop::Toggle {
+                        last_input: from.input,
+                        next_input: target,
+                        error,
+                    },
+                },
+            });
+        }
+    }
+
+    /// What lies beyond the singular point the walk is stuck at, just past `x` (within
+    /// `piece`): solves (from the predictor) at distances growing fourfold from `√ε·|x|` (or
+    /// `4·piece`, or `√ε`, if larger) to four times `reach` (and at least four of them), and
+    /// counts the answers that say: a position on the other branch (the motion goes on
+    /// there: a change point), or a failure other than a singular Jacobian (it goes on
+    /// nowhere: a toggle). The more frequent answer, with the nearest such failure, or `None`
+    /// if none says. Nearer than `√ε`, rounding lets Newton converge a hair past a toggle,
+    /// and fail at a change point itself; farther, one answer alone could see past a narrow
+    /// gap, hence the count.
+    fn beyond(&self, x: T, q: [T; N], m: [T; N], piece: T, reach: T) -> Option<Refusal<T>> {
+        let four = T::constant(4.0);
+        let root_epsilon = T::epsilon().sqrt();
+        let sign = if piece < T::zero() {
+            -T::one()
+        } else {
+            T::one()
+        };
+        let nearest = (piece * four)
+            .abs()
+            .max(root_epsilon * x.abs().max(T::one()));
+        let farthest = (reach * four).abs().max(nearest * T::constant(256.0));
+        let mut distance = nearest;
+        let (mut branches, mut failures) = (0u32, 0u32);
+        let mut first_failure = None;
+        while distance <= farthest {
+            match self.piece(x, q, m, x + sign * distance) {
+                Err(Refusal::OtherBranch) => branches += 1,
+                Err(Refusal::Failed(Error::Singular { .. })) | Ok(_) => {}
+                Err(Refusal::Failed(error)) => {
+                    failures += 1;
+                    first_failure = first_failure.or(Some(error));
+                }
+            }
+            distance = distance * four;
+        }
+        if branches > failures {
+            Some(Refusal::OtherBranch)
+        } else {
+            first_failure.map(Refusal::Failed)
+        }
+    }
+
+    /// One piece, from `x` (position `q`, velocity `m`) to `y`: the position and velocity at
+    /// `y`, and whether the path between is smooth, or why the piece is refused.
+    fn piece(
+        &self,
+        x: T,
+        q: [T; N],
+        m: [T; N],
+        y: T,
+    ) -> Result<([T; N], [T; N], bool), Refusal<T>> {
+        let h = y - x;
+        let mut guess = q;
+        for (g, s) in guess.iter_mut().zip(m) {
+            *g = *g + s * h;
+        }
+        let position = match self.mechanism.solve_near(y, guess, &self.options) {
+            Ok(solved) => solved.value,
+            Err(Error::OtherBranch) => return Err(Refusal::OtherBranch),
+            Err(error) => return Err(Refusal::Failed(error)),
+        };
+        if !self.mechanism.same_branch(x, q, y, position) {
+            return Err(Refusal::OtherBranch);
+        }
+        let velocity = self.mechanism.slope(y, position).map_err(Refusal::Failed)?;
+        // The trapezoidal rule, Δq ≈ h·(m_x + m_y)/2, holds to third order in h for a smooth
+        // path, through dead centres (where m_x or m_y vanishes) too.
+        let half = T::constant(0.5);
+        let (mut error, mut size, mut magnitude) = (T::zero(), T::zero(), T::zero());
+        for i in 0..N {
+            let change = position[i] - q[i];
+            let (before, after) = (m[i] * h, velocity[i] * h);
+            error = error.max((change - (before + after) * half).abs());
+            size = size.max(change.abs() + before.abs() + after.abs());
+            magnitude = magnitude.max(q[i].abs().max(position[i].abs()));
+        }
+        let noise = T::constant(64.0) * T::epsilon() * magnitude;
+        let smooth = error <= T::constant(SMOOTHNESS) * size + noise;
+        Ok((position, velocity, smooth))
     }
 }
 
@@ -173,17 +389,70 @@ impl<T: Real, M: Kinematics<T, N>, const N: usize> Iterator for Sweep<'_, T, M, 
     type Item = Result<Sample<T, N>, Stop<T>>;
 
     fn next(&mut self) -> Option<Self::Item> {
-        if self.finished || self.index > self.steps {
+        if self.finished {
             return None;
         }
         let result = self.advance();
-        match result {
-            Ok(sample) => {
-                self.last = Some(sample);
-                self.index += 1;
-            }
-            Err(_) => self.finished = true,
+        if result.is_err() || self.next == self.steps {
+            self.finished = true;
+        } else {
+            self.next += 1;
         }
         Some(result)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        if self.finished {
+            return (0, Some(0));
+        }
+        let left = u64::from(self.steps - self.next) + 1;
+        (0, usize::try_from(left).ok())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Solved;
+
+    /// `q = input`, on one branch, everywhere.
+    struct Line;
+
+    impl Kinematics<f64, 1> for Line {
+        fn solve_near(
+            &self,
+            input: f64,
+            _guess: [f64; 1],
+            _options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            Ok(Solved {
+                value: [input],
+                iterations: 0,
+                residual_norm: 0.0,
+                condition: 1.0,
+            })
+        }
+
+        fn slope(&self, _input: f64, _position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Ok([1.0])
+        }
+
+        fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
+            true
+        }
+    }
+
+    /// The last two of `u32::MAX + 1` samples, then the end: no overflow of the index.
+    #[test]
+    fn the_longest_sweep_ends_after_its_last_sample() {
+        let mut sweep = Sweep::new(&Line, 0.0, [0.0], 1.0, u32::MAX, NewtonOptions::default());
+        assert_eq!(sweep.size_hint(), (0, Some(1 << 32)));
+        assert_eq!(sweep.next().map(|s| s.map(|s| s.input)), Some(Ok(0.0)));
+        sweep.next = u32::MAX - 1;
+        let last_two: [_; 2] = core::array::from_fn(|_| sweep.next().unwrap().unwrap().input);
+        assert_eq!(last_two, [f64::from(u32::MAX - 1), f64::from(u32::MAX)]);
+        assert_eq!(sweep.size_hint(), (0, Some(0)));
+        assert!(sweep.next().is_none());
+        assert!(sweep.next().is_none());
     }
 }

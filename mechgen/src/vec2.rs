@@ -55,7 +55,7 @@ impl<T: crate::Real> core::ops::Sub for Vec2<T> {
 ///     sliding: Vec2::new(0.5, 0.0),
 ///     coriolis: Vec2::new(0.0, 2.0),
 /// };
-/// assert_eq!(parts.total(), Vec2::new(1.5, -2.0));
+/// assert_eq!(parts.total(), Ok(Vec2::new(1.5, -2.0)));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct AccelerationParts<T> {
@@ -71,7 +71,51 @@ pub struct AccelerationParts<T> {
 
 impl<T: crate::Real> AccelerationParts<T> {
     /// The point's acceleration: the sum of the four parts.
-    pub fn total(&self) -> Vec2<T> {
-        self.tangential + self.normal + self.sliding + self.coriolis
+    ///
+    /// Parts that are finite but whose sum is too large for `T` give an error rather than an
+    /// infinity; an intermediate sum that overflows while the total fits is summed again at
+    /// half scale (exact for parts that large), so the total is returned whenever it fits.
+    ///
+    /// Errors: [`Error::NonFinite`](crate::Error::NonFinite) naming `"point acceleration
+    /// part"` if a part is NaN or infinite, or `"point acceleration"` if the total overflows.
+    ///
+    /// ```
+    /// use mechgen::{AccelerationParts, Error, Vec2};
+    /// let big = Vec2::new(f64::MAX, 0.0);
+    /// let overflowing = AccelerationParts { tangential: big, normal: big, ..Default::default() };
+    /// assert_eq!(overflowing.total(), Err(Error::NonFinite { quantity: "point acceleration" }));
+    /// let cancelling = AccelerationParts { sliding: Vec2::new(-f64::MAX, 1.0), ..overflowing };
+    /// assert_eq!(cancelling.total(), Ok(Vec2::new(f64::MAX, 1.0)));
+    /// ```
+    pub fn total(&self) -> Result<Vec2<T>, crate::Error<T>> {
+        let parts = [self.tangential, self.normal, self.sliding, self.coriolis];
+        let x = sum(parts.map(|p| p.x))?;
+        let y = sum(parts.map(|p| p.y))?;
+        Ok(Vec2::new(x, y))
+    }
+}
+
+/// `((a + b) + c) + d`, or the same at half scale when an intermediate sum overflows.
+fn sum<T: crate::Real>(values: [T; 4]) -> Result<T, crate::Error<T>> {
+    if !values.iter().all(|v| v.is_finite()) {
+        return Err(crate::Error::NonFinite {
+            quantity: "point acceleration part",
+        });
+    }
+    let add = |values: [T; 4]| values.iter().fold(T::zero(), |sum, v| sum + *v);
+    let direct = add(values);
+    if direct.is_finite() {
+        return Ok(direct);
+    }
+    // Some part is within a factor of four of the largest finite number, so halving the parts
+    // loses nothing the total could show.
+    let half = add(values.map(|v| v * T::constant(0.5)));
+    let total = half + half;
+    if total.is_finite() {
+        Ok(total)
+    } else {
+        Err(crate::Error::NonFinite {
+            quantity: "point acceleration",
+        })
     }
 }

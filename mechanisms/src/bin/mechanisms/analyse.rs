@@ -108,6 +108,10 @@ fn grashof_words(linkage: &FourBar<f64>) -> String {
         Class::Grashof => "class I (Grashof)",
         Class::NonGrashof => "class II (non-Grashof)",
         Class::ChangePoint => "class III (change point)",
+        Class::Flat => "flat (the longest link equals the other three together)",
+        Class::CannotClose => {
+            "cannot close (the longest link is longer than the other three together)"
+        }
     };
     let inversion = match g.inversion {
         Inversion::CrankRocker => "crank-rocker",
@@ -115,6 +119,7 @@ fn grashof_words(linkage: &FourBar<f64>) -> String {
         Inversion::DoubleCrank => "double-crank",
         Inversion::DoubleRocker => "Grashof double-rocker",
         Inversion::TripleRocker => "triple-rocker",
+        Inversion::Immobile => "immobile",
     };
     let special = match g.special {
         Some(Special::Parallelogram) => ", a parallelogram",
@@ -257,7 +262,11 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
         (Some(stroke), Some(ratio)) => {
             println!("The crank turns fully; stroke {stroke:.4} mm, time ratio {ratio:.4}")
         }
-        _ => println!("The crank cannot turn fully (l3 − l2 < |c|)"),
+        (Some(stroke), None) => println!(
+            "The crank turns fully, through a change point where the rod stands perpendicular \
+             to the slide (l3 − l2 = |c|); stroke {stroke:.4} mm, no inner dead centre"
+        ),
+        (None, _) => println!("The crank cannot turn fully (l3 − l2 < |c|)"),
     }
     let solve = |branch| linkage.motion(theta2, branch, args.rate, args.accel);
     let (open, crossed) = match (solve(Branch::Open), solve(Branch::Crossed)) {
