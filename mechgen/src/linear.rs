@@ -296,7 +296,9 @@ impl<T: Real, const N: usize> Factored<T, N> {
 /// The orientation of a square matrix, the sign of its determinant (`true` for positive),
 /// or `None` where it is singular (or not finite), by the same test as the solvers.
 pub fn orientation<T: Real, const N: usize>(a: [[T; N]; N]) -> Option<bool> {
-    Factored::new(a).ok().map(|factored| factored.relative > T::zero())
+    Factored::new(a)
+        .ok()
+        .map(|factored| factored.relative > T::zero())
 }
 
 /// The condition estimate of a Jacobian, `κ = Π‖column‖ / |det|`: 1 when the unknowns move

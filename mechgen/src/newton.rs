@@ -108,7 +108,9 @@ const MAX_HALVINGS: u32 = 10;
 ///   10 times; if none does, the iteration has stagnated;
 /// - with the default zero tolerance, a point is accepted when its residual is at the
 ///   rounding floor `16 ε Σ|r|` and the step to it started within `√ε·Σ|r|` (so, Newton
-///   being quadratic, it is the attainable accuracy), or no step lowers it;
+///   being quadratic, it is the attainable accuracy) or the Jacobian is near singular
+///   (κ ≥ ε^(-1/4), where a step from the floor would move along the singular direction
+///   rather than polish), or no step lowers it;
 /// - with a stated tolerance, a point is accepted when its residual is at most the tolerance
 ///   (raised to the rounding floor) and, unless it is at that floor, a root is certain to lie
 ///   near it
@@ -188,8 +190,13 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             residual_norm <= options.tolerance.max(floor)
                 && (residual_norm <= floor || kantorovich(&here, condition()) <= quarter)
         } else {
-            residual_norm == T::zero()
-                || (residual_norm <= floor && previous_residual <= T::epsilon().sqrt() * here.scale)
+            // Near a singular position (κ beyond ε^(-1/4)) the position is known only to
+            // about κ·ε whatever the residual, and a step from the floor there is no polish
+            // but a move of that size along the singular direction, onto whichever branch
+            // meets this one: there the floor is the stop.
+            let polished = previous_residual <= T::epsilon().sqrt() * here.scale
+                || condition() * T::epsilon().sqrt().sqrt() >= T::one();
+            residual_norm == T::zero() || (residual_norm <= floor && polished)
         };
         if met {
             return accept(here, jacobian, x);

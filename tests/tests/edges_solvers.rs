@@ -288,7 +288,11 @@ fn newton_only_mechanisms_keep_their_assembly() {
                 .zip(solution)
                 .map(|(&a, b)| angle_between(a, b))
                 .fold(0.0, f64::max);
-            assert!(apart < 1e-9, "another assembly from {start:?}: {:?}", solved.value);
+            assert!(
+                apart < 1e-9,
+                "another assembly from {start:?}: {:?}",
+                solved.value
+            );
             kept += 1;
         }
     }
@@ -330,7 +334,10 @@ fn coarse_six_bar_sweeps_do_not_jump_assembly() {
             let Ok(sample) = sample else { break };
             let reference = fine[k * degrees as usize];
             for (&got, want) in sample.position.iter().zip(reference) {
-                assert!(angle_between(got, want) < 1e-9, "{degrees}° steps, sample {k}");
+                assert!(
+                    angle_between(got, want) < 1e-9,
+                    "{degrees}° steps, sample {k}"
+                );
             }
         }
     }
