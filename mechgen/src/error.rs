@@ -31,6 +31,17 @@ pub enum Error<T> {
         /// The inverse of the condition estimate.
         relative_determinant: T,
     },
+    /// A rate or acceleration whose estimated error (see [`crate::Accuracy`]) exceeds the
+    /// accuracy a result must have: near a toggle or change point, where the position is
+    /// itself known only to `κ·ε`, its rates have fewer correct digits than required.
+    Inaccurate {
+        /// The first derivative order whose estimate is too large.
+        order: crate::Order,
+        /// Its estimated relative error.
+        estimate: T,
+        /// The most it may be ([`crate::Accuracy::required`]).
+        required: T,
+    },
     /// Newton-Raphson converged, but on the other assembly branch than its guess was on (by
     /// the generated `branch_of`): the guess was too far from the branch it started on.
     OtherBranch,
@@ -61,6 +72,19 @@ impl<T: fmt::Display> fmt::Display for Error<T> {
                 "the loop Jacobian is singular (determinant {determinant}, relative \
                  determinant {relative_determinant}): the mechanism is at a toggle or \
                  change point"
+            ),
+            Error::Inaccurate {
+                order,
+                estimate,
+                required,
+            } => write!(
+                f,
+                "the {} would be off by up to {estimate} relative (more than the {required}                  required): the mechanism is too near a toggle or change point",
+                match order {
+                    crate::Order::Position => "position",
+                    crate::Order::Velocity => "velocity",
+                    crate::Order::Acceleration => "acceleration",
+                }
             ),
             Error::OtherBranch => write!(
                 f,

@@ -2,6 +2,7 @@
 #![no_std]
 #![forbid(unsafe_code)]
 
+mod accuracy;
 mod advantage;
 mod branch;
 pub mod closed;
@@ -15,6 +16,7 @@ mod real;
 pub mod sweep;
 mod vec2;
 
+pub use accuracy::{Accuracy, Order};
 pub use advantage::MechanicalAdvantage;
 pub use branch::Branch;
 pub use error::{BatchError, Error};
@@ -32,6 +34,7 @@ pub use mechgen_macros::mechanism;
 /// Items the generated code names. Not public API: they may change in any release.
 #[doc(hidden)]
 pub mod __private {
+    pub use crate::accuracy::{rate_threshold, rates_accuracy, rates_accuracy_at};
     pub use crate::kernel::{
         all_finite as finite_all, blame, branch_root, inverse, inverse_determinant, lanes,
         length_scale, triangle_root, unit_angle,

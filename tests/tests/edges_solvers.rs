@@ -342,3 +342,88 @@ fn coarse_six_bar_sweeps_do_not_jump_assembly() {
         }
     }
 }
+
+/// Rates with no correct digits are refused, not returned: 1e-6 rad from a parallelogram's
+/// change point, α3 = −26674.6 and α4 = 53354.2 came back Ok where both are 0 and 5; at the
+/// isosceles inverted slider-crank's θ2 = 2π, where the slide has shrunk to nothing, ω4 was
+/// 12.5 (exactly 5) and α4 6e17.
+#[test]
+fn rates_without_correct_digits_are_inaccurate() {
+    use mechanisms::InvertedSliderCrank;
+    let parallelogram = FourBar::<f64>::new(100.0, 50.0, 100.0, 50.0).unwrap();
+    let near = 1e-6;
+    let position = parallelogram.assemble(near, Branch::Open).unwrap();
+    let motion = parallelogram.motion(near, Branch::Open, 10.0, 0.0);
+    assert!(
+        matches!(motion, Err(Error::Inaccurate { .. })),
+        "{motion:?}"
+    );
+    assert!(matches!(
+        parallelogram.velocity(near, &position, 10.0),
+        Err(Error::Inaccurate { .. })
+    ));
+    let scene = parallelogram
+        .scenes()
+        .unwrap()
+        .angles(near, Branch::Open, 10.0, 0.0);
+    assert!(scene.is_err(), "{scene:?}");
+    // Far enough from it, the rates are back, and right: the parallelogram's coupler does
+    // not turn, and its rocker turns with the crank.
+    let far = 0.1;
+    let motion = parallelogram.motion(far, Branch::Open, 10.0, 0.0).unwrap();
+    assert!(motion.velocity.theta3.abs() < 1e-12);
+    assert!((motion.velocity.theta4 - 10.0).abs() < 1e-12);
+
+    let isosceles = InvertedSliderCrank::new(150.0, 150.0, 0.0, 0.0).unwrap();
+    let turn = std::f64::consts::TAU;
+    let motion = isosceles.motion(turn, Branch::Open, 10.0, 0.0);
+    assert!(
+        matches!(
+            motion,
+            Err(Error::Inaccurate { .. } | Error::Singular { .. })
+        ),
+        "{motion:?}"
+    );
+}
+
+/// The estimates are the documented formulas, and a rate is refused exactly where its
+/// estimate exceeds what is required.
+#[test]
+fn estimates_follow_the_documented_formulas() {
+    use mechgen::{Accuracy, Order};
+    let e = f64::EPSILON;
+    let estimate = Accuracy::<f64>::estimate(2.0, 4.0);
+    assert_eq!(estimate.position, 32.0 * e);
+    assert_eq!(estimate.velocity, e * 2.0 * (64.0 + 8.0));
+    assert_eq!(estimate.acceleration, e * 2.0 * (256.0 + 4.0));
+    // A slide shrunk to 1/64 of the size: the rates' estimates grow by 4 and 16.
+    let shrunk = Accuracy::<f64>::estimate(2.0, 64.0);
+    assert_eq!(shrunk.velocity, 4.0 * estimate.velocity);
+    assert_eq!(shrunk.acceleration, 16.0 * estimate.acceleration);
+    let required = Accuracy::<f64>::required();
+    assert_eq!(estimate.within(&required, Order::Acceleration), Ok(()));
+    let far = Accuracy::<f64>::estimate(1e5, 1.0);
+    assert_eq!(far.within(&required, Order::Position), Ok(()));
+    assert_eq!(
+        far.within(&required, Order::Acceleration),
+        Err(Error::Inaccurate {
+            order: Order::Velocity,
+            estimate: far.velocity,
+            required: required.velocity,
+        })
+    );
+}
+
+/// Huge slider-cranks assemble finitely on both branches (NaN inside Ok at 1e157).
+#[test]
+fn huge_slider_cranks_are_finite_on_both_branches() {
+    let linkage = SliderCrank::<f64>::new(2.7e152, 2.2e157, 2.7e151).unwrap();
+    for branch in BRANCHES {
+        let position = linkage.assemble(0.0, branch).unwrap();
+        assert!(
+            position.theta3.is_finite() && position.d.is_finite(),
+            "{position:?}"
+        );
+        assert!((position.d.abs() - 2.2e157).abs() <= 1e-3 * 2.2e157);
+    }
+}

@@ -5,7 +5,7 @@
 mod common;
 
 use mechanisms::{InvertedSliderCrank, JansenLeg, SliderCrank, WattSixBar};
-use mechgen::{Branch, Real, Vec2};
+use mechgen::{Branch, Error, Real, Vec2};
 use proptest::prelude::*;
 
 const RATE: f64 = 10.0;
@@ -197,7 +197,13 @@ fn jansen_scenes_agree<T: Real>() {
     let size = T::constant(100.0);
     let branches = JansenLeg::<T>::DRAWN;
     for t in inputs::<T>() {
-        let motion = linkage.motion(t, branches, w, a).unwrap();
+        // In f32 the leg's Jacobian is conditioned badly enough (κ up to about 80) over part
+        // of the turn that its accelerations are estimated less accurate than required.
+        let motion = match linkage.motion(t, branches, w, a) {
+            Ok(motion) => motion,
+            Err(Error::Inaccurate { .. }) if T::epsilon() > T::constant(1e-10) => continue,
+            Err(error) => panic!("{t:?}: {error:?}"),
+        };
         let (q, v, acc) = (motion.position, motion.velocity, motion.acceleration);
         // Errors in rates grow with the condition of the Jacobian, once per derivative.
         let kappa = linkage.condition(t, &q);

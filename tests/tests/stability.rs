@@ -61,10 +61,10 @@ fn newton_near_the_references_stays_on_branch() {
                 let error = (solved.value.theta3 - case.q[0])
                     .abs()
                     .max((solved.value.theta4 - case.q[1]).abs());
-                let bound = reference::CONTRACT_FACTOR
-                    * f64::EPSILON
-                    * case.condition
-                    * reference::size(&case)
+                // The position estimate is relative to the size, each angle weighted by its
+                // column: unweighted, an angle's share is size / column.
+                let (estimate, _) = reference::estimate(&case, case.condition);
+                let bound = estimate.position * reference::size(&case)
                     / case.columns[0].min(case.columns[1]);
                 assert!(
                     error <= bound,
@@ -104,7 +104,7 @@ fn one_ulp_past_a_toggle_is_an_error_not_a_huge_rate() {
                 assert!(solved.condition > 1e6, "{solved:?}");
                 assert!(matches!(
                     linkage.velocity(past, &solved.value, 1.0),
-                    Err(Error::Singular { .. })
+                    Err(Error::Singular { .. } | Error::Inaccurate { .. })
                 ));
             }
             Err(other) => panic!("tolerance {tolerance}: {other:?}"),

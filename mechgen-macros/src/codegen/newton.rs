@@ -163,6 +163,7 @@ impl Generator<'_> {
              three without a closed form.\n\nErrors: as [`Self::position`] and \
              [`Self::motion_at`]."
         ));
+        let accuracy_check = self.rates_check(quote!(&#converged.at.jacobian), "Acceleration");
         let body = quote! {
                 #hoisted
                 let #converged = ::mechgen::__private::newton(
@@ -173,6 +174,7 @@ impl Generator<'_> {
                     #closure,
                 )?;
                 #branch_check
+                #accuracy_check
                 let [#(#names),*] = #converged.solved.value;
                 let [#(#payload_names),*] = #converged.at.payload;
                 let #jacobian = #converged.jacobian;

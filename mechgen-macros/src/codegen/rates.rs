@@ -112,7 +112,8 @@ impl Generator<'_> {
         let (jacobian, rest) = outputs.split_at(n * n);
         let (velocity_rhs, acceleration_rhs) = rest.split_at(n);
         let (rates, accelerations) = (local("rates"), local("accelerations"));
-        let velocity_solve = self.solves(jacobian, &[(velocity_rhs, rates.clone())]);
+        let velocity_solve =
+            self.solves(jacobian, &[(velocity_rhs, rates.clone())], "Acceleration");
         // The acceleration reuses the factors: only its solve is emitted the second time.
         let acceleration_solve =
             self.reuse_solves(jacobian, &[(acceleration_rhs, accelerations.clone())]);
@@ -142,7 +143,12 @@ impl Generator<'_> {
         let (jacobian, rhs) = outputs.split_at(count * count);
         let ty = &self.unknowns_type;
         let solution = arg("solution");
-        let solve = self.solves(jacobian, &[(rhs, solution.clone())]);
+        let highest = if quantity == "velocity" {
+            "Velocity"
+        } else {
+            "Acceleration"
+        };
+        let solve = self.solves(jacobian, &[(rhs, solution.clone())], highest);
         quote! {
             #prologue
             #solve
@@ -152,14 +158,52 @@ impl Generator<'_> {
 
     /// Code that solves `J·x = rhs` for each `(rhs, name)`, binding `name` to `x`: the
     /// factorisation ([`Self::factorise`]) and the solves ([`Self::reuse_solves`]).
+    ///
+    /// Before solving, the rates' accuracy up to the order `highest` (`"Velocity"` or
+    /// `"Acceleration"`) is estimated from the Jacobian, and a rate that would have fewer
+    /// correct digits than required is [`mechgen::Error::Inaccurate`].
     pub(super) fn solves(
         &self,
         jacobian: &[Emitted],
         right_sides: &[(&[Emitted], Ident)],
+        highest: &str,
     ) -> TokenStream {
         let factors = self.factorise(jacobian);
+        let matrix = local("jacobian_matrix");
+        let check = self.rates_check(quote!(&#matrix), highest);
         let solves = self.reuse_solves(jacobian, right_sides);
-        quote!(#factors #solves)
+        quote!(#factors #check #solves)
+    }
+
+    /// `rates_accuracy(jacobian, size, angles, highest)?;` for the Jacobian `matrix` (an
+    /// expression of type `&[[T; N]; N]`): the sum of the declared lengths as the size.
+    pub(super) fn rates_check(&self, matrix: TokenStream, highest: &str) -> TokenStream {
+        let lengths: Vec<&Ident> = self
+            .model
+            .params
+            .iter()
+            .filter(|param| param.kind == crate::model::Kind::Length)
+            .map(|param| &param.name)
+            .collect();
+        let size = if lengths.is_empty() {
+            quote!(T::one())
+        } else {
+            quote!(#(self.#lengths.abs())+*)
+        };
+        let angles = self
+            .model
+            .unknowns
+            .iter()
+            .map(|unknown| unknown.kind == crate::model::Kind::Angle);
+        let highest = Ident::new(highest, proc_macro2::Span::call_site());
+        quote! {
+            ::mechgen::__private::rates_accuracy(
+                #matrix,
+                #size,
+                [#(#angles),*],
+                ::mechgen::Order::#highest,
+            )?;
+        }
     }
 
     /// The closed-form plan's steps when the Jacobian is block lower-triangular in their
@@ -177,9 +221,11 @@ impl Generator<'_> {
         let n = self.model.unknowns.len();
         let matrix_tokens = matrix(jacobian, n);
         let jacobian_name = arg("jacobian");
+        let matrix_name = local("jacobian_matrix");
         let Some(steps) = self.triangular_steps() else {
             return quote! {
-                let #jacobian_name = ::mechgen::__private::Factored::new(#matrix_tokens)?;
+                let #matrix_name = #matrix_tokens;
+                let #jacobian_name = ::mechgen::__private::Factored::new(#matrix_name)?;
             };
         };
         let index = |i: usize| Literal::usize_unsuffixed(i);
@@ -195,7 +241,8 @@ impl Generator<'_> {
             }
         });
         quote! {
-            let #jacobian_name = #matrix_tokens;
+            let #matrix_name = #matrix_tokens;
+            let #jacobian_name = #matrix_name;
             #(#blocks)*
         }
     }

@@ -222,6 +222,10 @@ impl Generator<'_> {
                 #solve
                 #solves
                 #factor
+                ::mechgen::__private::rates_accuracy_at(
+                    T::one() / #relative.abs(),
+                    ::mechgen::Order::Acceleration,
+                )?;
                 let #rates = #velocity;
                 let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
                 #after_rates

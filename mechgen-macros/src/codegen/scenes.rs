@@ -85,6 +85,9 @@ impl Generator<'_> {
                 scaled: #name<T>,
                 scale: T,
                 unscale: T,
+                /// The relative determinants at or below which a block's velocities and
+                /// accelerations would be less accurate than `mechgen::Accuracy::required`.
+                rate_thresholds: [T; 2],
                 constants: [T; #count],
             }
             #(#outputs)*
@@ -167,6 +170,10 @@ impl Generator<'_> {
                     scaled: #scaled,
                     scale: #scale,
                     unscale: #unscale,
+                    rate_thresholds: [
+                        ::mechgen::__private::rate_threshold(::mechgen::Order::Velocity),
+                        ::mechgen::__private::rate_threshold(::mechgen::Order::Acceleration),
+                    ],
                     constants,
                 })
             }
@@ -299,9 +306,14 @@ impl Generator<'_> {
         straight: &Straight,
         emitted: &mut impl Iterator<Item = Emitted>,
         branches: &mut [TokenStream],
-        inputs: &TokenStream,
-        lanes: bool,
+        kernel: &KernelKind,
     ) -> TokenStream {
+        let KernelKind {
+            inputs,
+            lanes,
+            rates_threshold,
+        } = kernel;
+        let lanes = *lanes;
         let input = &self.model.input.name;
         // A length input was scaled with the mechanism; an error reports it as given.
         let input = if self.model.input.kind == Kind::Length {
@@ -332,7 +344,7 @@ impl Generator<'_> {
                 let [det, inverse_norms] = [&args[0], &args[1]];
                 let threshold = match threshold {
                     Threshold::Position => quote!(T::constant(8.0) * T::epsilon()),
-                    Threshold::Rates => quote!(::mechgen::singular_threshold::<T>()),
+                    Threshold::Rates => rates_threshold.clone(),
                 };
                 quote!(::mechgen::__private::lanes::inverse_determinant(#det, #inverse_norms, #threshold))
             }
@@ -363,7 +375,7 @@ impl Generator<'_> {
                 let [det, inverse_norms] = [&args[0], &args[1]];
                 let threshold = match threshold {
                     Threshold::Position => quote!(T::constant(8.0) * T::epsilon()),
-                    Threshold::Rates => quote!(::mechgen::singular_threshold::<T>()),
+                    Threshold::Rates => rates_threshold.clone(),
                 };
                 quote! {
                     ::mechgen::__private::inverse_determinant(#det, #inverse_norms, #threshold)
@@ -468,6 +480,18 @@ impl Generator<'_> {
             quote!([#(#pairs),*])
         };
 
+        // A block's rates are refused where they would be less accurate than required, for
+        // the highest order the scene asks for.
+        let rates_threshold = if order >= Order::Acceleration {
+            quote!(self.rate_thresholds[1])
+        } else {
+            quote!(self.rate_thresholds[0])
+        };
+        let kind = KernelKind {
+            inputs: inputs.clone(),
+            lanes,
+            rates_threshold,
+        };
         // Statements of stage k, then auxiliary value k.
         let mut body = Vec::new();
         let mut branches =
@@ -475,14 +499,7 @@ impl Generator<'_> {
         for (k, stage_statements) in statements.iter().enumerate() {
             body.extend(stage_statements.iter().cloned());
             if needed.contains(&k) {
-                body.push(self.aux_definition(
-                    k,
-                    straight,
-                    &mut emitted,
-                    &mut branches,
-                    &inputs,
-                    lanes,
-                ));
+                body.push(self.aux_definition(k, straight, &mut emitted, &mut branches, &kind));
             }
         }
         let values: Vec<Emitted> = emitted.collect();
@@ -744,6 +761,14 @@ impl Generator<'_> {
             }
         }
     }
+}
+
+/// Which kernel an auxiliary value is computed in: the inputs its errors blame, whether it is
+/// a batch's lanes, and the threshold below which its blocks' rates are refused.
+struct KernelKind {
+    inputs: TokenStream,
+    lanes: bool,
+    rates_threshold: TokenStream,
 }
 
 /// A batch's pieces, from [`Generator::kernel`].

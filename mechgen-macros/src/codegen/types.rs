@@ -185,8 +185,14 @@ impl Generator<'_> {
                     #input: T,
                     #position: [T; #count],
                 ) -> ::core::result::Result<[T; #count], ::mechgen::Error<T>> {
-                    self.velocity(#input, &#ty::from_array(#position), T::one())
-                        .map(|rates| rates.to_array())
+                    // The rates at unit input rate, as `velocity` solves them, but without its
+                    // accuracy requirement: the sweep only steers by them, and must steer
+                    // right up to a toggle or change point, where they lose their digits.
+                    let #position = #ty::from_array(#position);
+                    let along = self.input_jacobian(#input, &#position).map(|v| -v);
+                    let slope = ::mechgen::__private::Factored::new(self.jacobian(#input, &#position))?
+                        .solve(along);
+                    ::mechgen::__private::finite(slope, "velocity")
                 }
 
                 fn same_branch(

@@ -1,0 +1,215 @@
+//! How accurate a result is: an estimate of its error for each derivative order, from the
+//! Jacobian's condition at the position, and the accuracy a result must have to be returned.
+//!
+//! With ε the machine epsilon and κ the Jacobian's condition estimate (`Π‖column‖ / |det|`,
+//! at least 1), the estimated relative errors are
+//!
+//! | order | estimate | relative to |
+//! |---|---|---|
+//! | position | `16·ε·κ` | the mechanism's size |
+//! | velocity | `ε·(64·κ + 4·κ²)·s` | the rates' size |
+//! | acceleration | `ε·(256·κ + κ³)·s²` | the accelerations' size |
+//!
+//! each unknown weighted by its Jacobian column. A position's error is the input's and the
+//! loops' rounding amplified by κ; a rate solve multiplies it by κ once more through the
+//! Jacobian it is solved with, and the acceleration's right-hand side carries the rates'
+//! error, so once more again. The terms linear in κ are the rounding of the right-hand sides
+//! themselves (sums of many products), which dominate away from singular positions. The
+//! factors are fitted, with a margin of two or more, to the worst errors against the
+//! 60-digit references (`docs/ACCURACY.md`) and the multiple-precision oracle of the edge
+//! tests. Near a change point the κ³ of the acceleration is reached; near a toggle the true
+//! error grows only as κ², so there the estimate is pessimistic by up to κ.
+//!
+//! Here `s = max(1, ρ/16)`, with ρ the aspect: the sum of the mechanism's declared lengths
+//! over the shortest column of an angle unknown. An angle whose vector shrinks (a slide
+//! passing near its pivot) is less determined than κ says, since κ does not see a column's
+//! scale; ordinary mechanisms have ρ below 16, where `s` is 1.
+//!
+//! An angle unknown whose vector has shrunk to less than `√ε` of the mechanism's size (the
+//! sum of its declared lengths) has an undetermined direction whatever κ says (κ does not
+//! see a column's scale): its rates' estimates are infinite.
+
+use crate::{Error, Real};
+
+/// The aspect up to which a mechanism's rates are as accurate as its condition says: the
+/// shipped linkages, the Jansen leg included, stay below it over their whole motion.
+const ORDINARY_ASPECT: f64 = 16.0;
+
+/// A derivative order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Order {
+    /// The unknowns' values.
+    Position,
+    /// Their rates.
+    Velocity,
+    /// Their accelerations.
+    Acceleration,
+}
+
+/// Relative errors, one per derivative order: an estimate of a result's, or the most a
+/// result may have.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Accuracy<T> {
+    /// Relative to the mechanism's size.
+    pub position: T,
+    /// Relative to the rates' size.
+    pub velocity: T,
+    /// Relative to the accelerations' size.
+    pub acceleration: T,
+}
+
+impl<T: Real> Accuracy<T> {
+    /// The accuracy every result the solvers return must have: half the digits of `T` for a
+    /// position (`√ε`), a third for a velocity (`ε^(1/3)`) and a quarter for an acceleration
+    /// (`ε^(1/4)`): about 8, 5 and 4 digits in f64, 3.5, 2.3 and 1.7 in f32. Each derivative
+    /// multiplies the error by the condition once more, so a fixed share of the digits per
+    /// order keeps the three usable over about the same range of positions. A result whose
+    /// estimate exceeds it is [`Error::Inaccurate`].
+    ///
+    /// ```
+    /// let required = mechgen::Accuracy::<f64>::required();
+    /// assert!((required.velocity - 6.06e-6).abs() < 1e-8);
+    /// assert!((required.acceleration - 1.22e-4).abs() < 1e-6);
+    /// ```
+    pub fn required() -> Self {
+        let half = T::epsilon().sqrt();
+        Accuracy {
+            position: half,
+            velocity: T::epsilon().cbrt(),
+            acceleration: half.sqrt(),
+        }
+    }
+
+    /// The estimate at a position whose Jacobian has condition `condition` (taken as at
+    /// least 1) and aspect `aspect`, the mechanism's size over the shortest column of an
+    /// angle unknown.
+    ///
+    /// ```
+    /// let estimate = mechgen::Accuracy::<f64>::estimate(10.0, 2.0);
+    /// assert_eq!(estimate.position, 16.0 * f64::EPSILON * 10.0);
+    /// assert_eq!(estimate.acceleration, f64::EPSILON * 10.0 * (256.0 + 100.0));
+    /// // A vector shrunk below √ε of the size: its angle's rates are undetermined.
+    /// assert!(mechgen::Accuracy::<f64>::estimate(1.0, 1e9).velocity.is_infinite());
+    /// ```
+    pub fn estimate(condition: T, aspect: T) -> Self {
+        let kappa = condition.max(T::one());
+        let e = T::epsilon();
+        let position = T::constant(16.0) * e * kappa;
+        if aspect * e.sqrt() >= T::one() || aspect.is_nan() {
+            return Accuracy {
+                position,
+                velocity: T::infinity(),
+                acceleration: T::infinity(),
+            };
+        }
+        let c = T::constant;
+        // A vector shrinking toward its start (a slide near zero) amplifies its angle's rates'
+        // errors by the aspect, and the accelerations' by its square, once it exceeds what
+        // ordinary mechanisms have.
+        let shrunk = (aspect / c(ORDINARY_ASPECT)).max(T::one());
+        Accuracy {
+            position,
+            velocity: e * kappa * (c(64.0) + c(4.0) * kappa) * shrunk,
+            acceleration: e * kappa * (c(256.0) + kappa * kappa) * shrunk * shrunk,
+        }
+    }
+
+    /// `Ok` if every order up to `highest` is within `required`, else the first that is not,
+    /// as [`Error::Inaccurate`]. A NaN estimate (an undefined condition) is not within.
+    pub fn within(&self, required: &Self, highest: Order) -> Result<(), Error<T>> {
+        let orders = [
+            (Order::Position, self.position, required.position),
+            (Order::Velocity, self.velocity, required.velocity),
+            (
+                Order::Acceleration,
+                self.acceleration,
+                required.acceleration,
+            ),
+        ];
+        for (order, estimate, required) in orders {
+            if order > highest {
+                break;
+            }
+            let within = matches!(
+                estimate.partial_cmp(&required),
+                Some(core::cmp::Ordering::Less | core::cmp::Ordering::Equal)
+            );
+            if !within {
+                return Err(Error::Inaccurate {
+                    order,
+                    estimate,
+                    required,
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The estimate for rates solved with `jacobian` at a position of a mechanism whose declared
+/// lengths sum to `size`, `angles[j]` telling whether unknown `j` is an angle; an error if an
+/// order up to `highest` exceeds [`Accuracy::required`].
+pub fn rates_accuracy<T: Real, const N: usize>(
+    jacobian: &[[T; N]; N],
+    size: T,
+    angles: [bool; N],
+    highest: Order,
+) -> Result<Accuracy<T>, Error<T>> {
+    let (condition, columns) = crate::linear::condition_and_columns(*jacobian);
+    let shortest = columns
+        .iter()
+        .zip(angles)
+        .filter(|(_, angle)| *angle)
+        .fold(T::infinity(), |m, (c, _)| m.min(*c));
+    let aspect = if shortest.is_finite() {
+        size.abs() / shortest
+    } else {
+        T::one()
+    };
+    let estimate = Accuracy::estimate(condition, aspect);
+    estimate.within(&rates_required(), highest)?;
+    Ok(estimate)
+}
+
+/// [`Accuracy::required`] of the rates alone: the position they are solved at was returned
+/// already, and its own estimate is the caller's to judge.
+fn rates_required<T: Real>() -> Accuracy<T> {
+    Accuracy {
+        position: T::infinity(),
+        ..Accuracy::required()
+    }
+}
+
+/// The relative determinant (`1/κ`) at or below which `order`'s estimate exceeds
+/// [`Accuracy::required`] (with an aspect of 1), and at least `√ε`: where a scene kernel's
+/// block counts as too near a singular position for its rates. Found once, by bisection.
+pub fn rate_threshold<T: Real>(order: Order) -> T {
+    let required = rates_required::<T>();
+    let too_far = |kappa: T| {
+        Accuracy::estimate(kappa, T::one())
+            .within(&required, order)
+            .is_err()
+    };
+    // κ from 1 to 1/√ε, bisected on its logarithm (60 halvings: to rounding).
+    let (mut low, mut high) = (T::one(), T::one() / T::epsilon().sqrt());
+    if !too_far(high) {
+        return T::epsilon().sqrt();
+    }
+    for _ in 0..60 {
+        let middle = (low * high).sqrt();
+        if too_far(middle) {
+            high = middle;
+        } else {
+            low = middle;
+        }
+    }
+    T::one() / high
+}
+
+/// As [`rates_accuracy`], from a condition estimate already known (the reduced Newton's,
+/// of the full Jacobian), with an aspect of 1.
+pub fn rates_accuracy_at<T: Real>(condition: T, highest: Order) -> Result<Accuracy<T>, Error<T>> {
+    let estimate = Accuracy::estimate(condition, T::one());
+    estimate.within(&rates_required(), highest)?;
+    Ok(estimate)
+}
