@@ -29,6 +29,8 @@
 //! sum of its declared lengths) has an undetermined direction whatever κ says (κ does not
 //! see a column's scale): its rates' estimates are infinite.
 
+use crate::linear::Factored;
+use crate::real::normaliser;
 use crate::{Error, Real};
 
 /// The aspect up to which a mechanism's rates are as accurate as its condition says: the
@@ -147,44 +149,77 @@ impl<T: Real> Accuracy<T> {
 }
 
 /// The estimate for rates solved with `jacobian` at a position of a mechanism whose declared
-/// lengths sum to `size`, `angles[j]` telling whether unknown `j` is an angle; an error if an
-/// order up to `highest` exceeds [`Accuracy::required`].
+/// lengths sum to `size`, `angles[j]` telling whether unknown `j` is an angle; an error if the
+/// velocity's or (with `highest` the acceleration) the acceleration's exceeds `required`.
 pub fn rates_accuracy<T: Real, const N: usize>(
     jacobian: &[[T; N]; N],
     size: T,
     angles: [bool; N],
     highest: Order,
+    required: &Accuracy<T>,
 ) -> Result<Accuracy<T>, Error<T>> {
-    let (condition, columns) = crate::linear::condition_and_columns(*jacobian);
-    let shortest = columns
-        .iter()
-        .zip(angles)
-        .filter(|(_, angle)| *angle)
-        .fold(T::infinity(), |m, (c, _)| m.min(*c));
-    let aspect = if shortest.is_finite() {
-        size.abs() / shortest
-    } else {
-        T::one()
-    };
-    let estimate = Accuracy::estimate(condition, aspect);
-    estimate.within(&rates_required(), highest)?;
+    let condition = crate::linear::condition(*jacobian);
+    let estimate = Accuracy::estimate(condition, aspect(jacobian, size, angles));
+    estimate.within(&rates_only(required), highest)?;
     Ok(estimate)
 }
 
-/// [`Accuracy::required`] of the rates alone: the position they are solved at was returned
-/// already, and its own estimate is the caller's to judge.
-fn rates_required<T: Real>() -> Accuracy<T> {
-    Accuracy {
-        position: T::infinity(),
-        ..Accuracy::required()
+/// As [`rates_accuracy`], with the Jacobian already factored (its condition known).
+#[inline]
+pub fn rates_accuracy_factored<T: Real, const N: usize>(
+    factored: &Factored<T, N>,
+    jacobian: &[[T; N]; N],
+    size: T,
+    angles: [bool; N],
+    highest: Order,
+    required: &Accuracy<T>,
+) -> Result<Accuracy<T>, Error<T>> {
+    let condition = T::one() / factored.relative().abs();
+    let estimate = Accuracy::estimate(condition, aspect(jacobian, size, angles));
+    estimate.within(&rates_only(required), highest)?;
+    Ok(estimate)
+}
+
+/// `ρ`: `size` over the shortest column of an angle unknown (1 without one), with `size` and
+/// the columns (lengths alike) brought to about 1 by one power of two, so no square
+/// overflows; a column too short to square at that scale counts as zero (ρ infinite).
+fn aspect<T: Real, const N: usize>(jacobian: &[[T; N]; N], size: T, angles: [bool; N]) -> T {
+    let size = size.abs();
+    if size == T::zero() || !size.is_finite() {
+        return T::one();
+    }
+    let scale = normaliser(size);
+    let mut shortest = T::infinity();
+    for (j, angle) in angles.into_iter().enumerate() {
+        if angle {
+            let square = jacobian.iter().fold(T::zero(), |sum, row| {
+                let v = row[j] * scale;
+                sum + v * v
+            });
+            shortest = shortest.min(square);
+        }
+    }
+    if shortest.is_infinite() {
+        T::one()
+    } else {
+        size * scale / shortest.sqrt()
     }
 }
 
-/// The relative determinant (`1/κ`) at or below which `order`'s estimate exceeds
-/// [`Accuracy::required`] (with an aspect of 1), and at least `√ε`: where a scene kernel's
+/// `required` of the rates alone: the position they are solved at was returned already, and
+/// its own estimate is the caller's to judge.
+fn rates_only<T: Real>(required: &Accuracy<T>) -> Accuracy<T> {
+    Accuracy {
+        position: T::infinity(),
+        ..*required
+    }
+}
+
+/// The relative determinant (`1/κ`) at or below which `order`'s estimate exceeds `required`
+/// (with an aspect of 1), and at least `√ε`: where a scene kernel's
 /// block counts as too near a singular position for its rates. Found once, by bisection.
-pub fn rate_threshold<T: Real>(order: Order) -> T {
-    let required = rates_required::<T>();
+pub fn rate_threshold<T: Real>(order: Order, required: &Accuracy<T>) -> T {
+    let required = rates_only(required);
     let too_far = |kappa: T| {
         Accuracy::estimate(kappa, T::one())
             .within(&required, order)
@@ -208,8 +243,12 @@ pub fn rate_threshold<T: Real>(order: Order) -> T {
 
 /// As [`rates_accuracy`], from a condition estimate already known (the reduced Newton's,
 /// of the full Jacobian), with an aspect of 1.
-pub fn rates_accuracy_at<T: Real>(condition: T, highest: Order) -> Result<Accuracy<T>, Error<T>> {
+pub fn rates_accuracy_at<T: Real>(
+    condition: T,
+    highest: Order,
+    required: &Accuracy<T>,
+) -> Result<Accuracy<T>, Error<T>> {
     let estimate = Accuracy::estimate(condition, T::one());
-    estimate.within(&rates_required(), highest)?;
+    estimate.within(&rates_only(required), highest)?;
     Ok(estimate)
 }

@@ -301,25 +301,6 @@ pub fn orientation<T: Real, const N: usize>(a: [[T; N]; N]) -> Option<bool> {
         .map(|factored| factored.relative > T::zero())
 }
 
-/// The condition estimate `κ` (infinite for a singular or non-finite matrix) and the norms
-/// of the columns, at any scale.
-pub(crate) fn condition_and_columns<T: Real, const N: usize>(a: [[T; N]; N]) -> (T, [T; N]) {
-    let mut scaled = a;
-    let Ok((columns, scales)) = normalise(&mut scaled) else {
-        return (T::infinity(), [T::zero(); N]);
-    };
-    let mut norms = [T::zero(); N];
-    for (j, (norm, scale)) in norms.iter_mut().zip(scales).enumerate() {
-        let square = scaled
-            .iter()
-            .fold(T::zero(), |sum, row| sum + row[j] * row[j]);
-        *norm = square.sqrt() / scale;
-    }
-    let mut pivots = [0; N];
-    let determinant = eliminate(&mut scaled, &mut pivots);
-    (columns / determinant.abs(), norms)
-}
-
 /// The condition estimate of a Jacobian, `κ = Π‖column‖ / |det|`: 1 when the unknowns move
 /// the loops in orthogonal directions, growing without bound toward a singular matrix
 /// (infinite at one).

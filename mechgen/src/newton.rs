@@ -7,7 +7,7 @@
 use core::cmp::Ordering;
 
 use crate::linear::Factored;
-use crate::{Error, Real};
+use crate::{Accuracy, Error, Real};
 
 /// How hard Newton-Raphson tries.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,6 +23,10 @@ pub struct NewtonOptions<T> {
     pub tolerance: T,
     /// The most Newton updates to make before giving up with [`Error::NoConvergence`].
     pub max_iterations: u32,
+    /// The accuracy the rates of `motion_near` must have, else [`Error::Inaccurate`]:
+    /// [`Accuracy::required`] by default; loosen it to get rates nearer a toggle, with fewer
+    /// correct digits, or tighten it.
+    pub accuracy: Accuracy<T>,
 }
 
 impl<T: Real> NewtonOptions<T> {
@@ -31,7 +35,23 @@ impl<T: Real> NewtonOptions<T> {
         NewtonOptions {
             tolerance,
             max_iterations,
+            accuracy: Accuracy::required(),
         }
+    }
+
+    /// These options, with the rates of `motion_near` required to be within `accuracy`.
+    ///
+    /// ```
+    /// use mechgen::{Accuracy, NewtonOptions};
+    /// let loose = NewtonOptions::<f64>::default().with_accuracy(Accuracy {
+    ///     position: 1e-6,
+    ///     velocity: 1e-3,
+    ///     acceleration: 1e-2,
+    /// });
+    /// assert_eq!(loose.accuracy.velocity, 1e-3);
+    /// ```
+    pub fn with_accuracy(self, accuracy: Accuracy<T>) -> Self {
+        NewtonOptions { accuracy, ..self }
     }
 }
 

@@ -427,3 +427,56 @@ fn huge_slider_cranks_are_finite_on_both_branches() {
         assert!((position.d.abs() - 2.2e157).abs() <= 1e-3 * 2.2e157);
     }
 }
+
+/// The caller states the accuracy it needs: loosened, the rates near a change point come back
+/// (with the digits the estimate promises); tightened, ordinary rates are refused.
+#[test]
+fn the_caller_states_the_accuracy_it_needs() {
+    use mechgen::{Accuracy, Order};
+    let parallelogram = FourBar::<f64>::new(100.0, 50.0, 100.0, 50.0).unwrap();
+    let near = 1e-5;
+    let guess = parallelogram.assemble(near, Branch::Open).unwrap();
+    let strict = NewtonOptions::default();
+    assert!(matches!(
+        parallelogram.motion_near(near, &guess, &strict, 10.0, 0.0),
+        Err(Error::Inaccurate { .. })
+    ));
+    let loose = NewtonOptions::default().with_accuracy(Accuracy {
+        position: 1e-3,
+        velocity: 1e-2,
+        acceleration: 10.0,
+    });
+    let motion = parallelogram
+        .motion_near(near, &guess, &loose, 10.0, 0.0)
+        .unwrap()
+        .value;
+    // The parallelogram's rocker turns with its crank: right to the loosened 1%.
+    assert!((motion.velocity.theta4 - 10.0).abs() <= 1e-2 * 10.0);
+
+    let scenes = parallelogram.scenes().unwrap();
+    assert!(scenes.angles(near, Branch::Open, 10.0, 0.0).is_err());
+    let loose_scenes = scenes.with_accuracy(&loose.accuracy);
+    let angles = loose_scenes.angles(near, Branch::Open, 10.0, 0.0).unwrap();
+    assert!((angles.theta4_dot - 10.0).abs() <= 1e-2 * 10.0);
+
+    // Tightened to all of f64's digits, even Example 1's ordinary position is refused.
+    let example_1 = FourBar::<f64>::new(180.0, 80.0, 200.0, 150.0).unwrap();
+    let input = 60f64.to_radians();
+    let position = example_1.assemble(input, Branch::Open).unwrap();
+    let exact = NewtonOptions::default().with_accuracy(Accuracy {
+        position: f64::EPSILON,
+        velocity: f64::EPSILON,
+        acceleration: f64::EPSILON,
+    });
+    let refused = example_1.motion_near(input, &position, &exact, 10.0, 0.0);
+    assert!(
+        matches!(
+            refused,
+            Err(Error::Inaccurate {
+                order: Order::Velocity,
+                ..
+            })
+        ),
+        "{refused:?}"
+    );
+}

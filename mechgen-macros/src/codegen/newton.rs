@@ -163,7 +163,12 @@ impl Generator<'_> {
              three without a closed form.\n\nErrors: as [`Self::position`] and \
              [`Self::motion_at`]."
         ));
-        let accuracy_check = self.rates_check(quote!(&#converged.at.jacobian), "Acceleration");
+        let accuracy_check = self.rates_check_factored(
+            quote!(&#converged.jacobian),
+            quote!(&#converged.at.jacobian),
+            "Acceleration",
+            quote!(&#options.accuracy),
+        );
         let body = quote! {
                 #hoisted
                 let #converged = ::mechgen::__private::newton(

@@ -170,7 +170,17 @@ impl Generator<'_> {
     ) -> TokenStream {
         let factors = self.factorise(jacobian);
         let matrix = local("jacobian_matrix");
-        let check = self.rates_check(quote!(&#matrix), highest);
+        let check = if self.triangular_steps().is_some() {
+            self.rates_check(quote!(&#matrix), highest)
+        } else {
+            let factored = arg("jacobian");
+            self.rates_check_factored(
+                quote!(&#factored),
+                quote!(&#matrix),
+                highest,
+                quote!(&::mechgen::Accuracy::required()),
+            )
+        };
         let solves = self.reuse_solves(jacobian, right_sides);
         quote!(#factors #check #solves)
     }
@@ -178,6 +188,35 @@ impl Generator<'_> {
     /// `rates_accuracy(jacobian, size, angles, highest)?;` for the Jacobian `matrix` (an
     /// expression of type `&[[T; N]; N]`): the sum of the declared lengths as the size.
     pub(super) fn rates_check(&self, matrix: TokenStream, highest: &str) -> TokenStream {
+        self.rates_check_within(matrix, highest, quote!(&::mechgen::Accuracy::required()))
+    }
+
+    /// [`Self::rates_check`] with the Jacobian `matrix` already factored as `factored`,
+    /// against `required` (an expression of type `&Accuracy<T>`).
+    pub(super) fn rates_check_factored(
+        &self,
+        factored: TokenStream,
+        matrix: TokenStream,
+        highest: &str,
+        required: TokenStream,
+    ) -> TokenStream {
+        let (size, angles) = self.size_and_angles();
+        let highest = Ident::new(highest, proc_macro2::Span::call_site());
+        quote! {
+            ::mechgen::__private::rates_accuracy_factored(
+                #factored,
+                #matrix,
+                #size,
+                #angles,
+                ::mechgen::Order::#highest,
+                #required,
+            )?;
+        }
+    }
+
+    /// The sum of the declared lengths (for the estimates' aspect) and which unknowns are
+    /// angles, as expressions.
+    fn size_and_angles(&self) -> (TokenStream, TokenStream) {
         let lengths: Vec<&Ident> = self
             .model
             .params
@@ -195,13 +234,25 @@ impl Generator<'_> {
             .unknowns
             .iter()
             .map(|unknown| unknown.kind == crate::model::Kind::Angle);
+        (size, quote!([#(#angles),*]))
+    }
+
+    /// [`Self::rates_check`] against `required` (an expression of type `&Accuracy<T>`).
+    pub(super) fn rates_check_within(
+        &self,
+        matrix: TokenStream,
+        highest: &str,
+        required: TokenStream,
+    ) -> TokenStream {
+        let (size, angles) = self.size_and_angles();
         let highest = Ident::new(highest, proc_macro2::Span::call_site());
         quote! {
             ::mechgen::__private::rates_accuracy(
                 #matrix,
                 #size,
-                [#(#angles),*],
+                #angles,
                 ::mechgen::Order::#highest,
+                #required,
             )?;
         }
     }

@@ -225,6 +225,7 @@ impl Generator<'_> {
                 ::mechgen::__private::rates_accuracy_at(
                     T::one() / #relative.abs(),
                     ::mechgen::Order::Acceleration,
+                    &#options.accuracy,
                 )?;
                 let #rates = #velocity;
                 let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;

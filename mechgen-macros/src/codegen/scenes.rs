@@ -97,6 +97,25 @@ impl Generator<'_> {
                 pub fn mechanism(&self) -> &#name<T> {
                     &self.mechanism
                 }
+
+                /// These kernels, with the rates they return required to be within
+                /// `accuracy` (each loop's block judged by its own condition), else
+                /// [`mechgen::Error::Singular`]; [`mechgen::Accuracy::required`] by default.
+                pub fn with_accuracy(self, accuracy: &::mechgen::Accuracy<T>) -> Self {
+                    #scenes_type {
+                        rate_thresholds: Self::mechgen_rate_thresholds(accuracy),
+                        ..self
+                    }
+                }
+
+                /// The relative determinants below which a block's velocities and
+                /// accelerations are less accurate than `accuracy`.
+                fn mechgen_rate_thresholds(accuracy: &::mechgen::Accuracy<T>) -> [T; 2] {
+                    [
+                        ::mechgen::__private::rate_threshold(::mechgen::Order::Velocity, accuracy),
+                        ::mechgen::__private::rate_threshold(::mechgen::Order::Acceleration, accuracy),
+                    ]
+                }
                 #(#kernels)*
             }
         }
@@ -170,10 +189,9 @@ impl Generator<'_> {
                     scaled: #scaled,
                     scale: #scale,
                     unscale: #unscale,
-                    rate_thresholds: [
-                        ::mechgen::__private::rate_threshold(::mechgen::Order::Velocity),
-                        ::mechgen::__private::rate_threshold(::mechgen::Order::Acceleration),
-                    ],
+                    rate_thresholds: #scenes_type::mechgen_rate_thresholds(
+                        &::mechgen::Accuracy::required(),
+                    ),
                     constants,
                 })
             }
