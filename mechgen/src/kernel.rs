@@ -5,7 +5,7 @@
 //! the reason there is none.
 
 use crate::closed::Failure;
-use crate::{Error, Real};
+use crate::{Accuracy, Error, Order, Real};
 
 /// The error to report: a non-finite argument if there is one (its NaN or infinity is what
 /// made the computation fail), else `error`. Kernels check their arguments only on this,
@@ -109,6 +109,42 @@ pub fn inverse_determinant<T: Real>(det: T, inverse_norms: T, threshold: T) -> R
             relative_determinant: relative.abs(),
         })
     }
+}
+
+/// [`inverse_determinant`] for a rate solve: [`Error::Singular`] at or below
+/// [`crate::singular_threshold`], and where the relative determinant is at or below
+/// `threshold` (from [`crate::__private::rate_threshold`]) [`Error::Inaccurate`] for
+/// `order`, with the estimates at this block's condition and at the threshold's.
+#[inline]
+pub fn rates_inverse_determinant<T: Real>(
+    det: T,
+    inverse_norms: T,
+    threshold: T,
+    order: Order,
+) -> Result<T, Error<T>> {
+    let relative = det * inverse_norms;
+    if relative.abs() > threshold {
+        return Ok(det.recip());
+    }
+    if relative.is_nan() || relative.abs() <= crate::singular_threshold::<T>() {
+        return Err(Error::Singular {
+            determinant: det,
+            relative_determinant: relative.abs(),
+        });
+    }
+    let at = |relative: T| {
+        let estimate = Accuracy::estimate(T::one() / relative, T::one());
+        match order {
+            Order::Position => estimate.position,
+            Order::Velocity => estimate.velocity,
+            Order::Acceleration => estimate.acceleration,
+        }
+    };
+    Err(Error::Inaccurate {
+        order,
+        estimate: at(relative.abs()),
+        required: at(threshold),
+    })
 }
 
 /// The angle of a unit vector `(x, y)`, in (−π, π] as `atan2(y, x)` gives it, from an arc

@@ -330,6 +330,7 @@ impl Generator<'_> {
             inputs,
             lanes,
             rates_threshold,
+            rates_order,
         } = kernel;
         let lanes = *lanes;
         let input = &self.model.input.name;
@@ -391,13 +392,25 @@ impl Generator<'_> {
             }
             AuxKind::InverseDeterminant { threshold, .. } => {
                 let [det, inverse_norms] = [&args[0], &args[1]];
-                let threshold = match threshold {
-                    Threshold::Position => quote!(T::constant(8.0) * T::epsilon()),
-                    Threshold::Rates => rates_threshold.clone(),
+                let call = match threshold {
+                    Threshold::Position => quote! {
+                        ::mechgen::__private::inverse_determinant(
+                            #det,
+                            #inverse_norms,
+                            T::constant(8.0) * T::epsilon(),
+                        )
+                    },
+                    Threshold::Rates => quote! {
+                        ::mechgen::__private::rates_inverse_determinant(
+                            #det,
+                            #inverse_norms,
+                            #rates_threshold,
+                            ::mechgen::Order::#rates_order,
+                        )
+                    },
                 };
                 quote! {
-                    ::mechgen::__private::inverse_determinant(#det, #inverse_norms, #threshold)
-                        .map_err(|error| ::mechgen::__private::blame(#inputs, error))?
+                    #call.map_err(|error| ::mechgen::__private::blame(#inputs, error))?
                 }
             }
             // In a batch, the branch-free angle vectorises; alone, an arc sine is cheaper.
@@ -500,15 +513,19 @@ impl Generator<'_> {
 
         // A block's rates are refused where they would be less accurate than required, for
         // the highest order the scene asks for.
-        let rates_threshold = if order >= Order::Acceleration {
-            quote!(self.rate_thresholds[1])
+        let (rates_threshold, rates_order) = if order >= Order::Acceleration {
+            (
+                quote!(self.rate_thresholds[1]),
+                format_ident!("Acceleration"),
+            )
         } else {
-            quote!(self.rate_thresholds[0])
+            (quote!(self.rate_thresholds[0]), format_ident!("Velocity"))
         };
         let kind = KernelKind {
             inputs: inputs.clone(),
             lanes,
             rates_threshold,
+            rates_order,
         };
         // Statements of stage k, then auxiliary value k.
         let mut body = Vec::new();
@@ -787,6 +804,8 @@ struct KernelKind {
     inputs: TokenStream,
     lanes: bool,
     rates_threshold: TokenStream,
+    /// The highest order the kernel's rates are for.
+    rates_order: Ident,
 }
 
 /// A batch's pieces, from [`Generator::kernel`].
