@@ -77,7 +77,7 @@ impl<T: Real> Accuracy<T> {
         let half = T::epsilon().sqrt();
         Accuracy {
             position: half,
-            velocity: T::epsilon().cbrt(),
+            velocity: T::EPSILON_CUBE_ROOT,
             acceleration: half.sqrt(),
         }
     }
@@ -189,16 +189,18 @@ fn aspect<T: Real, const N: usize>(jacobian: &[[T; N]; N], size: T, angles: [boo
         return T::one();
     }
     let scale = normaliser(size);
-    let mut shortest = T::infinity();
-    for (j, angle) in angles.into_iter().enumerate() {
-        if angle {
-            let square = jacobian.iter().fold(T::zero(), |sum, row| {
-                let v = row[j] * scale;
-                sum + v * v
-            });
-            shortest = shortest.min(square);
+    let mut squares = [T::zero(); N];
+    for row in jacobian {
+        for (square, v) in squares.iter_mut().zip(row) {
+            let v = *v * scale;
+            *square = *square + v * v;
         }
     }
+    let shortest = squares
+        .iter()
+        .zip(angles)
+        .filter(|(_, angle)| *angle)
+        .fold(T::infinity(), |m, (square, _)| m.min(*square));
     if shortest.is_infinite() {
         T::one()
     } else {

@@ -47,14 +47,18 @@ fn normalise<T: Real, const N: usize>(a: &mut [[T; N]; N]) -> Result<(T, [T; N])
         determinant: T::zero(),
         relative_determinant: T::zero(),
     };
-    let mut scales = [T::zero(); N];
-    for (j, scale) in scales.iter_mut().enumerate() {
-        let largest = a.iter().fold(T::zero(), |m, row| m.max(row[j].abs()));
-        if largest == T::zero() {
-            return Err(singular);
+    // Rows zipped with the columns' accumulators, not indexed: no bounds check, so no panic
+    // path, is left for the compiler to prove away.
+    let mut largest = [T::zero(); N];
+    for row in a.iter() {
+        for (m, v) in largest.iter_mut().zip(row) {
+            *m = m.max(v.abs());
         }
-        *scale = crate::real::normaliser(largest);
     }
+    if largest.iter().any(|m| *m == T::zero()) {
+        return Err(singular);
+    }
+    let scales = largest.map(crate::real::normaliser);
     let mut column_squares = [T::zero(); N];
     for row in a.iter_mut() {
         for ((v, square), scale) in row.iter_mut().zip(column_squares.iter_mut()).zip(scales) {

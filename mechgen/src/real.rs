@@ -46,6 +46,12 @@ pub trait Real: num_traits::Float + Debug + Display + Default + Send + Sync + 's
     #[doc(hidden)]
     fn sin_cos_polynomials(z: Self) -> (Self, Self);
 
+    /// `ε^(1/3)`, rounded to nearest: the accuracy required of a velocity
+    /// ([`Accuracy::required`](crate::Accuracy::required)); a constant because `libm`'s
+    /// `cbrt`, which `no_std` builds would call, keeps a panic path.
+    #[doc(hidden)]
+    const EPSILON_CUBE_ROOT: Self;
+
     /// `π/2` in two parts for [`fast::unit_angle`](crate::fast::unit_angle): the first
     /// rounded to nearest, the second `π/2` minus the first, rounded to nearest.
     #[doc(hidden)]
@@ -98,6 +104,7 @@ impl Real for f64 {
         (s, c)
     }
 
+    const EPSILON_CUBE_ROOT: Self = 6.055_454_452_393_339e-6;
     const UNIT_ANGLE_PI_OVER_2: [Self; 2] =
         [core::f64::consts::FRAC_PI_2, 6.123_233_995_736_766e-17];
     const UNIT_ANGLE_SPLITTER: Self = 134_217_729.0;
@@ -145,6 +152,7 @@ impl Real for f32 {
         (s, c)
     }
 
+    const EPSILON_CUBE_ROOT: Self = 4.921_566_6e-3;
     const UNIT_ANGLE_PI_OVER_2: [Self; 2] = [core::f32::consts::FRAC_PI_2, -4.371_139e-8];
     const UNIT_ANGLE_SPLITTER: Self = 4097.0;
 
@@ -173,7 +181,8 @@ pub(crate) fn binary_exponent<T: Real>(x: T) -> i32 {
 /// ±1020 in f64, ±124 in f32).
 pub(crate) fn power_of_two<T: Real>(k: i32) -> T {
     let limit = -binary_exponent(T::min_positive_value()) - 2;
-    let k = k.clamp(-limit, limit);
+    // Not `clamp`, whose check of its bounds is a panic path the compiler keeps.
+    let k = k.max(-limit).min(limit);
     // Built from its bits in f64, where it is exact, and exact again in f32 within ±124.
     T::constant(f64::from_bits(((k + 1023) as u64) << 52))
 }
