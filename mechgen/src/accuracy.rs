@@ -29,7 +29,6 @@
 //! sum of its declared lengths) has an undetermined direction whatever κ says (κ does not
 //! see a column's scale): its rates' estimates are infinite.
 
-use crate::linear::Factored;
 use crate::real::normaliser;
 use crate::{Error, Real};
 
@@ -148,33 +147,19 @@ impl<T: Real> Accuracy<T> {
     }
 }
 
-/// The estimate for rates solved with `jacobian` at a position of a mechanism whose declared
-/// lengths sum to `size`, `angles[j]` telling whether unknown `j` is an angle; an error if the
-/// velocity's or (with `highest` the acceleration) the acceleration's exceeds `required`.
-pub fn rates_accuracy<T: Real, const N: usize>(
-    jacobian: &[[T; N]; N],
-    size: T,
-    angles: [bool; N],
-    highest: Order,
-    required: &Accuracy<T>,
-) -> Result<Accuracy<T>, Error<T>> {
-    let condition = crate::linear::condition(*jacobian);
-    let estimate = Accuracy::estimate(condition, aspect(jacobian, size, angles));
-    estimate.within(&rates_only(required), highest)?;
-    Ok(estimate)
-}
-
-/// As [`rates_accuracy`], with the Jacobian already factored (its condition known).
+/// The estimate for rates solved with `jacobian` (whose condition estimate is `condition`)
+/// at a position of a mechanism whose declared lengths sum to `size`, `angles[j]` telling
+/// whether unknown `j` is an angle; an error if the velocity's or (with `highest` the
+/// acceleration) the acceleration's exceeds `required`.
 #[inline]
-pub fn rates_accuracy_factored<T: Real, const N: usize>(
-    factored: &Factored<T, N>,
+pub fn rates_accuracy<T: Real, const N: usize>(
+    condition: T,
     jacobian: &[[T; N]; N],
     size: T,
     angles: [bool; N],
     highest: Order,
     required: &Accuracy<T>,
 ) -> Result<Accuracy<T>, Error<T>> {
-    let condition = T::one() / factored.relative().abs();
     let estimate = Accuracy::estimate(condition, aspect(jacobian, size, angles));
     estimate.within(&rates_only(required), highest)?;
     Ok(estimate)

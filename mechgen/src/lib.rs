@@ -34,9 +34,7 @@ pub use mechgen_macros::mechanism;
 /// Items the generated code names. Not public API: they may change in any release.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::accuracy::{
-        rate_threshold, rates_accuracy, rates_accuracy_at, rates_accuracy_factored,
-    };
+    pub use crate::accuracy::{rate_threshold, rates_accuracy, rates_accuracy_at};
     pub use crate::kernel::{
         all_finite as finite_all, blame, branch_root, inverse, inverse_determinant, lanes,
         length_scale, rates_inverse_determinant, triangle_root, unit_angle,

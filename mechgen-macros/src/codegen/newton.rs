@@ -163,9 +163,9 @@ impl Generator<'_> {
              three without a closed form.\n\nErrors: as [`Self::position`] and \
              [`Self::motion_at`]."
         ));
-        let accuracy_check = self.rates_check_factored(
-            quote!(&#converged.jacobian),
+        let accuracy_check = self.rates_check(
             quote!(&#converged.at.jacobian),
+            quote!(#converged.solved.condition),
             "Acceleration",
             quote!(&#options.accuracy),
         );

@@ -170,53 +170,34 @@ impl Generator<'_> {
     ) -> TokenStream {
         let factors = self.factorise(jacobian);
         let matrix = local("jacobian_matrix");
-        let check = if self.triangular_steps().is_some() {
-            self.rates_check(quote!(&#matrix), highest)
+        // The whole Jacobian's condition, from its factors where it was factored whole.
+        let condition = if self.triangular_steps().is_some() {
+            quote!(::mechgen::condition(#matrix))
         } else {
             let factored = arg("jacobian");
-            self.rates_check_factored(
-                quote!(&#factored),
-                quote!(&#matrix),
-                highest,
-                quote!(&::mechgen::Accuracy::required()),
-            )
+            quote!(T::one() / #factored.relative().abs())
         };
+        let check = self.rates_check(
+            quote!(&#matrix),
+            condition,
+            highest,
+            quote!(&::mechgen::Accuracy::required()),
+        );
         let solves = self.reuse_solves(jacobian, right_sides);
         quote!(#factors #check #solves)
     }
 
-    /// `rates_accuracy(jacobian, size, angles, highest)?;` for the Jacobian `matrix` (an
-    /// expression of type `&[[T; N]; N]`): the sum of the declared lengths as the size.
-    pub(super) fn rates_check(&self, matrix: TokenStream, highest: &str) -> TokenStream {
-        self.rates_check_within(matrix, highest, quote!(&::mechgen::Accuracy::required()))
-    }
-
-    /// [`Self::rates_check`] with the Jacobian `matrix` already factored as `factored`,
-    /// against `required` (an expression of type `&Accuracy<T>`).
-    pub(super) fn rates_check_factored(
+    /// `rates_accuracy(condition, jacobian, size, angles, highest, required)?;` for the
+    /// Jacobian `matrix` (an expression of type `&[[T; N]; N]`) of condition `condition`,
+    /// against `required` (of type `&Accuracy<T>`), the sum of the declared lengths as the
+    /// size.
+    pub(super) fn rates_check(
         &self,
-        factored: TokenStream,
         matrix: TokenStream,
+        condition: TokenStream,
         highest: &str,
         required: TokenStream,
     ) -> TokenStream {
-        let (size, angles) = self.size_and_angles();
-        let highest = Ident::new(highest, proc_macro2::Span::call_site());
-        quote! {
-            ::mechgen::__private::rates_accuracy_factored(
-                #factored,
-                #matrix,
-                #size,
-                #angles,
-                ::mechgen::Order::#highest,
-                #required,
-            )?;
-        }
-    }
-
-    /// The sum of the declared lengths (for the estimates' aspect) and which unknowns are
-    /// angles, as expressions.
-    fn size_and_angles(&self) -> (TokenStream, TokenStream) {
         let lengths: Vec<&Ident> = self
             .model
             .params
@@ -234,23 +215,13 @@ impl Generator<'_> {
             .unknowns
             .iter()
             .map(|unknown| unknown.kind == crate::model::Kind::Angle);
-        (size, quote!([#(#angles),*]))
-    }
-
-    /// [`Self::rates_check`] against `required` (an expression of type `&Accuracy<T>`).
-    pub(super) fn rates_check_within(
-        &self,
-        matrix: TokenStream,
-        highest: &str,
-        required: TokenStream,
-    ) -> TokenStream {
-        let (size, angles) = self.size_and_angles();
         let highest = Ident::new(highest, proc_macro2::Span::call_site());
         quote! {
             ::mechgen::__private::rates_accuracy(
+                #condition,
                 #matrix,
                 #size,
-                #angles,
+                [#(#angles),*],
                 ::mechgen::Order::#highest,
                 #required,
             )?;
