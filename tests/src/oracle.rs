@@ -1159,6 +1159,140 @@ fn margin(x: &Big, limits: &[Big], inside: bool) -> f64 {
     }
 }
 
+/// The four-bar's limit angles, where the chord |O4 − A| equals l3 + l4 or |l3 − l4|:
+/// `sin²(θ/2) = (r² − (l1 − l2)²)/(4·l1·l2)`, `cos²(θ/2) = ((l1 + l2)² − r²)/(4·l1·l2)`.
+fn four_bar_limits(l1: &Big, l2: &Big, l3: &Big, l4: &Big) -> Vec<Big> {
+    let mut limits = Vec::new();
+    for reach in [l3 + l4, (l3 - l4).abs()] {
+        let s = (&reach - (l1 - l2).abs()) * (&reach + (l1 - l2).abs());
+        let c = (l1 + l2 - &reach) * (l1 + l2 + &reach);
+        if !s.is_negative() && !c.is_negative() && !s.is_zero() && !c.is_zero() {
+            let a = from_half_squares(&s, &c);
+            limits.push(-&a);
+            limits.push(a);
+        }
+    }
+    limits
+}
+
+/// The slider-crank's limit angles, where `sin θ2 = (c ∓ l3)/l2`, each at asin and π − asin.
+fn slider_crank_limits(l2: &Big, l3: &Big, c: &Big) -> Vec<Big> {
+    let mut limits = Vec::new();
+    for edge in [c - l3, c + l3] {
+        let s = &edge / l2;
+        if s.abs() < Big::one() {
+            let a = Big::atan2(&s, &(Big::one() - s.square()).sqrt());
+            limits.push((Big::pi() - &a).wrapped());
+            limits.push(a);
+        }
+    }
+    limits
+}
+
+/// The inverted slider-crank's limit angles, where `|A − O4| = |c·sin γ|` (`offset`).
+fn inverted_limits(l1: &Big, l2: &Big, offset: &Big) -> Vec<Big> {
+    let mut limits = Vec::new();
+    let s = (offset - (l1 - l2).abs()) * (offset + (l1 - l2).abs());
+    let k = (l1 + l2 - offset) * (l1 + l2 + offset);
+    if !s.is_negative() && !k.is_negative() && !s.is_zero() && !k.is_zero() {
+        let a = from_half_squares(&s, &k);
+        limits.push(-&a);
+        limits.push(a);
+    }
+    limits
+}
+
+/// The smallest gap (over the size) of a loop-by-loop mechanism's loops at `input` on
+/// `branches`, solving loop by loop as [`chained`] does but keeping only the directions: what
+/// the limit search evaluates.
+pub fn chain_gap(kind: Kind, p: &Params, input: f64, branches: &[Branch]) -> f64 {
+    let model = Model::new(kind, p);
+    let t = Big::from_f64(input);
+    let n = model.unknowns();
+    let mut state = State {
+        input: t.clone(),
+        input_direction: C::expi(&t),
+        q: vec![Big::zero(); n],
+        directions: vec![None; n],
+    };
+    let mut gap = f64::INFINITY;
+    for (k, terms) in model.loops.iter().enumerate() {
+        let (first, second) = (2 * k, 2 * k + 1);
+        let mut known = C::zero();
+        let (mut r1, mut r2) = (Big::zero(), Big::zero());
+        for term in terms {
+            match term.angle {
+                Some(Var::Unknown(j)) if j == first => r1 = state.magnitude(term),
+                Some(Var::Unknown(j)) if j == second => r2 = state.magnitude(term),
+                _ => known = known.add(&state.vector(term)),
+            }
+        }
+        let chord = C::new(-known.re, -known.im);
+        let (solution, loop_gap) = dyad(&chord, &chord.norm2(), &r1, &r2, branch_sign(branches[k]));
+        gap = gap.min(loop_gap.to_f64() / model.size);
+        let Some((e1, e2)) = solution else {
+            return gap;
+        };
+        state.directions[first] = Some(e1);
+        state.directions[second] = Some(e2);
+    }
+    gap
+}
+
+/// The input angles in (−π, π] where a mechanism's loops stop closing on `branches`: in closed
+/// form for one loop, else by a scan of [`chain_gap`] over 32 inputs and bisection (at 128
+/// bits, to adjacent floats) of each sign change.
+pub fn limit_angles(kind: Kind, p: &Params, branches: &[Branch]) -> Vec<f64> {
+    let b = |n: &str| Big::from_f64(p.get(n));
+    let exact = match kind {
+        Kind::FourBar => Some(four_bar_limits(&b("l1"), &b("l2"), &b("l3"), &b("l4"))),
+        Kind::SliderCrank => Some(slider_crank_limits(&b("l2"), &b("l3"), &b("c"))),
+        Kind::InvertedSliderCrank => {
+            let offset = (b("c") * b("gamma").sin()).abs();
+            Some(inverted_limits(&b("l1"), &b("l2"), &offset))
+        }
+        _ => None,
+    };
+    if let Some(limits) = exact {
+        return limits.iter().map(Big::to_f64).collect();
+    }
+    if kind == Kind::StephensonSixBar {
+        return Vec::new();
+    }
+    with_precision(128, || {
+        let pi = std::f64::consts::PI;
+        let samples = 32;
+        let at = |i: usize| -pi + 2.0 * pi * i as f64 / samples as f64;
+        let gaps: Vec<f64> = (0..=samples)
+            .map(|i| chain_gap(kind, p, at(i), branches))
+            .collect();
+        let mut limits = Vec::new();
+        for i in 0..samples {
+            if (gaps[i] >= 0.0) == (gaps[i + 1] >= 0.0) {
+                continue;
+            }
+            let (mut inside, mut outside) = if gaps[i] >= 0.0 {
+                (at(i), at(i + 1))
+            } else {
+                (at(i + 1), at(i))
+            };
+            for _ in 0..80 {
+                let middle = 0.5 * (inside + outside);
+                if middle == inside || middle == outside {
+                    break;
+                }
+                if chain_gap(kind, p, middle, branches) >= 0.0 {
+                    inside = middle;
+                } else {
+                    outside = middle;
+                }
+            }
+            limits.push(inside);
+        }
+        limits
+    })
+}
+
 /// The outcome of a closed-form oracle: the reach, and the truth on the asked branch and on the
 /// other (where the loops close).
 #[derive(Clone, Debug)]
@@ -1211,18 +1345,7 @@ pub fn four_bar(p: &Params, theta2: f64, branch: Branch, omega: f64, alpha: f64)
     };
     let (truth, gap) = solve_on(branch);
     let others = solve_on(branch.other()).0.into_iter().collect();
-    // Limits where the chord |O4 − A| equals l3 + l4 or |l3 − l4|:
-    // sin²(θ/2) = (r² − (l1 − l2)²)/(4 l1 l2), cos²(θ/2) = ((l1 + l2)² − r²)/(4 l1 l2).
-    let mut limits = Vec::new();
-    for reach in [&l3 + &l4, (&l3 - &l4).abs()] {
-        let s = (&reach - (&l1 - &l2).abs()) * (&reach + (&l1 - &l2).abs());
-        let c = (&l1 + &l2 - &reach) * (&l1 + &l2 + &reach);
-        if !s.is_negative() && !c.is_negative() && !s.is_zero() && !c.is_zero() {
-            let a = from_half_squares(&s, &c);
-            limits.push(-&a);
-            limits.push(a);
-        }
-    }
+    let limits = four_bar_limits(&l1, &l2, &l3, &l4);
     let size = model.size;
     // The gap moves by at most η(l1 + l2 + l3 + l4) + η·l2·|θ2| when every length moves by η
     // relative and the input by η·|θ2|.
@@ -1267,16 +1390,7 @@ pub fn slider_crank(p: &Params, theta2: f64, branch: Branch, omega: f64, alpha: 
         };
         Some(complete(&model, state, omega, alpha))
     };
-    // Limits where sin θ2 = (c ∓ l3)/l2, each at asin and π − asin.
-    let mut limits = Vec::new();
-    for edge in [&c - &l3, &c + &l3] {
-        let s = &edge / &l2;
-        if s.abs() < Big::one() {
-            let a = Big::atan2(&s, &(Big::one() - s.square()).sqrt());
-            limits.push(Big::pi() - &a);
-            limits.push(a);
-        }
-    }
+    let limits = slider_crank_limits(&l2, &l3, &c);
     let size = model.size;
     let slack = (size + p.get("l2") * theta2.abs()) / size;
     let reach = Reach {
@@ -1335,15 +1449,7 @@ pub fn inverted_slider_crank(
         };
         Some(complete(&model, state, omega, alpha))
     };
-    // Limits where |R| = |c·sin γ|.
-    let mut limits = Vec::new();
-    let s = (&offset - (&l1 - &l2).abs()) * (&offset + (&l1 - &l2).abs());
-    let k = (&l1 + &l2 - &offset) * (&l1 + &l2 + &offset);
-    if !s.is_negative() && !k.is_negative() && !s.is_zero() && !k.is_zero() {
-        let a = from_half_squares(&s, &k);
-        limits.push(-&a);
-        limits.push(a);
-    }
+    let limits = inverted_limits(&l1, &l2, &offset);
     let size = model.size;
     // |R| moves by η(l1 + l2 + l2|θ2|), |c sin γ| by η(|c| + |c|·|γ|).
     let slack =
@@ -1502,6 +1608,33 @@ fn lipschitz(model: &Model, state: &State) -> Big {
     sum.sqrt()
 }
 
+/// The radius (Euclidean, in the unknowns' own units) of a ball about a root from every point
+/// of which Kantorovich certifies that Newton converges to it: with `β = ‖J⁻¹‖`, `L` the
+/// Jacobian's Lipschitz constant and `‖J‖` (Frobenius norms at the root),
+/// `r = 1/(4·β²·L·(‖J‖ + L))` keeps `β·L·r ≤ 1/4`, so `‖J(x)⁻¹‖ ≤ 4β/3`, and
+/// `‖f(x)‖ ≤ (‖J‖ + L)·r`, so `h ≤ (16/9)·β²·L·(‖J‖ + L)·r < 1/2`.
+pub fn newton_radius(model: &Model, truth: &Truth) -> f64 {
+    let j = jacobian(model, &truth.state);
+    let n = model.unknowns();
+    let mut inverse2 = Big::zero();
+    for k in 0..n {
+        let mut e = vec![Big::zero(); n];
+        e[k] = Big::one();
+        match solve(j.clone(), e) {
+            Some((x, _)) => inverse2 = x.iter().fold(inverse2, |acc, v| acc + v.square()),
+            None => return 0.0,
+        }
+    }
+    let norm = j
+        .iter()
+        .flatten()
+        .fold(Big::zero(), |acc, v| acc + v.square())
+        .sqrt();
+    let l = lipschitz(model, &truth.state);
+    let four = Big::from_f64(4.0);
+    (Big::one() / (four * inverse2 * &l * (norm + &l))).to_f64()
+}
+
 /// Polishes `candidate` (the unknowns at `input`) by Newton on the model's loops at the
 /// oracle's precision.
 pub fn polish(model: &Model, input: f64, candidate: &[f64], omega: f64, alpha: f64) -> Polish {
@@ -1612,6 +1745,9 @@ pub fn weighted_error(
     want: &[Big],
     scale: f64,
 ) -> f64 {
+    if got.iter().any(|g| !g.is_finite()) {
+        return f64::INFINITY;
+    }
     got.iter()
         .zip(want)
         .zip(&truth.columns)
@@ -1650,6 +1786,2160 @@ pub fn relative_residual(model: &Model, input: f64, q: &[f64]) -> f64 {
         .zip(model.loop_magnitudes(&state))
         .map(|(r, m)| (r.norm() / m).to_f64())
         .fold(0.0, f64::max)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cases
+
+/// The float type a case runs in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Float {
+    F32,
+    F64,
+}
+
+impl Float {
+    pub fn epsilon(self) -> f64 {
+        match self {
+            Float::F32 => f64::from(f32::EPSILON),
+            Float::F64 => f64::EPSILON,
+        }
+    }
+
+    /// `x` rounded to this type (exactly representable in it), as an `f64`.
+    pub fn round(self, x: f64) -> f64 {
+        match self {
+            Float::F32 => f64::from(x as f32),
+            Float::F64 => x,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Float::F32 => "f32",
+            Float::F64 => "f64",
+        }
+    }
+}
+
+/// Which entry point a case calls.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Api {
+    /// `assemble(input, branches)`.
+    Assemble,
+    /// `motion(input, branches, ω, α)`.
+    Motion,
+    /// Newton: `position(input, &guess, &NewtonOptions::default())`.
+    Position,
+    /// Newton and rates: `motion_near(input, &guess, &default, ω, α)`.
+    MotionNear,
+    /// Every scene kernel of `scenes()`.
+    Scenes,
+}
+
+impl Api {
+    pub const ALL: [Api; 5] = [
+        Api::Assemble,
+        Api::Motion,
+        Api::Position,
+        Api::MotionNear,
+        Api::Scenes,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Api::Assemble => "assemble",
+            Api::Motion => "motion",
+            Api::Position => "position",
+            Api::MotionNear => "motion_near",
+            Api::Scenes => "scenes",
+        }
+    }
+}
+
+/// One call of one entry point of one mechanism, with everything needed to repeat it.
+#[derive(Clone, Debug)]
+pub struct Case {
+    pub kind: Kind,
+    pub float: Float,
+    pub api: Api,
+    /// The constructor's arguments, in its order, each exactly representable in `float`:
+    /// four-bar `[l1, l2, l3, l4]`, slider-crank `[l2, l3, c]`, inverted slider-crank
+    /// `[l1, l2, c, γ]`, Watt `[l1, l2, l3, l4, l5, β, l6, l7, x, y]`, Stephenson
+    /// `[l1, l2, l3, bc, cd, β, l4, l6, x, y]`, Jansen `[a, b, …, m]`.
+    pub dims: Vec<f64>,
+    /// A coupler point `(distance, angle)` for the four-bar's scenes.
+    pub coupler: Option<(f64, f64)>,
+    pub input: f64,
+    /// One per loop.
+    pub branches: Vec<Branch>,
+    pub omega: f64,
+    pub alpha: f64,
+    /// A position near the one wanted, where the oracle has no closed form (the Stephenson
+    /// six-bar): the oracle polishes it.
+    pub near: Option<Vec<f64>>,
+    /// Where Newton starts, as fractions in [−1, 1] of the distance from the true position at
+    /// which Kantorovich still certifies convergence.
+    pub nudge: Vec<f64>,
+    /// How the input was placed: `"anywhere"`, or how far from a limit.
+    pub placement: String,
+    /// Repeat with every length scaled by this factor (a power of two: angles must be
+    /// bit-identical; otherwise equal to rounding).
+    pub rescale: Option<f64>,
+}
+
+impl Case {
+    /// The Rust that repeats the call.
+    pub fn reproducer(&self) -> String {
+        let t = self.float.name();
+        let d = |v: f64| match self.float {
+            Float::F32 => format!("{:?}", v as f32),
+            Float::F64 => format!("{v:?}"),
+        };
+        let list = |v: &[f64]| v.iter().map(|x| d(*x)).collect::<Vec<_>>().join(", ");
+        let dims = &self.dims;
+        let build = match self.kind {
+            Kind::FourBar => format!("FourBar::<{t}>::new({})?", list(dims)),
+            Kind::SliderCrank => format!("SliderCrank::<{t}>::new({})?", list(dims)),
+            Kind::InvertedSliderCrank => {
+                format!("InvertedSliderCrank::<{t}>::new({})?", list(dims))
+            }
+            Kind::WattSixBar => format!(
+                "WattSixBar::<{t}>::new([{}], {}, {}, {}, {}, ({}, {}))?",
+                list(&dims[..4]),
+                d(dims[4]),
+                d(dims[5]),
+                d(dims[6]),
+                d(dims[7]),
+                d(dims[8]),
+                d(dims[9])
+            ),
+            Kind::StephensonSixBar => format!(
+                "StephensonSixBar::<{t}>::new({}, {}, {}, [{}, {}], {}, {}, {}, ({}, {}))?",
+                d(dims[0]),
+                d(dims[1]),
+                d(dims[2]),
+                d(dims[3]),
+                d(dims[4]),
+                d(dims[5]),
+                d(dims[6]),
+                d(dims[7]),
+                d(dims[8]),
+                d(dims[9])
+            ),
+            Kind::JansenLeg => format!("JansenLeg::<{t}>::new([{}])?", list(dims)),
+        };
+        let build = match self.coupler {
+            Some((a, delta)) if self.api == Api::Scenes => {
+                format!("{build}.with_coupler_point({}, {})?", d(a), d(delta))
+            }
+            _ => build,
+        };
+        let branches = if self.branches.len() == 1 {
+            format!("{:?}", self.branches[0])
+        } else {
+            format!("{:?}", self.branches)
+        };
+        let call = match self.api {
+            Api::Assemble => format!(".assemble({}, {branches})", d(self.input)),
+            Api::Motion => format!(
+                ".motion({}, {branches}, {}, {})",
+                d(self.input),
+                d(self.omega),
+                d(self.alpha)
+            ),
+            Api::Position => format!(
+                ".position({}, &guess, &NewtonOptions::default())",
+                d(self.input)
+            ),
+            Api::MotionNear => format!(
+                ".motion_near({}, &guess, &NewtonOptions::default(), {}, {})",
+                d(self.input),
+                d(self.omega),
+                d(self.alpha)
+            ),
+            Api::Scenes => format!(
+                ".scenes()?.<each>({}, {branches}, {}, {})",
+                d(self.input),
+                d(self.omega),
+                d(self.alpha)
+            ),
+        };
+        let rescale = self
+            .rescale
+            .map_or(String::new(), |f| format!(" [then every length × {f:e}]"));
+        format!("{build}{call}{rescale} [{}]", self.placement)
+    }
+}
+
+/// Whether a constructor must accept these dimensions: positive, finite lengths that close
+/// their loops at some input (and, for the Jansen leg, its two rigid triangles), judged exactly.
+/// `None` where that is within rounding `eta` (relative to the lengths involved) of failing,
+/// where either answer is right.
+pub fn valid_dimensions(kind: Kind, dims: &[f64], eta: f64) -> Option<bool> {
+    let b = |i: usize| Big::from_f64(dims[i]);
+    if dims.iter().any(|d| !d.is_finite()) {
+        return Some(false);
+    }
+    // Each condition as `slack ≥ 0`, with the size of the numbers it compares.
+    let mut conditions: Vec<(Big, Big)> = Vec::new();
+    let positive = |slots: &[usize]| slots.iter().all(|&i| dims[i] > 0.0);
+    let ok = match kind {
+        Kind::FourBar => {
+            let size = b(0) + b(1) + b(2) + b(3);
+            conditions.push((b(0) + b(1) - (b(2) - b(3)).abs(), size.clone()));
+            conditions.push((b(2) + b(3) - (b(0) - b(1)).abs(), size));
+            positive(&[0, 1, 2, 3])
+        }
+        Kind::SliderCrank => {
+            conditions.push((b(0) + b(1) - b(2).abs(), b(0) + b(1) + b(2).abs()));
+            positive(&[0, 1])
+        }
+        Kind::InvertedSliderCrank => {
+            let offset = (b(2) * b(3).sin()).abs();
+            conditions.push((
+                b(0) + b(1) - &offset,
+                b(0) + b(1) + b(2).abs() * (Big::one() + b(3).abs()),
+            ));
+            positive(&[0, 1])
+        }
+        Kind::WattSixBar | Kind::StephensonSixBar => positive(&[0, 1, 2, 3, 4, 6, 7]),
+        Kind::JansenLeg => {
+            for (p, q, r) in [(1, 3, 4), (6, 8, 7)] {
+                let size = b(p) + b(q) + b(r);
+                conditions.push((b(r) - (b(p) - b(q)).abs(), size.clone()));
+                conditions.push((b(p) + b(q) - b(r), size));
+            }
+            positive(&(0..13).collect::<Vec<_>>())
+        }
+    };
+    if !ok {
+        return Some(false);
+    }
+    let tolerance = Big::from_f64(eta);
+    if conditions
+        .iter()
+        .any(|(slack, size)| slack.abs() <= &tolerance * size)
+    {
+        return None;
+    }
+    Some(conditions.iter().all(|(slack, _)| !slack.is_negative()))
+}
+
+// ---------------------------------------------------------------------------------------------
+/// The accuracy contract (README, "Accuracy") as checks of mechgen's answers against the
+/// oracle. With ε the float's epsilon, κ the condition estimate (the larger of what mechgen
+/// reports at its answer and the oracle's at the true position: the contract's κ is an
+/// estimate of the latter, and near the singular threshold the answer's own κ moves by more
+/// than rounding) and ρ the aspect:
+///
+/// - every `Ok` is finite; its loops close to the rounding floor, `16·ε·Σ|r|` per loop; it is
+///   on the requested branch (or on a branch the oracle cannot tell from it within the bound);
+///   its position is within `16·ε·κ` of the truth (each unknown weighted by its Jacobian
+///   column, over the size), its rates within `16·ε·κ²·ρ` and its accelerations within
+///   `16·ε·κ³·ρ²` (over the rates' size); a tracked point within the first-order propagation
+///   of those bounds through its vectors;
+/// - every `Err` is the right one: `CannotAssemble` only where the oracle says the loops do not
+///   close, or within rounding `16·ε` of a limit (by the reach's slack); `Singular` only where
+///   some position within the bound of the truth is at the documented threshold,
+///   `1/κ ≤ √ε + N·16·ε·κ·ρ`, or the loops are within rounding of a limit; Newton's
+///   `OtherBranch` and `NoConvergence` only where its guess was outside the basin Kantorovich
+///   certifies (rounding the guess to the float put it there); nothing else;
+/// - scaling every length by a power of two changes no outcome and no angle's bits (lengths
+///   scale exactly); by another factor, outcomes change only within rounding of a limit or the
+///   threshold, and results agree to the sum of their bounds and the data's rounding.
+pub mod judge {
+    use super::*;
+    use mechanisms::*;
+    use mechgen::{Error, NewtonOptions, Real};
+    use std::fmt::Debug;
+    use std::str::FromStr;
+
+    /// The contract's factor.
+    pub const FACTOR: f64 = 16.0;
+
+    /// A broken promise: its class (what kind of failure) and what happened.
+    #[derive(Clone, Debug)]
+    pub struct Finding {
+        pub class: String,
+        pub detail: String,
+    }
+
+    /// How a case came out.
+    #[derive(Clone, Debug, Default)]
+    pub struct Verdict {
+        /// `"Ok"`, the error's name, or `"rejected"` (the constructor refused).
+        pub outcome: String,
+        pub findings: Vec<Finding>,
+    }
+
+    impl Verdict {
+        fn fail(&mut self, api: Api, class: &str, detail: String) {
+            self.findings.push(Finding {
+                class: format!("{}: {class}", api.name()),
+                detail,
+            });
+        }
+    }
+
+    /// A scene's output, in terms the oracle knows.
+    #[derive(Clone, Debug)]
+    pub enum Quantity {
+        /// Unknown `index` (0 value, 1 rate, 2 acceleration).
+        Unknown {
+            index: usize,
+            level: usize,
+            value: f64,
+        },
+        /// A tracked point (0 position, 1 velocity, 2 acceleration).
+        Point {
+            name: &'static str,
+            level: usize,
+            value: (f64, f64),
+        },
+    }
+
+    /// What a solver returned, widened to f64.
+    type Got<V> = Result<V, Error<f64>>;
+
+    fn widen<T: Real>(e: Error<T>) -> Error<f64> {
+        let f = |v: T| v.to_f64().unwrap_or(f64::NAN);
+        match e {
+            Error::NonFinite { quantity } => Error::NonFinite { quantity },
+            Error::CannotAssemble { input } => Error::CannotAssemble { input: f(input) },
+            Error::Singular {
+                determinant,
+                relative_determinant,
+            } => Error::Singular {
+                determinant: f(determinant),
+                relative_determinant: f(relative_determinant),
+            },
+            Error::OtherBranch => Error::OtherBranch,
+            Error::NoConvergence {
+                iterations,
+                residual_norm,
+            } => Error::NoConvergence {
+                iterations,
+                residual_norm: f(residual_norm),
+            },
+            _ => Error::NonFinite {
+                quantity: "an error mechgen added since",
+            },
+        }
+    }
+
+    fn f<T: Real>(v: &[T]) -> Vec<f64> {
+        v.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect()
+    }
+
+    pub fn error_name(e: &Error<f64>) -> &'static str {
+        match e {
+            Error::NonFinite { .. } => "NonFinite",
+            Error::CannotAssemble { .. } => "CannotAssemble",
+            Error::Singular { .. } => "Singular",
+            Error::OtherBranch => "OtherBranch",
+            Error::NoConvergence { .. } => "NoConvergence",
+            _ => "other",
+        }
+    }
+
+    /// The entry points of a shipped mechanism in a float type, as the judge calls them.
+    pub trait Subject<T: Real>: Sized + Debug {
+        const KIND: Kind;
+        fn build(dims: &[T], coupler: Option<(T, T)>) -> Option<Self>;
+        /// `None` where there is no closed form.
+        fn assemble(&self, input: T, b: &[Branch]) -> Option<Got<Vec<f64>>>;
+        fn motion(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Got<[Vec<f64>; 3]>>;
+        /// The position, `Solved::condition` and `Solved::residual_norm`.
+        fn position(&self, input: T, guess: &[T]) -> Got<(Vec<f64>, f64, f64)>;
+        fn motion_near(&self, input: T, guess: &[T], w: T, a: T) -> Got<([Vec<f64>; 3], f64)>;
+        fn condition(&self, input: T, q: &[T]) -> f64;
+        /// Every scene, by name, with its outputs; `None` where there are no scenes.
+        fn scenes(
+            &self,
+            input: T,
+            b: &[Branch],
+            w: T,
+            a: T,
+        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>>;
+    }
+
+    fn point<T: Real>(name: &'static str, level: usize, v: mechgen::Vec2<T>) -> Quantity {
+        Quantity::Point {
+            name,
+            level,
+            value: (
+                v.x.to_f64().unwrap_or(f64::NAN),
+                v.y.to_f64().unwrap_or(f64::NAN),
+            ),
+        }
+    }
+
+    fn unknown<T: Real>(index: usize, level: usize, v: T) -> Quantity {
+        Quantity::Unknown {
+            index,
+            level,
+            value: v.to_f64().unwrap_or(f64::NAN),
+        }
+    }
+
+    fn unknowns<T: Real>(pairs: &[(usize, usize, T)]) -> Vec<Quantity> {
+        pairs.iter().map(|&(i, l, v)| unknown(i, l, v)).collect()
+    }
+
+    macro_rules! newton_entry_points {
+        ($unknowns:ident) => {
+            fn position(&self, input: T, guess: &[T]) -> Got<(Vec<f64>, f64, f64)> {
+                let guess = $unknowns::from_array(guess.try_into().expect("a guess per unknown"));
+                self.position(input, &guess, &NewtonOptions::default())
+                    .map(|s| {
+                        (
+                            f(&s.value.to_array()),
+                            s.condition.to_f64().unwrap_or(f64::NAN),
+                            s.residual_norm.to_f64().unwrap_or(f64::NAN),
+                        )
+                    })
+                    .map_err(widen)
+            }
+
+            fn motion_near(&self, input: T, guess: &[T], w: T, a: T) -> Got<([Vec<f64>; 3], f64)> {
+                let guess = $unknowns::from_array(guess.try_into().expect("a guess per unknown"));
+                self.motion_near(input, &guess, &NewtonOptions::default(), w, a)
+                    .map(|s| {
+                        let m = s.value;
+                        (
+                            [
+                                f(&m.position.to_array()),
+                                f(&m.velocity.to_array()),
+                                f(&m.acceleration.to_array()),
+                            ],
+                            s.condition.to_f64().unwrap_or(f64::NAN),
+                        )
+                    })
+                    .map_err(widen)
+            }
+
+            fn condition(&self, input: T, q: &[T]) -> f64 {
+                let q = $unknowns::from_array(q.try_into().expect("a value per unknown"));
+                self.condition(input, &q).to_f64().unwrap_or(f64::NAN)
+            }
+        };
+    }
+
+    macro_rules! closed_entry_points {
+        ($branches:expr) => {
+            fn assemble(&self, input: T, b: &[Branch]) -> Option<Got<Vec<f64>>> {
+                Some(
+                    self.assemble(input, $branches(b))
+                        .map(|q| f(&q.to_array()))
+                        .map_err(widen),
+                )
+            }
+
+            fn motion(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Got<[Vec<f64>; 3]>> {
+                Some(
+                    self.motion(input, $branches(b), w, a)
+                        .map(|m| {
+                            [
+                                f(&m.position.to_array()),
+                                f(&m.velocity.to_array()),
+                                f(&m.acceleration.to_array()),
+                            ]
+                        })
+                        .map_err(widen),
+                )
+            }
+        };
+    }
+
+    fn one(b: &[Branch]) -> Branch {
+        b[0]
+    }
+
+    fn two(b: &[Branch]) -> [Branch; 2] {
+        [b[0], b[1]]
+    }
+
+    fn three(b: &[Branch]) -> [Branch; 3] {
+        [b[0], b[1], b[2]]
+    }
+
+    impl<T: Real> Subject<T> for FourBar<T> {
+        const KIND: Kind = Kind::FourBar;
+
+        fn build(d: &[T], coupler: Option<(T, T)>) -> Option<Self> {
+            let m = FourBar::new(d[0], d[1], d[2], d[3]).ok()?;
+            match coupler {
+                Some((a, delta)) => m.with_coupler_point(a, delta).ok(),
+                None => Some(m),
+            }
+        }
+
+        closed_entry_points!(one);
+        newton_entry_points!(FourBarUnknowns);
+
+        fn scenes(
+            &self,
+            input: T,
+            b: &[Branch],
+            w: T,
+            a: T,
+        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+            let s = match self.scenes() {
+                Ok(s) => s,
+                Err(e) => return Some(Err(widen(e))),
+            };
+            let b = b[0];
+            Some(Ok(vec![
+                (
+                    "angles",
+                    s.angles(input, b, w, a)
+                        .map(|o| {
+                            unknowns(&[
+                                (0, 0, o.theta3),
+                                (1, 0, o.theta4),
+                                (0, 1, o.theta3_dot),
+                                (1, 1, o.theta4_dot),
+                                (0, 2, o.theta3_ddot),
+                                (1, 2, o.theta4_ddot),
+                            ])
+                        })
+                        .map_err(widen),
+                ),
+                (
+                    "joints",
+                    s.joints(input, b)
+                        .map(|o| {
+                            vec![
+                                point("crank_pin", 0, o.crank_pin),
+                                point("rocker_pin", 0, o.rocker_pin),
+                            ]
+                        })
+                        .map_err(widen),
+                ),
+                (
+                    "coupler_path",
+                    s.coupler_path(input, b)
+                        .map(|o| vec![point("coupler_point", 0, o.coupler_point)])
+                        .map_err(widen),
+                ),
+                (
+                    "coupler_motion",
+                    s.coupler_motion(input, b, w, a)
+                        .map(|o| {
+                            vec![
+                                point("coupler_point", 0, o.coupler_point),
+                                point("coupler_point", 1, o.coupler_point_dot),
+                                point("coupler_point", 2, o.coupler_point_ddot),
+                            ]
+                        })
+                        .map_err(widen),
+                ),
+            ]))
+        }
+    }
+
+    impl<T: Real> Subject<T> for SliderCrank<T> {
+        const KIND: Kind = Kind::SliderCrank;
+
+        fn build(d: &[T], _: Option<(T, T)>) -> Option<Self> {
+            SliderCrank::new(d[0], d[1], d[2]).ok()
+        }
+
+        closed_entry_points!(one);
+        newton_entry_points!(SliderCrankUnknowns);
+
+        fn scenes(
+            &self,
+            input: T,
+            b: &[Branch],
+            w: T,
+            a: T,
+        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+            let s = match self.scenes() {
+                Ok(s) => s,
+                Err(e) => return Some(Err(widen(e))),
+            };
+            let b = b[0];
+            Some(Ok(vec![
+                (
+                    "state",
+                    s.state(input, b, w, a)
+                        .map(|o| {
+                            unknowns(&[
+                                (0, 0, o.theta3),
+                                (1, 0, o.d),
+                                (0, 1, o.theta3_dot),
+                                (1, 1, o.d_dot),
+                                (0, 2, o.theta3_ddot),
+                                (1, 2, o.d_ddot),
+                            ])
+                        })
+                        .map_err(widen),
+                ),
+                (
+                    "slider",
+                    s.slider(input, b, w, a)
+                        .map(|o| unknowns(&[(1, 0, o.d), (1, 1, o.d_dot), (1, 2, o.d_ddot)]))
+                        .map_err(widen),
+                ),
+            ]))
+        }
+    }
+
+    impl<T: Real> Subject<T> for InvertedSliderCrank<T> {
+        const KIND: Kind = Kind::InvertedSliderCrank;
+
+        fn build(d: &[T], _: Option<(T, T)>) -> Option<Self> {
+            InvertedSliderCrank::new(d[0], d[1], d[2], d[3]).ok()
+        }
+
+        closed_entry_points!(one);
+        newton_entry_points!(InvertedSliderCrankUnknowns);
+
+        fn scenes(
+            &self,
+            input: T,
+            b: &[Branch],
+            w: T,
+            a: T,
+        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+            let s = match self.scenes() {
+                Ok(s) => s,
+                Err(e) => return Some(Err(widen(e))),
+            };
+            Some(Ok(vec![(
+                "state",
+                s.state(input, b[0], w, a)
+                    .map(|o| {
+                        unknowns(&[
+                            (0, 0, o.theta4),
+                            (1, 0, o.b),
+                            (0, 1, o.theta4_dot),
+                            (1, 1, o.b_dot),
+                            (0, 2, o.theta4_ddot),
+                            (1, 2, o.b_ddot),
+                        ])
+                    })
+                    .map_err(widen),
+            )]))
+        }
+    }
+
+    impl<T: Real> Subject<T> for WattSixBar<T> {
+        const KIND: Kind = Kind::WattSixBar;
+
+        fn build(d: &[T], _: Option<(T, T)>) -> Option<Self> {
+            WattSixBar::new(
+                [d[0], d[1], d[2], d[3]],
+                d[4],
+                d[5],
+                d[6],
+                d[7],
+                (d[8], d[9]),
+            )
+            .ok()
+        }
+
+        closed_entry_points!(two);
+        newton_entry_points!(WattSixBarUnknowns);
+
+        fn scenes(
+            &self,
+            input: T,
+            b: &[Branch],
+            w: T,
+            a: T,
+        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+            let s = match self.scenes() {
+                Ok(s) => s,
+                Err(e) => return Some(Err(widen(e))),
+            };
+            Some(Ok(vec![(
+                "output",
+                s.output(input, two(b), w, a)
+                    .map(|o| {
+                        unknowns(&[
+                            (3, 0, o.theta6),
+                            (3, 1, o.theta6_dot),
+                            (3, 2, o.theta6_ddot),
+                        ])
+                    })
+                    .map_err(widen),
+            )]))
+        }
+    }
+
+    impl<T: Real> Subject<T> for StephensonSixBar<T> {
+        const KIND: Kind = Kind::StephensonSixBar;
+
+        fn build(d: &[T], _: Option<(T, T)>) -> Option<Self> {
+            StephensonSixBar::new(
+                d[0],
+                d[1],
+                d[2],
+                [d[3], d[4]],
+                d[5],
+                d[6],
+                d[7],
+                (d[8], d[9]),
+            )
+            .ok()
+        }
+
+        fn assemble(&self, _: T, _: &[Branch]) -> Option<Got<Vec<f64>>> {
+            None
+        }
+
+        fn motion(&self, _: T, _: &[Branch], _: T, _: T) -> Option<Got<[Vec<f64>; 3]>> {
+            None
+        }
+
+        newton_entry_points!(StephensonSixBarUnknowns);
+
+        fn scenes(
+            &self,
+            _: T,
+            _: &[Branch],
+            _: T,
+            _: T,
+        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+            None
+        }
+    }
+
+    impl<T: Real> Subject<T> for JansenLeg<T> {
+        const KIND: Kind = Kind::JansenLeg;
+
+        fn build(d: &[T], _: Option<(T, T)>) -> Option<Self> {
+            JansenLeg::new(d.try_into().ok()?).ok()
+        }
+
+        closed_entry_points!(three);
+        newton_entry_points!(JansenLegUnknowns);
+
+        fn scenes(
+            &self,
+            input: T,
+            b: &[Branch],
+            w: T,
+            a: T,
+        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+            let s = match self.scenes() {
+                Ok(s) => s,
+                Err(e) => return Some(Err(widen(e))),
+            };
+            let b = three(b);
+            Some(Ok(vec![
+                (
+                    "foot_path",
+                    s.foot_path(input, b)
+                        .map(|o| vec![point("foot", 0, o.foot)])
+                        .map_err(widen),
+                ),
+                (
+                    "foot_motion",
+                    s.foot_motion(input, b, w, a)
+                        .map(|o| {
+                            vec![
+                                point("foot", 0, o.foot),
+                                point("foot", 1, o.foot_dot),
+                                point("foot", 2, o.foot_ddot),
+                            ]
+                        })
+                        .map_err(widen),
+                ),
+            ]))
+        }
+    }
+
+    /// Judges one case.
+    pub fn judge(case: &Case) -> Verdict {
+        match case.float {
+            Float::F32 => judge_in::<f32>(case),
+            Float::F64 => judge_in::<f64>(case),
+        }
+    }
+
+    fn judge_in<T: Real + FromStr + Into<f64>>(case: &Case) -> Verdict {
+        match case.kind {
+            Kind::FourBar => run::<T, FourBar<T>>(case),
+            Kind::SliderCrank => run::<T, SliderCrank<T>>(case),
+            Kind::InvertedSliderCrank => run::<T, InvertedSliderCrank<T>>(case),
+            Kind::WattSixBar => run::<T, WattSixBar<T>>(case),
+            Kind::StephensonSixBar => run::<T, StephensonSixBar<T>>(case),
+            Kind::JansenLeg => run::<T, JansenLeg<T>>(case),
+        }
+    }
+
+    /// What the oracle says about a case.
+    struct Expect {
+        model: Model,
+        reach: Option<Reach>,
+        truth: Option<Truth>,
+        others: Vec<Truth>,
+        eps: f64,
+        input: f64,
+    }
+
+    impl Expect {
+        fn size(&self) -> f64 {
+            self.model.size
+        }
+
+        fn n(&self) -> usize {
+            self.model.unknowns()
+        }
+
+        /// Within rounding of a limit (or unreachable, for the error checks).
+        fn unreachable_or_near_limit(&self) -> bool {
+            match &self.reach {
+                Some(r) => !r.reachable() || r.near_limit(FACTOR * self.eps),
+                None => self.truth.is_none(),
+            }
+        }
+
+        fn near_limit(&self) -> bool {
+            self.reach.is_some_and(|r| r.near_limit(FACTOR * self.eps))
+        }
+
+        /// The contract's κ: the larger of the reported one and the truth's.
+        fn kappa(&self, reported: f64) -> f64 {
+            let truth = self.truth.as_ref().map_or(1.0, |t| t.condition);
+            let reported = if reported.is_nan() { 1.0 } else { reported };
+            truth.max(reported).max(1.0)
+        }
+
+        fn rho(&self) -> f64 {
+            self.truth.as_ref().map_or(1.0, |t| t.aspect(self.size()))
+        }
+
+        /// Whether some position within the bound of the truth is at the singular threshold.
+        fn singular_allowed(&self) -> bool {
+            if self.near_limit() {
+                return true;
+            }
+            let Some(t) = &self.truth else {
+                return true;
+            };
+            let kappa = t.condition;
+            if !kappa.is_finite() {
+                return true;
+            }
+            let n = self.n() as f64;
+            1.0 / kappa <= self.eps.sqrt() + n * FACTOR * self.eps * kappa * t.aspect(self.size())
+        }
+
+        /// Judges a position.
+        fn position(
+            &self,
+            v: &mut Verdict,
+            api: Api,
+            q: &[f64],
+            reported_kappa: f64,
+            wanted: &[Branch],
+        ) {
+            if q.iter().any(|x| !x.is_finite()) {
+                v.fail(api, "not finite inside Ok", format!("{q:?}"));
+                return;
+            }
+            // The floor, 16·ε·Σ|r|, plus what evaluating a loop of n vectors in the float
+            // rounds (each vector to ε, each of the n − 1 sums to ε/2: under n·ε·Σ|r|).
+            let terms = self.model.loops.iter().map(Vec::len).max().unwrap_or(0) as f64;
+            let floor = (FACTOR + terms) * self.eps;
+            let residual = relative_residual(&self.model, self.input, q);
+            if residual > floor {
+                v.fail(
+                    api,
+                    "residual above the rounding floor",
+                    format!("residual {residual:.2e} of the loop's magnitudes, floor (16 + n)·ε = {floor:.2e}"),
+                );
+            }
+            let Some(truth) = &self.truth else {
+                if self.reach.is_none() {
+                    // No closed form and no certified root: nothing to judge by.
+                    return;
+                }
+                let state = State::from_f64(&self.model, self.input, q);
+                let (branches, _) = branch_signs(&self.model, &state);
+                if !self.unreachable_or_near_limit() {
+                    v.fail(api, "Ok where the oracle has no position", format!("{q:?}"));
+                } else if self.near_limit() {
+                    // Within rounding of a limit, where the branches meet: either is right.
+                } else if branches != wanted && residual <= floor {
+                    v.fail(
+                        api,
+                        "Ok on another branch than asked, without saying so",
+                        format!("signs {branches:?}, asked {wanted:?}"),
+                    );
+                } else {
+                    let r = self.reach.expect("a reach");
+                    v.fail(
+                        api,
+                        "Ok beyond the range of motion",
+                        format!(
+                            "gap {:.2e} of the size ({:.1} × rounding), margin {:.2e} rad",
+                            r.gap,
+                            r.gap.abs() / (FACTOR * self.eps * r.slack),
+                            r.margin
+                        ),
+                    );
+                }
+                return;
+            };
+            let kappa = self.kappa(reported_kappa);
+            let bound = FACTOR * self.eps * kappa;
+            let error = position_error(&self.model, truth, q);
+            let state = State::from_f64(&self.model, self.input, q);
+            let (branches, _) = branch_signs(&self.model, &state);
+            // Near a toggle the other branch lies within the bound too: either label is right.
+            let other_close = self.others.iter().any(|o| {
+                position_error(&self.model, o, q) <= bound
+                    || position_error(
+                        &self.model,
+                        o,
+                        &truth.q().iter().map(Big::to_f64).collect::<Vec<_>>(),
+                    ) <= bound
+            });
+            if error > bound {
+                let on_other = self
+                    .others
+                    .iter()
+                    .any(|o| position_error(&self.model, o, q) <= bound);
+                if on_other {
+                    v.fail(
+                        api,
+                        "wrong branch",
+                        format!("on another branch than {wanted:?} (κ {kappa:.2e})"),
+                    );
+                } else {
+                    v.fail(
+                        api,
+                        "position error beyond 16·ε·κ",
+                        format!(
+                            "error {error:.2e} = {:.1} × bound (κ {kappa:.2e}, true κ {:.2e})",
+                            error / bound,
+                            truth.condition
+                        ),
+                    );
+                }
+            } else if self.model.kind != Kind::StephensonSixBar
+                && branches != wanted
+                && !other_close
+            {
+                v.fail(
+                    api,
+                    "wrong branch",
+                    format!("signs {branches:?}, asked {wanted:?}"),
+                );
+            }
+        }
+
+        /// Judges rates and accelerations.
+        fn rates(&self, v: &mut Verdict, api: Api, rates: &[Vec<f64>], reported_kappa: f64) {
+            let Some(truth) = &self.truth else {
+                return;
+            };
+            let (Some(tv), Some(ta)) = (&truth.velocity, &truth.acceleration) else {
+                v.fail(
+                    api,
+                    "rates where the Jacobian is exactly singular",
+                    String::new(),
+                );
+                return;
+            };
+            let kappa = self.kappa(reported_kappa);
+            let rho = self.rho();
+            let size = self.size();
+            for (level, (got, want)) in [(1, (&rates[0], tv)), (2, (&rates[1], ta))] {
+                if got.iter().any(|x| !x.is_finite()) {
+                    v.fail(api, "not finite inside Ok", format!("{got:?}"));
+                    return;
+                }
+                let scale = if level == 1 {
+                    truth.omega.abs()
+                } else {
+                    truth.omega * truth.omega + truth.alpha.abs()
+                };
+                let rate_scale = rate_size(truth, want, size, scale);
+                let bound = FACTOR * self.eps * kappa.powi(level + 1) * rho.powi(level);
+                let error = weighted_error(truth, &vec![false; self.n()], got, want, rate_scale);
+                if error > bound {
+                    let what = if level == 1 {
+                        "velocity error beyond 16·ε·κ²·ρ"
+                    } else {
+                        "acceleration error beyond 16·ε·κ³·ρ²"
+                    };
+                    v.fail(
+                        api,
+                        what,
+                        format!(
+                            "error {error:.2e} = {:.1} × bound (κ {kappa:.2e}, ρ {rho:.2e})",
+                            error / bound
+                        ),
+                    );
+                }
+            }
+        }
+
+        /// Judges an error.
+        fn error(&self, v: &mut Verdict, api: Api, e: &Error<f64>, newton_outside_basin: bool) {
+            let documented_newton = matches!(
+                e,
+                Error::OtherBranch
+                    | Error::NoConvergence { .. }
+                    | Error::CannotAssemble { .. }
+                    | Error::Singular { .. }
+            );
+            if newton_outside_basin && documented_newton {
+                return;
+            }
+            match e {
+                Error::CannotAssemble { .. } => {
+                    if !self.unreachable_or_near_limit() {
+                        let r = self.reach.map_or(String::from("no closed form"), |r| {
+                            format!(
+                                "gap {:.2e} of the size ({:.1} × rounding), margin {:.2e} rad",
+                                r.gap,
+                                r.gap / (FACTOR * self.eps * r.slack),
+                                r.margin
+                            )
+                        });
+                        v.fail(api, "CannotAssemble inside the range of motion", r);
+                    }
+                }
+                Error::Singular {
+                    relative_determinant,
+                    ..
+                } => {
+                    if !self.singular_allowed() {
+                        let kappa = self.truth.as_ref().map_or(f64::NAN, |t| t.condition);
+                        v.fail(
+                            api,
+                            "Singular away from the threshold",
+                            format!("true κ {kappa:.2e} (threshold {:.2e}), reported relative determinant {relative_determinant:.2e}", 1.0 / self.eps.sqrt()),
+                        );
+                    }
+                }
+                other => v.fail(
+                    api,
+                    &format!("{} error", error_name(other)),
+                    format!("{other:?}"),
+                ),
+            }
+        }
+
+        /// A tracked point's bound at `level`: each vector's error is its length times its
+        /// angle's allowed error, and its rates' errors follow by the chain rule (first order),
+        /// plus rounding of the sum.
+        fn point_bound(&self, terms: &[Term], level: usize, kappa: f64) -> f64 {
+            let Some(t) = &self.truth else {
+                return f64::INFINITY;
+            };
+            let (Some(tv), Some(ta)) = (&t.velocity, &t.acceleration) else {
+                return f64::INFINITY;
+            };
+            let size = self.size();
+            let rho = t.aspect(size);
+            let n = self.n();
+            let scale_v = rate_size(t, tv, size, t.omega.abs());
+            let scale_a = rate_size(t, ta, size, t.omega * t.omega + t.alpha.abs());
+            let allowed = |j: usize, level: i32, scale: f64| {
+                FACTOR * self.eps * kappa.powi(level + 1) * rho.powi(level) * scale / t.columns[j]
+            };
+            let mut bound = 0.0;
+            for term in terms {
+                let r = match &term.magnitude {
+                    Magnitude::Fixed(r) => r.abs().to_f64(),
+                    Magnitude::Unknown(_) => panic!("points of fixed lengths only"),
+                };
+                let (d0, d1, d2, w, a) = match term.angle {
+                    Some(Var::Unknown(j)) if j < n => (
+                        allowed(j, 0, size),
+                        allowed(j, 1, scale_v),
+                        allowed(j, 2, scale_a),
+                        tv[j].to_f64().abs(),
+                        ta[j].to_f64().abs(),
+                    ),
+                    Some(Var::Input) => (0.0, 0.0, 0.0, t.omega.abs(), t.alpha.abs()),
+                    _ => (0.0, 0.0, 0.0, 0.0, 0.0),
+                };
+                // Rounding of this vector at this level.
+                let floor = FACTOR * self.eps * r * [1.0, w, a + w * w][level];
+                bound += floor
+                    + match level {
+                        0 => r * d0,
+                        1 => r * d1 + r * w * d0,
+                        _ => r * d2 + 2.0 * r * w * d1 + r * (a + w * w) * d0,
+                    };
+            }
+            bound
+        }
+
+        /// Judges a scene's outputs.
+        fn quantities(&self, v: &mut Verdict, api: Api, scene: &str, qs: &[Quantity], kappa: f64) {
+            let Some(t) = &self.truth else {
+                if !self.unreachable_or_near_limit() {
+                    v.fail(
+                        api,
+                        "Ok where the oracle has no position",
+                        scene.to_string(),
+                    );
+                } else if !self.near_limit() {
+                    v.fail(
+                        api,
+                        "Ok beyond the range of motion",
+                        format!("scene {scene}"),
+                    );
+                }
+                return;
+            };
+            let kappa = self.kappa(kappa);
+            let rho = t.aspect(self.size());
+            for q in qs {
+                match q {
+                    Quantity::Unknown {
+                        index,
+                        level,
+                        value,
+                    } => {
+                        if !value.is_finite() {
+                            v.fail(api, "not finite inside Ok", format!("scene {scene}: {q:?}"));
+                            continue;
+                        }
+                        let (want, scale) = match level {
+                            0 => (t.q()[*index].clone(), self.size()),
+                            1 => {
+                                let w = t.velocity.as_ref().expect("rates");
+                                (
+                                    w[*index].clone(),
+                                    rate_size(t, w, self.size(), t.omega.abs()),
+                                )
+                            }
+                            _ => {
+                                let w = t.acceleration.as_ref().expect("rates");
+                                (
+                                    w[*index].clone(),
+                                    rate_size(t, w, self.size(), t.omega * t.omega + t.alpha.abs()),
+                                )
+                            }
+                        };
+                        let mut d = Big::from_f64(*value) - &want;
+                        if *level == 0 && self.model.angles[*index] {
+                            d = d.wrapped();
+                        }
+                        let error = d.abs().to_f64() * t.columns[*index] / scale;
+                        let bound = FACTOR
+                            * self.eps
+                            * kappa.powi(*level as i32 + 1)
+                            * rho.powi(*level as i32);
+                        if error > bound {
+                            let what = [
+                                "position error beyond 16·ε·κ",
+                                "velocity error beyond 16·ε·κ²·ρ",
+                                "acceleration error beyond 16·ε·κ³·ρ²",
+                            ][*level];
+                            v.fail(api, what, format!("scene {scene}, unknown {index}: error {error:.2e} = {:.1} × bound (κ {kappa:.2e})", error / bound));
+                        }
+                    }
+                    Quantity::Point { name, level, value } => {
+                        if !value.0.is_finite() || !value.1.is_finite() {
+                            v.fail(api, "not finite inside Ok", format!("scene {scene}: {q:?}"));
+                            continue;
+                        }
+                        let terms = &self
+                            .model
+                            .points
+                            .iter()
+                            .find(|(n, _)| n == name)
+                            .expect("a point the model tracks")
+                            .1;
+                        let Some(want) = super::point(&self.model, t, name) else {
+                            continue;
+                        };
+                        let want = &want[*level];
+                        let d = C::new(
+                            Big::from_f64(value.0) - &want.re,
+                            Big::from_f64(value.1) - &want.im,
+                        );
+                        let error = d.norm().to_f64();
+                        let bound = self.point_bound(terms, *level, kappa);
+                        if error > bound {
+                            let what = [
+                                "point position beyond its bound",
+                                "point velocity beyond its bound",
+                                "point acceleration beyond its bound",
+                            ][*level];
+                            v.fail(api, what, format!("scene {scene}, {name}: error {error:.2e} = {:.1} × bound (κ {kappa:.2e})", error / bound));
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The oracle's view of a case at `dims` (as the mechanism holds them).
+    fn expect<T: Real>(case: &Case, p: &Params) -> Expect {
+        let eps = T::epsilon().to_f64().unwrap_or(f64::NAN);
+        let input = case.float.round(case.input);
+        match closed_form(case.kind, p, input, &case.branches, case.omega, case.alpha) {
+            Some(o) => Expect {
+                model: o.model,
+                reach: Some(o.reach),
+                truth: o.truth,
+                others: o.others,
+                eps,
+                input,
+            },
+            None => {
+                let model = Model::new(case.kind, p);
+                let near = case
+                    .near
+                    .clone()
+                    .unwrap_or_else(|| vec![0.0; model.unknowns()]);
+                let polished = polish(&model, input, &near, case.omega, case.alpha);
+                // Only a certified root counts as the truth: where the construction's
+                // rounding left the candidate outside Kantorovich's ball, the case says
+                // nothing.
+                let truth = polished.truth.filter(|_| polished.kantorovich <= 0.5);
+                Expect {
+                    model,
+                    reach: None,
+                    truth,
+                    others: Vec::new(),
+                    eps,
+                    input,
+                }
+            }
+        }
+    }
+
+    /// Newton's guess: the truth moved by `case.nudge` times the radius within which
+    /// Kantorovich certifies convergence ([`newton_radius`]), rounded to the float. For an
+    /// unreachable input, the truth at the input mirrored into the range across the nearest
+    /// limit. Returns the guess and whether rounding left it outside that radius (then
+    /// Newton's documented failures are right too).
+    fn guess(case: &Case, e: &Expect, p: &Params) -> Option<(Vec<f64>, bool)> {
+        let (truth, mirrored) = match &e.truth {
+            Some(t) => (t.clone(), false),
+            None => {
+                let limits = limit_angles(case.kind, p, &case.branches);
+                let nearest = limits
+                    .iter()
+                    .copied()
+                    .min_by(|a, b| (a - e.input).abs().total_cmp(&(b - e.input).abs()))?;
+                let mirrored = case.float.round(2.0 * nearest - e.input);
+                let o = closed_form(case.kind, p, mirrored, &case.branches, 0.0, 0.0)?;
+                (o.truth?, true)
+            }
+        };
+        let n = e.n();
+        let radius = newton_radius(&e.model, &truth);
+        let step = radius / (n as f64).sqrt();
+        let guess: Vec<f64> = truth
+            .q()
+            .iter()
+            .enumerate()
+            .map(|(j, q)| {
+                let nudge = case.nudge.get(j).copied().unwrap_or(0.0);
+                case.float.round(q.to_f64() + nudge * step)
+            })
+            .collect();
+        let distance = guess
+            .iter()
+            .zip(truth.q())
+            .fold(Big::zero(), |acc, (g, q)| {
+                acc + (Big::from_f64(*g) - q).square()
+            })
+            .sqrt()
+            .to_f64();
+        Some((guess, !mirrored && distance > radius))
+    }
+
+    fn run<T: Real + FromStr + Into<f64>, S: Subject<T>>(case: &Case) -> Verdict {
+        let mut verdict = Verdict::default();
+        let dims: Vec<T> = case.dims.iter().map(|d| T::constant(*d)).collect();
+        let coupler = case
+            .coupler
+            .filter(|_| case.api == Api::Scenes)
+            .map(|(a, d)| (T::constant(a), T::constant(d)));
+        let Some(m) = S::build(&dims, coupler) else {
+            verdict.outcome = "rejected".into();
+            let eta = FACTOR * T::epsilon().to_f64().unwrap_or(f64::NAN);
+            if valid_dimensions(case.kind, &case.dims, eta) == Some(true) {
+                verdict.fail(
+                    case.api,
+                    "constructor refuses valid dimensions",
+                    format!("{:?}", case.dims),
+                );
+            }
+            return verdict;
+        };
+        let p = Params::from_debug::<T>(&format!("{m:?}"));
+        let e = expect::<T>(case, &p);
+        let input = T::constant(e.input);
+        let (w, a) = (T::constant(case.omega), T::constant(case.alpha));
+        let outcome = |r: &Result<(), Error<f64>>| match r {
+            Ok(()) => "Ok".to_string(),
+            Err(e) => error_name(e).to_string(),
+        };
+        let api = case.api;
+        let result: Result<(), Error<f64>> = match api {
+            Api::Assemble | Api::Motion => {
+                let r = if api == Api::Assemble {
+                    S::assemble(&m, input, &case.branches)
+                        .map(|r| r.map(|q| [q, Vec::new(), Vec::new()]))
+                } else {
+                    S::motion(&m, input, &case.branches, w, a)
+                };
+                let Some(r) = r else {
+                    verdict.outcome = "no closed form".into();
+                    return verdict;
+                };
+                match r {
+                    Ok(rates) => {
+                        let q: Vec<T> = rates[0].iter().map(|x| T::constant(*x)).collect();
+                        let kappa = S::condition(&m, input, &q);
+                        e.position(&mut verdict, api, &rates[0], kappa, &case.branches);
+                        if api == Api::Motion {
+                            e.rates(&mut verdict, api, &rates[1..], kappa);
+                        }
+                        Ok(())
+                    }
+                    Err(err) => {
+                        e.error(&mut verdict, api, &err, false);
+                        Err(err)
+                    }
+                }
+            }
+            Api::Position | Api::MotionNear => {
+                let Some((guess, outside)) = guess(case, &e, &p) else {
+                    verdict.outcome = "no guess".into();
+                    return verdict;
+                };
+                let guess_t: Vec<T> = guess.iter().map(|x| T::constant(*x)).collect();
+                // Newton keeps to its guess's branch, which near a toggle a certified guess may
+                // be on the other side of: then `OtherBranch` is the answer.
+                let (wanted, _) =
+                    branch_signs(&e.model, &State::from_f64(&e.model, e.input, &guess));
+                let switched = e.truth.as_ref().is_some_and(|t| t.branches != wanted);
+                let r = if api == Api::Position {
+                    S::position(&m, input, &guess_t)
+                        .map(|(q, k, _)| ([q, Vec::new(), Vec::new()], k))
+                } else {
+                    S::motion_near(&m, input, &guess_t, w, a)
+                };
+                match r {
+                    Ok((rates, kappa)) => {
+                        e.position(&mut verdict, api, &rates[0], kappa, &wanted);
+                        if api == Api::MotionNear {
+                            e.rates(&mut verdict, api, &rates[1..], kappa);
+                        }
+                        Ok(())
+                    }
+                    Err(Error::OtherBranch) if switched => Err(Error::OtherBranch),
+                    Err(err) => {
+                        e.error(&mut verdict, api, &err, outside);
+                        Err(err)
+                    }
+                }
+            }
+            Api::Scenes => {
+                let Some(r) = S::scenes(&m, input, &case.branches, w, a) else {
+                    verdict.outcome = "no scenes".into();
+                    return verdict;
+                };
+                match r {
+                    Err(err) => {
+                        verdict.fail(
+                            api,
+                            &format!("scenes() refuses valid dimensions ({})", error_name(&err)),
+                            format!("{err:?}"),
+                        );
+                        Err(err)
+                    }
+                    Ok(scenes) => {
+                        let mut first = Ok(());
+                        for (scene, r) in scenes {
+                            match r {
+                                Ok(qs) => {
+                                    let values: Vec<T> = qs
+                                        .iter()
+                                        .filter_map(|q| match q {
+                                            Quantity::Unknown {
+                                                level: 0, value, ..
+                                            } => Some(T::constant(*value)),
+                                            _ => None,
+                                        })
+                                        .collect();
+                                    let kappa = if values.len() == e.n() {
+                                        S::condition(&m, input, &values)
+                                    } else {
+                                        f64::NAN
+                                    };
+                                    e.quantities(&mut verdict, api, scene, &qs, kappa);
+                                }
+                                Err(err) => {
+                                    e.error(&mut verdict, api, &err, false);
+                                    if first.is_ok() {
+                                        first = Err(err);
+                                    }
+                                }
+                            }
+                        }
+                        first
+                    }
+                }
+            }
+        };
+        verdict.outcome = outcome(&result);
+        if let Some(factor) = case.rescale {
+            rescaled::<T, S>(case, factor, &e, &result, &mut verdict);
+        }
+        verdict
+    }
+
+    /// The same call with every length scaled by `factor`.
+    fn rescaled<T: Real + FromStr + Into<f64>, S: Subject<T>>(
+        case: &Case,
+        factor: f64,
+        e: &Expect,
+        result: &Result<(), Error<f64>>,
+        verdict: &mut Verdict,
+    ) {
+        let lengths = length_slots(case.kind);
+        let mut scaled = case.clone();
+        scaled.rescale = None;
+        for (i, d) in scaled.dims.iter_mut().enumerate() {
+            if lengths.contains(&i) {
+                *d = case.float.round(*d * factor);
+            }
+        }
+        scaled.coupler = case.coupler.map(|(a, d)| (case.float.round(a * factor), d));
+        scaled.near = case.near.as_ref().map(|q| {
+            q.iter()
+                .zip(&e.model.angles)
+                .map(|(v, &angle)| if angle { *v } else { v * factor })
+                .collect()
+        });
+        let exact = factor.log2().fract() == 0.0;
+        let again = run::<T, S>(&scaled);
+        for finding in again.findings {
+            verdict.findings.push(Finding {
+                class: format!(
+                    "{} (lengths × {})",
+                    finding.class,
+                    if exact { "2^k" } else { "a factor" }
+                ),
+                detail: finding.detail,
+            });
+        }
+        let before = match result {
+            Ok(()) => "Ok".to_string(),
+            Err(err) => error_name(err).to_string(),
+        };
+        if before != again.outcome && again.outcome != "rejected" {
+            let excused = !exact && (e.near_limit() || e.singular_allowed());
+            if !excused {
+                verdict.fail(
+                    case.api,
+                    if exact {
+                        "outcome changes when every length is scaled by 2^k"
+                    } else {
+                        "outcome changes when every length is scaled"
+                    },
+                    format!("{before} → {} (× {factor:e})", again.outcome),
+                );
+            }
+        }
+        if exact && before == "Ok" && again.outcome == "Ok" {
+            // Bit-identical angles: compare the raw answers.
+            let (x, y) = (raw::<T, S>(case), raw::<T, S>(&scaled));
+            if let (Some(x), Some(y)) = (x, y) {
+                let angles = &e.model.angles;
+                let differs = x.iter().zip(&y).any(|((i, level, a), (_, _, b))| {
+                    let length = *i < angles.len() && !angles[*i] && *level < 3;
+                    if length {
+                        a * factor != *b
+                    } else {
+                        a.to_bits() != b.to_bits()
+                    }
+                });
+                if differs {
+                    verdict.fail(
+                        case.api,
+                        "not bit-identical when every length is scaled by 2^k",
+                        format!("× {factor:e}: {x:?} vs {y:?}"),
+                    );
+                }
+            }
+        }
+    }
+
+    /// The unknowns' values, rates and accelerations a case returns, as (unknown, level, value).
+    fn raw<T: Real + FromStr + Into<f64>, S: Subject<T>>(
+        case: &Case,
+    ) -> Option<Vec<(usize, usize, f64)>> {
+        let dims: Vec<T> = case.dims.iter().map(|d| T::constant(*d)).collect();
+        let m = S::build(&dims, None)?;
+        let input = T::constant(case.input);
+        let (w, a) = (T::constant(case.omega), T::constant(case.alpha));
+        let spread = |levels: [Vec<f64>; 3]| {
+            levels
+                .iter()
+                .enumerate()
+                .flat_map(|(l, v)| v.iter().enumerate().map(move |(i, x)| (i, l, *x)))
+                .collect::<Vec<_>>()
+        };
+        match case.api {
+            Api::Assemble => S::assemble(&m, input, &case.branches)?
+                .ok()
+                .map(|q| spread([q, vec![], vec![]])),
+            Api::Motion => S::motion(&m, input, &case.branches, w, a)?.ok().map(spread),
+            // Newton's guesses are lengths scaled too; the raw comparison needs the same guess.
+            _ => None,
+        }
+    }
+
+    /// Which constructor arguments are lengths (scaled) rather than angles.
+    pub fn length_slots(kind: Kind) -> Vec<usize> {
+        match kind {
+            Kind::FourBar => vec![0, 1, 2, 3],
+            Kind::SliderCrank => vec![0, 1, 2],
+            Kind::InvertedSliderCrank => vec![0, 1, 2],
+            Kind::WattSixBar | Kind::StephensonSixBar => vec![0, 1, 2, 3, 4, 6, 7, 8, 9],
+            Kind::JansenLeg => (0..13).collect(),
+        }
+    }
+}
+
+/// The cases the edge tests and the large run draw: mechanisms with link ratios up to a
+/// family's bound at scales across the float's range (powers of two and arbitrary factors),
+/// inputs anywhere or placed relative to the limit angles, every entry point, both floats.
+pub mod draw {
+    use super::*;
+    use mechgen::Real;
+    use std::f64::consts::PI;
+    use std::str::FromStr;
+
+    /// SplitMix64: small, fast, and the same on every machine.
+    #[derive(Clone, Debug)]
+    pub struct Rng(pub u64);
+
+    impl Rng {
+        pub fn next_u64(&mut self) -> u64 {
+            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            z ^ (z >> 31)
+        }
+
+        /// Uniform in [0, 1).
+        pub fn unit(&mut self) -> f64 {
+            (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+        }
+
+        pub fn range(&mut self, a: f64, b: f64) -> f64 {
+            a + (b - a) * self.unit()
+        }
+
+        /// Log-uniform in [a, b], both positive.
+        pub fn log(&mut self, a: f64, b: f64) -> f64 {
+            (a.ln() + (b.ln() - a.ln()) * self.unit()).exp()
+        }
+
+        pub fn chance(&mut self, p: f64) -> bool {
+            self.unit() < p
+        }
+
+        pub fn pick<T: Copy>(&mut self, items: &[T]) -> T {
+            items[(self.next_u64() % items.len() as u64) as usize]
+        }
+
+        pub fn sign(&mut self) -> f64 {
+            if self.chance(0.5) { 1.0 } else { -1.0 }
+        }
+
+        pub fn angle(&mut self) -> f64 {
+            self.range(-PI, PI)
+        }
+    }
+
+    /// How big the mechanisms are.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub enum Scales {
+        /// The longest link in [1e-3, 1e3].
+        Moderate,
+        /// The longest link anywhere the float allows with the shortest still normal (f64:
+        /// 1e-300 to 1e300; f32: 1e-37 to 1e37).
+        Extreme,
+    }
+
+    /// Where the input goes.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub enum Placement {
+        /// Uniform over a turn (sometimes a turn or two away).
+        Anywhere,
+        /// 1e-12, 1e-9 or 1e-6 rad inside a limit angle.
+        Inside,
+        /// As far outside.
+        Outside,
+        /// On a limit angle, rounded, or an ulp either side.
+        AtLimit,
+    }
+
+    /// A family of cases: what the draw varies over.
+    #[derive(Clone, Debug)]
+    pub struct Family {
+        pub kinds: Vec<Kind>,
+        pub floats: Vec<Float>,
+        pub apis: Vec<Api>,
+        pub scales: Scales,
+        /// The largest ratio of two lengths of a mechanism (at least 1).
+        pub ratio: f64,
+        pub placements: Vec<Placement>,
+        /// Whether to repeat each case with every length scaled.
+        pub rescale: bool,
+        /// The share of the shipped examples' shapes among the mechanisms.
+        pub examples: f64,
+    }
+
+    impl Family {
+        /// Everything: every mechanism, float, entry point and placement, extreme scales and
+        /// link ratios to 1e8.
+        pub fn everything() -> Family {
+            Family {
+                kinds: Kind::ALL.to_vec(),
+                floats: vec![Float::F32, Float::F64],
+                apis: Api::ALL.to_vec(),
+                scales: Scales::Extreme,
+                ratio: 1e8,
+                placements: vec![
+                    Placement::Anywhere,
+                    Placement::Inside,
+                    Placement::Outside,
+                    Placement::AtLimit,
+                ],
+                rescale: true,
+                examples: 0.2,
+            }
+        }
+    }
+
+    /// The families the edge tests run, by name: each isolates one kind of difficulty, so a
+    /// failing one names its class. `everything` mixes them all (the large run).
+    pub fn family(name: &str) -> Option<Family> {
+        let (name, apis) = match name.split_once('/') {
+            Some((name, "closed")) => {
+                let kinds = Kind::ALL
+                    .into_iter()
+                    .filter(|k| *k != Kind::StephensonSixBar)
+                    .collect();
+                return family(name).map(|f| Family {
+                    kinds,
+                    apis: vec![Api::Assemble, Api::Motion, Api::Scenes],
+                    ..f
+                });
+            }
+            Some((name, "newton")) => (name, vec![Api::Position, Api::MotionNear]),
+            Some(_) => return None,
+            None => (name, Api::ALL.to_vec()),
+        };
+        let all = Family {
+            apis,
+            ..Family::everything()
+        };
+        let mut f = Family {
+            scales: Scales::Moderate,
+            ratio: 10.0,
+            placements: vec![Placement::Anywhere],
+            rescale: false,
+            ..all.clone()
+        };
+        match name {
+            "everything" => return Some(all),
+            // Ordinary mechanisms: moderate sizes and ratios, inputs anywhere.
+            "ordinary" => {}
+            // Link ratios to 1e8 at moderate sizes.
+            "ratios" => f.ratio = 1e8,
+            // Inputs just inside the limit angles, and on them.
+            "inside" => f.placements = vec![Placement::Inside, Placement::AtLimit],
+            // Inputs just outside the limit angles.
+            "outside" => f.placements = vec![Placement::Outside],
+            // Every length scaled by a power of two or another factor, at moderate sizes.
+            "rescaled" => f.rescale = true,
+            // Sizes across the float's range.
+            "extreme" => {
+                f.scales = Scales::Extreme;
+                f.examples = 0.5;
+            }
+            _ => return None,
+        }
+        Some(f)
+    }
+
+    /// The family names, in the order the tests use them.
+    pub const FAMILIES: [&str; 7] = [
+        "ordinary",
+        "ratios",
+        "inside",
+        "outside",
+        "rescaled",
+        "extreme",
+        "everything",
+    ];
+    // Each may end in `/closed` (assemble, motion, scenes) or `/newton` (position, motion_near).
+
+    /// The parameters a mechanism built from `dims` holds (its derived ones included), or
+    /// `None` where its constructor refuses them.
+    pub fn held(kind: Kind, float: Float, dims: &[f64]) -> Option<Params> {
+        match float {
+            Float::F32 => held_in::<f32>(kind, dims),
+            Float::F64 => held_in::<f64>(kind, dims),
+        }
+    }
+
+    fn held_in<T: Real + FromStr + Into<f64>>(kind: Kind, dims: &[f64]) -> Option<Params> {
+        use judge::Subject;
+        use mechanisms::*;
+        let d: Vec<T> = dims.iter().map(|x| T::constant(*x)).collect();
+        let debug = match kind {
+            Kind::FourBar => format!("{:?}", FourBar::<T>::build(&d, None)?),
+            Kind::SliderCrank => format!("{:?}", SliderCrank::<T>::build(&d, None)?),
+            Kind::InvertedSliderCrank => {
+                format!("{:?}", InvertedSliderCrank::<T>::build(&d, None)?)
+            }
+            Kind::WattSixBar => format!("{:?}", WattSixBar::<T>::build(&d, None)?),
+            Kind::StephensonSixBar => format!("{:?}", StephensonSixBar::<T>::build(&d, None)?),
+            Kind::JansenLeg => format!("{:?}", JansenLeg::<T>::build(&d, None)?),
+        };
+        Some(Params::from_debug::<T>(&debug))
+    }
+
+    /// A shape: dimensions with the longest length about 1, the branches and (for the
+    /// constructed multi-loop ones) an input and a position near which the loops close.
+    struct Shape {
+        dims: Vec<f64>,
+        branches: Vec<Branch>,
+        at: Option<(f64, Vec<f64>)>,
+    }
+
+    fn expi(t: f64) -> (f64, f64) {
+        (t.cos(), t.sin())
+    }
+
+    fn add(a: (f64, f64), r: f64, t: f64) -> (f64, f64) {
+        (a.0 + r * t.cos(), a.1 + r * t.sin())
+    }
+
+    fn dist(a: (f64, f64), b: (f64, f64)) -> f64 {
+        (a.0 - b.0).hypot(a.1 - b.1)
+    }
+
+    fn arg(a: (f64, f64), b: (f64, f64)) -> f64 {
+        (b.1 - a.1).atan2(b.0 - a.0)
+    }
+
+    fn branch(sign: f64) -> Branch {
+        if sign >= 0.0 {
+            Branch::Open
+        } else {
+            Branch::Crossed
+        }
+    }
+
+    /// Lengths log-uniform in [1/r, 1] with one of them 1 and another 1/r.
+    fn lengths(rng: &mut Rng, count: usize, ratio: f64) -> Vec<f64> {
+        let r = rng.log(1.0, ratio.max(1.0));
+        let mut v: Vec<f64> = (0..count).map(|_| rng.log(1.0 / r, 1.0)).collect();
+        let i = (rng.next_u64() % count as u64) as usize;
+        v[i] = 1.0;
+        if count > 1 {
+            let j = (i + 1 + (rng.next_u64() % (count as u64 - 1)) as usize) % count;
+            v[j] = 1.0 / r;
+        }
+        v
+    }
+
+    fn random_branches(rng: &mut Rng, n: usize) -> Vec<Branch> {
+        (0..n)
+            .map(|_| {
+                if rng.chance(0.5) {
+                    Branch::Open
+                } else {
+                    Branch::Crossed
+                }
+            })
+            .collect()
+    }
+
+    fn example(kind: Kind) -> Shape {
+        let (dims, branches): (Vec<f64>, Vec<Branch>) = match kind {
+            Kind::FourBar => (vec![180.0, 80.0, 200.0, 150.0], vec![Branch::Open]),
+            Kind::SliderCrank => (vec![50.0, 150.0, 20.0], vec![Branch::Open]),
+            Kind::InvertedSliderCrank => (vec![150.0, 60.0, 20.0, 0.3], vec![Branch::Open]),
+            Kind::WattSixBar => (
+                vec![
+                    180.0, 80.0, 200.0, 150.0, 100.0, 0.8, 220.0, 160.0, 300.0, 150.0,
+                ],
+                vec![Branch::Open, Branch::Open],
+            ),
+            Kind::StephensonSixBar => (
+                vec![
+                    100.0, 20.0, 117.0, 60.0, 63.0, -0.97, 52.0, 85.0, 189.0, -26.0,
+                ],
+                vec![Branch::Open; 2],
+            ),
+            Kind::JansenLeg => (
+                vec![
+                    38.0, 41.5, 39.3, 40.1, 55.8, 39.4, 36.7, 65.7, 49.0, 50.0, 61.9, 7.8, 15.0,
+                ],
+                vec![Branch::Crossed, Branch::Open, Branch::Crossed],
+            ),
+        };
+        let at = (kind == Kind::StephensonSixBar).then(|| (0.0, vec![-0.25, 0.63, 1.43, 1.46]));
+        Shape { dims, branches, at }
+    }
+
+    fn shape(kind: Kind, rng: &mut Rng, ratio: f64) -> Shape {
+        for _ in 0..200 {
+            let s = match kind {
+                Kind::FourBar => {
+                    let dims = lengths(rng, 4, ratio);
+                    Shape {
+                        dims,
+                        branches: random_branches(rng, 1),
+                        at: None,
+                    }
+                }
+                Kind::SliderCrank => {
+                    let l = lengths(rng, 3, ratio);
+                    let c = if rng.chance(0.2) {
+                        0.0
+                    } else {
+                        rng.sign() * l[2]
+                    };
+                    Shape {
+                        dims: vec![l[0], l[1], c],
+                        branches: random_branches(rng, 1),
+                        at: None,
+                    }
+                }
+                Kind::InvertedSliderCrank => {
+                    let l = lengths(rng, 3, ratio);
+                    let c = if rng.chance(0.2) {
+                        0.0
+                    } else {
+                        rng.sign() * l[2]
+                    };
+                    let gamma = if rng.chance(0.3) { 0.0 } else { rng.angle() };
+                    Shape {
+                        dims: vec![l[0], l[1], c, gamma],
+                        branches: random_branches(rng, 1),
+                        at: None,
+                    }
+                }
+                Kind::WattSixBar => {
+                    // From a configuration: O2, O4 = (l1, 0), A, B, C, D, O6.
+                    let l = lengths(rng, 6, ratio);
+                    let (l1, l2, l4, l5, l6, l7) = (l[0], l[1], l[2], l[3], l[4], l[5]);
+                    let (t2, t4, beta, t5, t6) = (
+                        rng.angle(),
+                        rng.angle(),
+                        rng.angle(),
+                        rng.angle(),
+                        rng.angle(),
+                    );
+                    let a = add((0.0, 0.0), l2, t2);
+                    let b = add((l1, 0.0), l4, t4);
+                    let l3 = dist(a, b);
+                    let c = add((l1, 0.0), l5, t4 + beta);
+                    let d = add(c, l6, t5);
+                    let o6 = add(d, -l7, t6);
+                    let t3 = arg(a, b);
+                    let branches = vec![branch((t4 - t3).sin()), branch((t6 - t5).sin())];
+                    Shape {
+                        dims: vec![l1, l2, l3, l4, l5, beta, l6, l7, o6.0, o6.1],
+                        branches,
+                        at: Some((t2, vec![t3, t4, t5, t6])),
+                    }
+                }
+                Kind::StephensonSixBar => {
+                    let l = lengths(rng, 6, ratio);
+                    let (l1, l2, l3, bc, cd, l6) = (l[0], l[1], l[2], l[3], l[4], l[5]);
+                    let (t2, t3, t5, beta, t6) = (
+                        rng.angle(),
+                        rng.angle(),
+                        rng.angle(),
+                        rng.angle(),
+                        rng.angle(),
+                    );
+                    let a = add((0.0, 0.0), l2, t2);
+                    let b = add(a, l3, t3);
+                    let c = add(b, bc, t5);
+                    let l4 = dist((l1, 0.0), c);
+                    let t4 = arg((l1, 0.0), c);
+                    let d = add(c, cd, t5 + beta);
+                    let o6 = add(d, -l6, t6);
+                    Shape {
+                        dims: vec![l1, l2, l3, bc, cd, beta, l4, l6, o6.0, o6.1],
+                        branches: vec![Branch::Open; 2],
+                        at: Some((t2, vec![t3, t4, t5, t6])),
+                    }
+                }
+                Kind::JansenLeg => {
+                    // Z = (−a, −l), the crank pin M, P1 … P5.
+                    let v = lengths(rng, 8, ratio);
+                    let (a, l, m, b, c, d, g, i) = (v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]);
+                    let (theta, pb, pc, pg) = (rng.angle(), rng.angle(), rng.angle(), rng.angle());
+                    let (delta1, delta2) = (rng.range(0.05, PI - 0.05), rng.range(0.05, PI - 0.05));
+                    let z = (-a, -l);
+                    let mm = expi(theta);
+                    let crank = (m * mm.0, m * mm.1);
+                    let p1 = add(z, b, pb);
+                    let p2 = add(z, c, pc);
+                    let p3 = add(z, d, pb + delta1);
+                    let p4 = add(p2, g, pg);
+                    let p5 = add(p2, i, pg + delta2);
+                    let (j, k, e, f, h) = (
+                        dist(crank, p1),
+                        dist(crank, p2),
+                        dist(p1, p3),
+                        dist(p3, p4),
+                        dist(p4, p5),
+                    );
+                    let pj = arg(crank, p1);
+                    let pk = arg(crank, p2);
+                    let pf = arg(p3, p4);
+                    let branches = vec![
+                        branch((pb - pj).sin()),
+                        branch((pc - pk).sin()),
+                        branch((pg - pf).sin()),
+                    ];
+                    Shape {
+                        dims: vec![a, b, c, d, e, f, g, h, i, j, k, l, m],
+                        branches,
+                        at: Some((theta, vec![pj, pb, pk, pc, pf, pg])),
+                    }
+                }
+            };
+            if valid_dimensions(kind, &s.dims, 1e-6) == Some(true) {
+                return s;
+            }
+        }
+        example(kind)
+    }
+
+    /// `10^(lo..hi)` log-uniform, or the power of two nearest it.
+    fn scale(rng: &mut Rng, lo: f64, hi: f64) -> f64 {
+        let s = 10f64.powf(rng.range(lo, hi));
+        if rng.chance(0.5) {
+            2f64.powi(s.log2().round() as i32)
+        } else {
+            s
+        }
+    }
+
+    /// The exponent range (decimal) of the longest length at these scales.
+    fn exponents(scales: Scales, float: Float, ratio: f64) -> (f64, f64) {
+        let r = ratio.max(1.0).log10();
+        match (scales, float) {
+            (Scales::Moderate, _) => (-3.0, 3.0),
+            (Scales::Extreme, Float::F64) => (-300.0 + r, 300.0),
+            (Scales::Extreme, Float::F32) => (-37.0 + r, 37.0),
+        }
+    }
+
+    /// One case of `family`.
+    pub fn case(family: &Family, rng: &mut Rng) -> Case {
+        let kind = rng.pick(&family.kinds);
+        let float = rng.pick(&family.floats);
+        let mut api = rng.pick(&family.apis);
+        if kind == Kind::StephensonSixBar
+            && matches!(api, Api::Assemble | Api::Motion | Api::Scenes)
+        {
+            api = if rng.chance(0.5) {
+                Api::Position
+            } else {
+                Api::MotionNear
+            };
+        }
+        let base = if rng.chance(family.examples) {
+            example(kind)
+        } else {
+            shape(kind, rng, family.ratio)
+        };
+        let longest = base
+            .dims
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| judge::length_slots(kind).contains(i))
+            .fold(0.0f64, |m, (_, d)| m.max(d.abs()));
+        let (lo, hi) = exponents(family.scales, float, family.ratio);
+        let s = scale(rng, lo, hi) / longest;
+        let slots = judge::length_slots(kind);
+        let dims: Vec<f64> = base
+            .dims
+            .iter()
+            .enumerate()
+            .map(|(i, d)| float.round(if slots.contains(&i) { d * s } else { *d }))
+            .collect();
+        let coupler = (kind == Kind::FourBar).then(|| {
+            (
+                float.round(rng.range(0.0, 2.0) * dims[2]),
+                float.round(rng.angle()),
+            )
+        });
+        let omega = if rng.chance(0.3) {
+            1.0
+        } else {
+            float.round(rng.sign() * rng.log(0.01, 100.0))
+        };
+        let alpha = float.round(rng.range(-10.0, 10.0));
+        let nudge = (0..kind.unknowns())
+            .map(|_| {
+                if rng.chance(0.2) {
+                    0.0
+                } else {
+                    rng.range(-1.0, 1.0)
+                }
+            })
+            .collect();
+        let mut branches = base.branches.clone();
+        let mut near = None;
+        let placement = rng.pick(&family.placements);
+        let (input, placement) = match (&base.at, kind) {
+            (Some((t, q)), Kind::StephensonSixBar) => {
+                near = Some(q.clone());
+                let d = if rng.chance(0.5) {
+                    0.0
+                } else {
+                    rng.sign() * rng.log(1e-12, 1e-3)
+                };
+                (t + d, format!("{d:.1e} from a constructed position"))
+            }
+            _ => {
+                if kind.loops() == 1 && rng.chance(0.5) {
+                    branches = random_branches(rng, 1);
+                }
+                place(
+                    kind,
+                    float,
+                    &dims,
+                    &branches,
+                    placement,
+                    base.at.as_ref().map(|a| a.0),
+                    rng,
+                )
+            }
+        };
+        let rescale = (family.rescale && rng.chance(0.5)).then(|| {
+            let (lo, hi) = exponents(family.scales, float, family.ratio);
+            let longest = dims
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| slots.contains(i))
+                .fold(0.0f64, |m, (_, d)| m.max(d.abs()));
+            let shortest = dims
+                .iter()
+                .enumerate()
+                .filter(|(i, d)| slots.contains(i) && **d != 0.0)
+                .fold(f64::INFINITY, |m, (_, d)| m.min(d.abs()));
+            // Keep the scaled lengths within the family's range (in base-2 exponents).
+            let up = hi * std::f64::consts::LOG2_10 - longest.log2();
+            let down =
+                (lo - family.ratio.max(1.0).log10()) * std::f64::consts::LOG2_10 - shortest.log2();
+            let k = rng.range(down.min(0.0), up.max(0.0));
+            let k = if k.round() == 0.0 { 1.0 } else { k };
+            if rng.chance(0.5) {
+                2f64.powi(k.round() as i32)
+            } else {
+                2f64.powf(k)
+            }
+        });
+        Case {
+            kind,
+            float,
+            api,
+            dims,
+            coupler,
+            input: float.round(input),
+            branches,
+            omega,
+            alpha,
+            near,
+            nudge,
+            placement,
+            rescale,
+        }
+    }
+
+    /// An input for `placement`, and how it was placed.
+    fn place(
+        kind: Kind,
+        float: Float,
+        dims: &[f64],
+        branches: &[Branch],
+        placement: Placement,
+        at: Option<f64>,
+        rng: &mut Rng,
+    ) -> (f64, String) {
+        let anywhere = |rng: &mut Rng| {
+            let turns = if rng.chance(0.1) {
+                rng.pick(&[-2.0, -1.0, 1.0, 2.0])
+            } else {
+                0.0
+            };
+            let t = at
+                .filter(|_| rng.chance(0.5))
+                .unwrap_or_else(|| rng.angle());
+            (t + turns * std::f64::consts::TAU, "anywhere".to_string())
+        };
+        if placement == Placement::Anywhere {
+            return anywhere(rng);
+        }
+        let Some(p) = held(kind, float, dims) else {
+            return anywhere(rng);
+        };
+        let mut limits = limit_angles(kind, &p, branches);
+        if limits.is_empty() {
+            // A crank that turns fully: its dead centres and flat positions instead.
+            limits = vec![0.0, PI];
+        }
+        let limit = rng.pick(&limits);
+        let reachable = |t: f64| {
+            let t = float.round(t);
+            match closed_form(kind, &p, t, branches, 0.0, 0.0) {
+                Some(o) if kind.loops() == 1 => o.reach.reachable(),
+                _ => chain_gap(kind, &p, t, branches) >= 0.0,
+            }
+        };
+        match placement {
+            Placement::AtLimit => {
+                let t = float.round(limit);
+                let ulp = |x: f64| match float {
+                    Float::F32 => f64::from(f32::from_bits((x as f32).to_bits() + 1)) - x,
+                    Float::F64 => f64::from_bits(x.to_bits() + 1) - x,
+                };
+                let step = rng.pick(&[-1.0, 0.0, 1.0]);
+                (t + step * ulp(t).abs(), format!("{step} ulp from a limit"))
+            }
+            _ => {
+                let d = rng.pick(&[1e-12, 1e-9, 1e-6]);
+                let up = reachable(limit + d);
+                let inside = placement == Placement::Inside;
+                let sign = if up == inside { 1.0 } else { -1.0 };
+                (
+                    limit + sign * d,
+                    format!(
+                        "{d:e} rad {} a limit",
+                        if inside { "inside" } else { "outside" }
+                    ),
+                )
+            }
+        }
+    }
 }
 
 #[cfg(test)]
