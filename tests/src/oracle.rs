@@ -1206,7 +1206,10 @@ fn inverted_limits(l1: &Big, l2: &Big, offset: &Big) -> Vec<Big> {
 /// `branches`, solving loop by loop as [`chained`] does but keeping only the directions: what
 /// the limit search evaluates.
 pub fn chain_gap(kind: Kind, p: &Params, input: f64, branches: &[Branch]) -> f64 {
-    let model = Model::new(kind, p);
+    chain_gap_of(&Model::new(kind, p), input, branches)
+}
+
+fn chain_gap_of(model: &Model, input: f64, branches: &[Branch]) -> f64 {
     let t = Big::from_f64(input);
     let n = model.unknowns();
     let mut state = State {
@@ -1240,8 +1243,8 @@ pub fn chain_gap(kind: Kind, p: &Params, input: f64, branches: &[Branch]) -> f64
 }
 
 /// The input angles in (−π, π] where a mechanism's loops stop closing on `branches`: in closed
-/// form for one loop, else by a scan of [`chain_gap`] over 32 inputs and bisection (at 128
-/// bits, to adjacent floats) of each sign change.
+/// form for one loop, else by a scan of [`chain_gap`] over 32 inputs and bisection (at 64
+/// bits, 48 halvings: to 1e-15 rad) of each sign change.
 pub fn limit_angles(kind: Kind, p: &Params, branches: &[Branch]) -> Vec<f64> {
     let b = |n: &str| Big::from_f64(p.get(n));
     let exact = match kind {
@@ -1259,12 +1262,13 @@ pub fn limit_angles(kind: Kind, p: &Params, branches: &[Branch]) -> Vec<f64> {
     if kind == Kind::StephensonSixBar {
         return Vec::new();
     }
-    with_precision(128, || {
+    with_precision(64, || {
+        let model = Model::new(kind, p);
         let pi = std::f64::consts::PI;
         let samples = 32;
         let at = |i: usize| -pi + 2.0 * pi * i as f64 / samples as f64;
         let gaps: Vec<f64> = (0..=samples)
-            .map(|i| chain_gap(kind, p, at(i), branches))
+            .map(|i| chain_gap_of(&model, at(i), branches))
             .collect();
         let mut limits = Vec::new();
         for i in 0..samples {
@@ -1276,12 +1280,12 @@ pub fn limit_angles(kind: Kind, p: &Params, branches: &[Branch]) -> Vec<f64> {
             } else {
                 (at(i + 1), at(i))
             };
-            for _ in 0..80 {
+            for _ in 0..48 {
                 let middle = 0.5 * (inside + outside);
                 if middle == inside || middle == outside {
                     break;
                 }
-                if chain_gap(kind, p, middle, branches) >= 0.0 {
+                if chain_gap_of(&model, middle, branches) >= 0.0 {
                     inside = middle;
                 } else {
                     outside = middle;
@@ -1492,7 +1496,10 @@ pub fn chained(
         };
         let mut gap = f64::INFINITY;
         let mut slack = 1.0f64;
-        let mut upstream_condition = 1.0f64;
+        // How far each solved angle can turn, in radians per unit relative perturbation of
+        // the data: a loop's chord moves by at most η·(its slack), which turns its angles by at
+        // most κ·η·slack/r.
+        let mut sensitivity = vec![0.0f64; n];
         for (k, terms) in model.loops.iter().enumerate() {
             // The two unknowns this loop solves: the first turning with `+r1`, the second
             // with `−r2`.
@@ -1505,9 +1512,9 @@ pub fn chained(
                 match term.angle {
                     Some(Var::Unknown(j)) if j == first => r1 = r,
                     Some(Var::Unknown(j)) if j == second => r2 = r,
-                    Some(Var::Unknown(_)) => {
+                    Some(Var::Unknown(j)) => {
                         known = known.add(&state.vector(term));
-                        loop_slack += r.to_f64() * (1.0 + upstream_condition);
+                        loop_slack += r.to_f64() * (1.0 + sensitivity[j]);
                     }
                     Some(Var::Input) => {
                         known = known.add(&state.vector(term));
@@ -1524,19 +1531,20 @@ pub fn chained(
             let (solution, loop_gap) =
                 dyad(&chord, &chord.norm2(), &r1, &r2, branch_sign(branches[k]));
             let loop_gap = loop_gap.to_f64() / size;
-            if loop_gap < gap {
+            let loop_slack = loop_slack / size;
+            // The loop nearest its limit, in units of its own rounding.
+            if loop_gap < 0.0 || loop_gap / loop_slack < gap / slack {
                 gap = loop_gap;
-                slack = loop_slack / size;
+                slack = loop_slack;
             }
             let Some((e1, e2)) = solution else {
                 return (None, gap, slack);
             };
             state.q[first] = e1.angle();
             state.q[second] = e2.angle();
-            // This loop's own κ, 1/|sin(q2 − q1)|, amplifies its angles' errors into the
-            // chords of the loops after it.
             let condition = (Big::one() / e1.cross(&e2).abs()).to_f64();
-            upstream_condition = upstream_condition.max(condition);
+            sensitivity[first] = condition * loop_slack * size / r1.to_f64();
+            sensitivity[second] = condition * loop_slack * size / r2.to_f64();
             state.directions[first] = Some(e1);
             state.directions[second] = Some(e2);
         }
@@ -2886,10 +2894,15 @@ pub mod judge {
                         scene.to_string(),
                     );
                 } else if !self.near_limit() {
+                    let r = self.reach.expect("a reach");
                     v.fail(
                         api,
                         "Ok beyond the range of motion",
-                        format!("scene {scene}"),
+                        format!(
+                            "scene {scene}: gap {:.2e} of the size ({:.1} × rounding)",
+                            r.gap,
+                            r.gap.abs() / (FACTOR * self.eps * r.slack)
+                        ),
                     );
                 }
                 return;
@@ -3387,6 +3400,9 @@ pub mod draw {
         Outside,
         /// On a limit angle, rounded, or an ulp either side.
         AtLimit,
+        /// With the crank along the ground line (θ = 0 or π) or 1e-12, 1e-9, 1e-6 rad from it:
+        /// dead centres, and the folded positions where a chord nearly vanishes.
+        Flat,
     }
 
     /// A family of cases: what the draw varies over.
@@ -3420,6 +3436,7 @@ pub mod draw {
                     Placement::Inside,
                     Placement::Outside,
                     Placement::AtLimit,
+                    Placement::Flat,
                 ],
                 rescale: true,
                 examples: 0.2,
@@ -3430,26 +3447,75 @@ pub mod draw {
     /// The families the edge tests run, by name: each isolates one kind of difficulty, so a
     /// failing one names its class. `everything` mixes them all (the large run).
     pub fn family(name: &str) -> Option<Family> {
-        let (name, apis) = match name.split_once('/') {
-            Some((name, "closed")) => {
-                let kinds = Kind::ALL
-                    .into_iter()
-                    .filter(|k| *k != Kind::StephensonSixBar)
-                    .collect();
-                return family(name).map(|f| Family {
-                    kinds,
-                    apis: vec![Api::Assemble, Api::Motion, Api::Scenes],
-                    ..f
-                });
-            }
-            Some((name, "newton")) => (name, vec![Api::Position, Api::MotionNear]),
-            Some(_) => return None,
-            None => (name, Api::ALL.to_vec()),
-        };
-        let all = Family {
-            apis,
-            ..Family::everything()
-        };
+        // Modifiers after the base name narrow it: `/closed` (assemble, motion, scenes),
+        // `/newton` (position, motion_near), `/one-loop`, `/multi-loop`, or one mechanism
+        // (`/four-bar`, `/slider-crank`, `/inverted`, `/watt`, `/stephenson`, `/jansen`).
+        let mut parts = name.split('/');
+        let base = family_base(parts.next()?)?;
+        parts
+            .try_fold(base, |f, modifier| {
+                let keep = |kinds: &[Kind]| -> Vec<Kind> {
+                    f.kinds
+                        .iter()
+                        .copied()
+                        .filter(|k| kinds.contains(k))
+                        .collect()
+                };
+                Some(match modifier {
+                    "closed" => Family {
+                        kinds: f
+                            .kinds
+                            .iter()
+                            .copied()
+                            .filter(|k| *k != Kind::StephensonSixBar)
+                            .collect(),
+                        apis: vec![Api::Assemble, Api::Motion, Api::Scenes],
+                        ..f
+                    },
+                    "newton" => Family {
+                        apis: vec![Api::Position, Api::MotionNear],
+                        ..f
+                    },
+                    "one-loop" => Family {
+                        kinds: keep(&[Kind::FourBar, Kind::SliderCrank, Kind::InvertedSliderCrank]),
+                        ..f
+                    },
+                    "multi-loop" => Family {
+                        kinds: keep(&[Kind::WattSixBar, Kind::StephensonSixBar, Kind::JansenLeg]),
+                        ..f
+                    },
+                    "four-bar" => Family {
+                        kinds: keep(&[Kind::FourBar]),
+                        ..f
+                    },
+                    "slider-crank" => Family {
+                        kinds: keep(&[Kind::SliderCrank]),
+                        ..f
+                    },
+                    "inverted" => Family {
+                        kinds: keep(&[Kind::InvertedSliderCrank]),
+                        ..f
+                    },
+                    "watt" => Family {
+                        kinds: keep(&[Kind::WattSixBar]),
+                        ..f
+                    },
+                    "stephenson" => Family {
+                        kinds: keep(&[Kind::StephensonSixBar]),
+                        ..f
+                    },
+                    "jansen" => Family {
+                        kinds: keep(&[Kind::JansenLeg]),
+                        ..f
+                    },
+                    _ => return None,
+                })
+            })
+            .filter(|f| !f.kinds.is_empty())
+    }
+
+    fn family_base(name: &str) -> Option<Family> {
+        let all = Family::everything();
         let mut f = Family {
             scales: Scales::Moderate,
             ratio: 10.0,
@@ -3467,6 +3533,8 @@ pub mod draw {
             "inside" => f.placements = vec![Placement::Inside, Placement::AtLimit],
             // Inputs just outside the limit angles.
             "outside" => f.placements = vec![Placement::Outside],
+            // The crank on the ground line, and just off it.
+            "flat" => f.placements = vec![Placement::Flat],
             // Every length scaled by a power of two or another factor, at moderate sizes.
             "rescaled" => f.rescale = true,
             // Sizes across the float's range.
@@ -3480,11 +3548,12 @@ pub mod draw {
     }
 
     /// The family names, in the order the tests use them.
-    pub const FAMILIES: [&str; 7] = [
+    pub const FAMILIES: [&str; 8] = [
         "ordinary",
         "ratios",
         "inside",
         "outside",
+        "flat",
         "rescaled",
         "extreme",
         "everything",
@@ -3902,10 +3971,15 @@ pub mod draw {
         let Some(p) = held(kind, float, dims) else {
             return anywhere(rng);
         };
-        let mut limits = limit_angles(kind, &p, branches);
+        let limits = if placement == Placement::Flat {
+            // The crank along the ground line: dead centres, folded and flat positions.
+            vec![0.0, PI, -PI]
+        } else {
+            limit_angles(kind, &p, branches)
+        };
         if limits.is_empty() {
-            // A crank that turns fully: its dead centres and flat positions instead.
-            limits = vec![0.0, PI];
+            // A crank that turns fully has no limits: anywhere, then.
+            return anywhere(rng);
         }
         let limit = rng.pick(&limits);
         let reachable = |t: f64| {
@@ -3924,6 +3998,10 @@ pub mod draw {
                 };
                 let step = rng.pick(&[-1.0, 0.0, 1.0]);
                 (t + step * ulp(t).abs(), format!("{step} ulp from a limit"))
+            }
+            Placement::Flat => {
+                let d = rng.sign() * rng.pick(&[0.0, 1e-12, 1e-9, 1e-6]);
+                (limit + d, format!("{d:e} rad from the ground line"))
             }
             _ => {
                 let d = rng.pick(&[1e-12, 1e-9, 1e-6]);
