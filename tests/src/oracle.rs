@@ -885,11 +885,13 @@ pub fn solve(mut a: Matrix, mut b: Vec<Big>) -> Option<(Vec<Big>, Big)> {
             det = -det;
         }
         det = det * &a[k][k];
-        for i in k + 1..n {
-            let factor = &a[i][k] / &a[k][k];
-            for j in k..n {
-                let v = &a[i][j] - &factor * &a[k][j];
-                a[i][j] = v;
+        let (upper, lower) = a.split_at_mut(k + 1);
+        let pivot_row = &upper[k];
+        for (offset, row) in lower.iter_mut().enumerate() {
+            let i = k + 1 + offset;
+            let factor = &row[k] / &pivot_row[k];
+            for (entry, above) in row.iter_mut().zip(pivot_row).skip(k) {
+                *entry = &*entry - &factor * above;
             }
             let v = &b[i] - &factor * &b[k];
             b[i] = v;
@@ -2110,6 +2112,9 @@ pub mod judge {
     /// What a solver returned, widened to f64.
     type Got<V> = Result<V, Error<f64>>;
 
+    /// Every scene's outputs, by scene name (or why `scenes()` refused).
+    pub type Scenes = Got<Vec<(&'static str, Got<Vec<Quantity>>)>>;
+
     fn widen<T: Real>(e: Error<T>) -> Error<f64> {
         let f = |v: T| v.to_f64().unwrap_or(f64::NAN);
         match e {
@@ -2163,13 +2168,7 @@ pub mod judge {
         fn motion_near(&self, input: T, guess: &[T], w: T, a: T) -> Got<([Vec<f64>; 3], f64)>;
         fn condition(&self, input: T, q: &[T]) -> f64;
         /// Every scene, by name, with its outputs; `None` where there are no scenes.
-        fn scenes(
-            &self,
-            input: T,
-            b: &[Branch],
-            w: T,
-            a: T,
-        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>>;
+        fn scenes(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Scenes>;
     }
 
     fn point<T: Real>(name: &'static str, level: usize, v: mechgen::Vec2<T>) -> Quantity {
@@ -2286,13 +2285,7 @@ pub mod judge {
         closed_entry_points!(one);
         newton_entry_points!(FourBarUnknowns);
 
-        fn scenes(
-            &self,
-            input: T,
-            b: &[Branch],
-            w: T,
-            a: T,
-        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+        fn scenes(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Scenes> {
             let s = match self.scenes() {
                 Ok(s) => s,
                 Err(e) => return Some(Err(widen(e))),
@@ -2357,13 +2350,7 @@ pub mod judge {
         closed_entry_points!(one);
         newton_entry_points!(SliderCrankUnknowns);
 
-        fn scenes(
-            &self,
-            input: T,
-            b: &[Branch],
-            w: T,
-            a: T,
-        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+        fn scenes(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Scenes> {
             let s = match self.scenes() {
                 Ok(s) => s,
                 Err(e) => return Some(Err(widen(e))),
@@ -2405,13 +2392,7 @@ pub mod judge {
         closed_entry_points!(one);
         newton_entry_points!(InvertedSliderCrankUnknowns);
 
-        fn scenes(
-            &self,
-            input: T,
-            b: &[Branch],
-            w: T,
-            a: T,
-        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+        fn scenes(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Scenes> {
             let s = match self.scenes() {
                 Ok(s) => s,
                 Err(e) => return Some(Err(widen(e))),
@@ -2452,13 +2433,7 @@ pub mod judge {
         closed_entry_points!(two);
         newton_entry_points!(WattSixBarUnknowns);
 
-        fn scenes(
-            &self,
-            input: T,
-            b: &[Branch],
-            w: T,
-            a: T,
-        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+        fn scenes(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Scenes> {
             let s = match self.scenes() {
                 Ok(s) => s,
                 Err(e) => return Some(Err(widen(e))),
@@ -2505,13 +2480,7 @@ pub mod judge {
 
         newton_entry_points!(StephensonSixBarUnknowns);
 
-        fn scenes(
-            &self,
-            _: T,
-            _: &[Branch],
-            _: T,
-            _: T,
-        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+        fn scenes(&self, _: T, _: &[Branch], _: T, _: T) -> Option<Scenes> {
             None
         }
     }
@@ -2526,13 +2495,7 @@ pub mod judge {
         closed_entry_points!(three);
         newton_entry_points!(JansenLegUnknowns);
 
-        fn scenes(
-            &self,
-            input: T,
-            b: &[Branch],
-            w: T,
-            a: T,
-        ) -> Option<Got<Vec<(&'static str, Got<Vec<Quantity>>)>>> {
+        fn scenes(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Scenes> {
             let s = match self.scenes() {
                 Ok(s) => s,
                 Err(e) => return Some(Err(widen(e))),

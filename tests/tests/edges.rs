@@ -10,8 +10,8 @@
 //! inside and outside them, and repeated with every length scaled (a power of two must leave
 //! every angle's bits alone). A failing case prints the Rust that repeats it.
 //!
-//! The seeds are proptest's (set `PROPTEST_RNG_SEED` to repeat a run); each seed draws one
-//! case. The tests marked `#[ignore = "issue 12: …"]` fail today, one class of failure each;
+//! The seeds are proptest's, from a fixed one unless `PROPTEST_RNG_SEED` says otherwise; each
+//! seed draws one case. The tests marked `#[ignore = "issue 12: …"]` fail today, one class of failure each;
 //! `cargo test -p mechgen-tests --test edges -- --ignored` runs them, and
 //! `cargo run --release -p mechgen-tests --bin edges` runs a million cases of everything.
 
@@ -20,18 +20,27 @@ use mechgen_tests::oracle::draw::{self, Rng};
 use mechgen_tests::oracle::judge;
 use mechgen_tests::oracle::{Kind, Params, closed_form};
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestRunner};
+use proptest::test_runner::{Config, RngSeed, TestRunner};
 
-/// Runs `cases` seeds of the family `name`, failing on the first case that breaks the
-/// contract, with its reproducer and every finding.
+/// The seed proptest starts from unless `PROPTEST_RNG_SEED` says otherwise: a run that passes
+/// today passes tomorrow, and a different seed is one variable away.
+const SEED: u64 = 12;
+
+/// Runs `cases` seeds of the family `name` (see `oracle::draw::family`), failing on the first
+/// case that breaks the contract, with its reproducer and every finding.
 fn keeps_the_contract(name: &str, cases: u32) {
     let family = draw::family(name).expect("a family");
+    let base = Config::default();
     let config = Config {
         cases,
+        rng_seed: match base.rng_seed {
+            RngSeed::Random => RngSeed::Fixed(SEED),
+            seed => seed,
+        },
         // A seed does not shrink; the reproducer says everything.
         max_shrink_iters: 0,
         failure_persistence: None,
-        ..Config::default()
+        ..base
     };
     let mut runner = TestRunner::new(config);
     let result = runner.run(&any::<u64>(), |seed| {
@@ -57,10 +66,11 @@ fn keeps_the_contract(name: &str, cases: u32) {
     }
 }
 
-/// Moderate sizes (the longest link 1e-3 to 1e3) and link ratios to 10, inputs anywhere.
+/// Moderate sizes (the longest link 1e-3 to 1e3) and link ratios to 10, inputs anywhere:
+/// `assemble`, `motion` and every scene, of every mechanism with a closed form.
 #[test]
 fn closed_forms_keep_the_contract_on_ordinary_mechanisms() {
-    keeps_the_contract("ordinary/closed", 1200);
+    keeps_the_contract("ordinary/closed", 1500);
 }
 
 /// Inputs on the limit angles (rounded, and an ulp either side) and 1e-12, 1e-9, 1e-6 rad
@@ -68,21 +78,39 @@ fn closed_forms_keep_the_contract_on_ordinary_mechanisms() {
 /// rounding of the toggle.
 #[test]
 fn closed_forms_keep_the_contract_at_and_just_inside_the_limits() {
-    keeps_the_contract("inside/closed", 250);
+    keeps_the_contract("inside/closed", 300);
 }
 
-/// Inputs 1e-12, 1e-9, 1e-6 rad beyond the limit angles: `CannotAssemble`, or (within
-/// rounding of the limit only) the toggle position.
+/// Inputs 1e-12, 1e-9, 1e-6 rad beyond the limit angles of the one-loop mechanisms:
+/// `CannotAssemble`, or (within rounding of the limit only) the toggle position.
 #[test]
-fn closed_forms_keep_the_contract_just_outside_the_limits() {
-    keeps_the_contract("outside/closed", 250);
+fn one_loop_closed_forms_refuse_inputs_just_outside_the_limits() {
+    keeps_the_contract("outside/closed/one-loop", 500);
+}
+
+/// The crank on the ground line (θ = 0, π) and 1e-12 … 1e-6 rad off it: dead centres, flat
+/// and folded positions.
+#[test]
+fn closed_forms_keep_the_contract_with_the_crank_on_the_ground_line() {
+    keeps_the_contract("flat/closed/four-bar", 300);
+    keeps_the_contract("flat/closed/slider-crank", 300);
+    keeps_the_contract("flat/closed/multi-loop", 200);
 }
 
 /// Every length scaled by a power of two (every angle bit-identical, every outcome the same)
 /// or by another factor (outcomes the same unless within rounding of a limit).
 #[test]
 fn closed_forms_keep_the_contract_when_every_length_is_scaled() {
-    keeps_the_contract("rescaled/closed", 600);
+    keeps_the_contract("rescaled/closed", 800);
+}
+
+/// The inverted slider-crank with its crank on the ground line: where the crank folds onto a
+/// ground link of nearly its length, the chord `A − O4` nearly vanishes.
+#[test]
+#[ignore = "issue 12: the inverted slider-crank loses digits where the chord A − O4 nearly \
+            vanishes (crank folded onto a ground link of nearly its length), a thin triangle"]
+fn inverted_slider_crank_keeps_the_contract_with_the_crank_folded() {
+    keeps_the_contract("flat/closed/inverted", 4000);
 }
 
 /// Link ratios to 1e8 at moderate sizes.
@@ -107,18 +135,19 @@ fn closed_forms_keep_the_contract_at_extreme_scales() {
 #[test]
 #[ignore = "issue 12: Newton stops once the residual is 16·ε·Σ|r| over all loops together, \
             which lets the position err up to about √N·κ·16·ε·Σ|r|/size (past 16·ε·κ) and a \
-            small loop's residual past its own floor; certified guesses still end in \
-            NoConvergence or silent branch switches on the six-bars"]
+            small loop's residual past its own floor"]
 fn newton_keeps_the_contract_on_ordinary_mechanisms() {
     keeps_the_contract("ordinary/newton", 1000);
 }
 
-/// Newton at the limits, beyond them, and under scaling.
+/// Newton at the limits, beyond them, on the ground line and under scaling.
 #[test]
-#[ignore = "issue 12: as newton_keeps_the_contract_on_ordinary_mechanisms (Newton's stopping floor)"]
+#[ignore = "issue 12: Newton's stopping floor (as on ordinary mechanisms); certified guesses \
+            that end in NoConvergence, and silent branch switches on the six-bars"]
 fn newton_keeps_the_contract_near_the_limits_and_under_scaling() {
     keeps_the_contract("inside/newton", 300);
     keeps_the_contract("outside/newton", 300);
+    keeps_the_contract("flat/newton", 300);
     keeps_the_contract("rescaled/newton", 600);
 }
 
