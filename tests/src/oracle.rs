@@ -3105,7 +3105,8 @@ pub mod judge {
                 } else {
                     S::motion_near(&m, input, &guess_t, w, a)
                 };
-                match r {
+                let before = verdict.findings.len();
+                let result = match r {
                     Ok((rates, kappa)) => {
                         e.position(&mut verdict, api, &rates[0], kappa, &wanted);
                         if api == Api::MotionNear {
@@ -3118,7 +3119,11 @@ pub mod judge {
                         e.error(&mut verdict, api, &err, outside);
                         Err(err)
                     }
+                };
+                for finding in &mut verdict.findings[before..] {
+                    finding.detail = format!("{} (guess {guess:?})", finding.detail);
                 }
+                result
             }
             Api::Scenes => {
                 let Some(r) = S::scenes(&m, input, &case.branches, w, a) else {
