@@ -1072,6 +1072,40 @@ pub fn branch_signs(model: &Model, state: &State) -> (Vec<Branch>, Vec<f64>) {
     (branches, signs.iter().map(Big::to_f64).collect())
 }
 
+/// The branches the runtime reads off a position that need not close (Newton's guess): for
+/// one loop, the Jacobian's orientation, which [`branch_signs`] follows; for the loop-by-loop
+/// mechanisms, the generated `branch_of`, `cross(−K, e^{i·q1}·w1)` per loop with `K` the sum of
+/// the loop's other vectors at this position (equal to [`branch_signs`]' sine at a solution,
+/// not elsewhere).
+pub fn guess_branches(model: &Model, state: &State) -> Vec<Branch> {
+    if !matches!(model.kind, Kind::WattSixBar | Kind::JansenLeg) {
+        return branch_signs(model, state).0;
+    }
+    model
+        .loops
+        .iter()
+        .enumerate()
+        .map(|(k, terms)| {
+            let (first, second) = (2 * k, 2 * k + 1);
+            let mut known = C::zero();
+            let mut p1 = C::zero();
+            for t in terms {
+                match t.angle {
+                    Some(Var::Unknown(j)) if j == first => p1 = state.vector(t),
+                    Some(Var::Unknown(j)) if j == second => {}
+                    _ => known = known.add(&state.vector(t)),
+                }
+            }
+            let chord = C::new(-known.re, -known.im);
+            if chord.cross(&p1).is_negative() {
+                Branch::Crossed
+            } else {
+                Branch::Open
+            }
+        })
+        .collect()
+}
+
 /// A tracked point's position, velocity and acceleration at a truth.
 pub fn point(model: &Model, truth: &Truth, name: &str) -> Option<[C; 3]> {
     let terms = &model.points.iter().find(|(n, _)| *n == name)?.1;
@@ -2546,11 +2580,16 @@ pub mod judge {
     /// What the oracle says about a case.
     struct Expect {
         model: Model,
+        params: Params,
         reach: Option<Reach>,
         truth: Option<Truth>,
         others: Vec<Truth>,
         eps: f64,
         input: f64,
+        /// Whether Newton's guess was near no solution at the input (an unreachable input's
+        /// guess, from the mirrored one): its branch is then undefined, and any accurate
+        /// solution is right.
+        guess_near_none: bool,
     }
 
     impl Expect {
@@ -2637,6 +2676,16 @@ pub mod judge {
                     v.fail(api, "Ok where the oracle has no position", format!("{q:?}"));
                 } else if self.near_limit() {
                     // Within rounding of a limit, where the branches meet: either is right.
+                } else if self.accurate_elsewhere(q, &branches, reported_kappa) {
+                    if !self.guess_near_none {
+                        v.fail(
+                            api,
+                            "wrong branch",
+                            format!(
+                                "a solution on {branches:?}, asked {wanted:?}, which does not close"
+                            ),
+                        );
+                    }
                 } else if branches != wanted && residual <= floor {
                     v.fail(
                         api,
@@ -2706,6 +2755,25 @@ pub mod judge {
             }
         }
 
+        /// Whether `q` is within the bound of the truth on `branches` (another branch than asked).
+        fn accurate_elsewhere(&self, q: &[f64], branches: &[Branch], reported_kappa: f64) -> bool {
+            let Some(o) = closed_form(
+                self.model.kind,
+                &self.params,
+                self.input,
+                branches,
+                0.0,
+                0.0,
+            ) else {
+                return false;
+            };
+            let Some(t) = o.truth else {
+                return false;
+            };
+            let kappa = t.condition.max(reported_kappa).max(1.0);
+            position_error(&self.model, &t, q) <= FACTOR * self.eps * kappa
+        }
+
         /// Judges rates and accelerations.
         fn rates(&self, v: &mut Verdict, api: Api, rates: &[Vec<f64>], reported_kappa: f64) {
             let Some(truth) = &self.truth else {
@@ -2763,6 +2831,11 @@ pub mod judge {
                     | Error::Singular { .. }
             );
             if newton_outside_basin && documented_newton {
+                return;
+            }
+            // From a guess near no solution (an unreachable input's), finding one on another
+            // branch and saying so is right.
+            if self.guess_near_none && matches!(e, Error::OtherBranch) {
                 return;
             }
             match e {
@@ -2961,6 +3034,8 @@ pub mod judge {
         match closed_form(case.kind, p, input, &case.branches, case.omega, case.alpha) {
             Some(o) => Expect {
                 model: o.model,
+                params: p.clone(),
+                guess_near_none: false,
                 reach: Some(o.reach),
                 truth: o.truth,
                 others: o.others,
@@ -2980,6 +3055,8 @@ pub mod judge {
                 let truth = polished.truth.filter(|_| polished.kantorovich <= 0.5);
                 Expect {
                     model,
+                    params: p.clone(),
+                    guess_near_none: false,
                     reach: None,
                     truth,
                     others: Vec::new(),
@@ -3052,7 +3129,7 @@ pub mod judge {
             return verdict;
         };
         let p = Params::from_debug::<T>(&format!("{m:?}"));
-        let e = expect::<T>(case, &p);
+        let mut e = expect::<T>(case, &p);
         let input = T::constant(e.input);
         let (w, a) = (T::constant(case.omega), T::constant(case.alpha));
         let outcome = |r: &Result<(), Error<f64>>| match r {
@@ -3096,8 +3173,8 @@ pub mod judge {
                 let guess_t: Vec<T> = guess.iter().map(|x| T::constant(*x)).collect();
                 // Newton keeps to its guess's branch, which near a toggle a certified guess may
                 // be on the other side of: then `OtherBranch` is the answer.
-                let (wanted, _) =
-                    branch_signs(&e.model, &State::from_f64(&e.model, e.input, &guess));
+                let wanted = guess_branches(&e.model, &State::from_f64(&e.model, e.input, &guess));
+                e.guess_near_none = e.truth.is_none();
                 let switched = e.truth.as_ref().is_some_and(|t| t.branches != wanted);
                 let r = if api == Api::Position {
                     S::position(&m, input, &guess_t)
