@@ -2865,11 +2865,22 @@ pub mod judge {
                         );
                     }
                 }
-                other => v.fail(
-                    api,
-                    &format!("{} error", error_name(other)),
-                    format!("{other:?}"),
-                ),
+                other => {
+                    // Where: beyond the range (the contract says CannotAssemble), or inside it
+                    // from a guess Kantorovich certifies.
+                    let place = if self.truth.is_none() && self.reach.is_some() {
+                        " beyond the range of motion (documented: CannotAssemble)"
+                    } else if matches!(other, Error::NoConvergence { .. } | Error::OtherBranch) {
+                        " from a certified guess"
+                    } else {
+                        " for finite data"
+                    };
+                    v.fail(
+                        api,
+                        &format!("{}{place}", error_name(other)),
+                        format!("{other:?}"),
+                    )
+                }
             }
         }
 
