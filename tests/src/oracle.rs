@@ -3975,7 +3975,8 @@ pub mod draw {
             let up = hi * std::f64::consts::LOG2_10 - longest.log2();
             let down =
                 (lo - family.ratio.max(1.0).log10()) * std::f64::consts::LOG2_10 - shortest.log2();
-            let k = rng.range(down.min(0.0), up.max(0.0));
+            // The factor itself must be a normal f64 too.
+            let k = rng.range(down.clamp(-1000.0, 0.0), up.clamp(0.0, 1000.0));
             let k = if k.round() == 0.0 { 1.0 } else { k };
             if rng.chance(0.5) {
                 2f64.powi(k.round() as i32)
