@@ -5,5 +5,6 @@ pub mod baselines;
 pub mod batch_baseline;
 pub mod examples;
 pub mod kernels;
+pub mod oracle;
 pub mod reference;
 pub mod scenes;
