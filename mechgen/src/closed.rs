@@ -180,8 +180,10 @@ fn line_meets_circle<T: Real>(
     } else {
         (k_length - radius) * (k_length + radius) / (foot - along)
     };
+    // The point from the root itself, so that the two agree to rounding (near a tangency the
+    // root's two forms differ by more: the half chord is ill-conditioned there).
     let normal = Vec2::new(-u.y, u.x);
-    Ok((root, scaled(u, along) + scaled(normal, offset)))
+    Ok((root, scaled(u, root - foot) + scaled(normal, offset)))
 }
 
 /// `K + l1·v1 + l2·v2 = 0` for the lengths `[l1, l2]`: unique, unless `v1 ∥ v2`.

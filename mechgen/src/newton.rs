@@ -283,10 +283,23 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
 /// `‖J⁻¹‖ ≈ κ / min‖column‖` and, the loops being sums of `r·e^{iθ}`, `L ≈ max‖column‖`.
 /// Below 1/2 a root is certain to lie near the iterate.
 fn kantorovich<T: Real, const N: usize, P>(at: &Linearisation<T, N, P>, condition: T) -> T {
+    // In units where the largest entry is about 1 (a power of two, exact: h is a ratio of
+    // lengths), so that no square overflows or underflows at any scale.
+    let largest = at
+        .jacobian
+        .iter()
+        .flatten()
+        .fold(T::zero(), |m, v| m.max(v.abs()));
+    let scale = if largest > T::zero() && largest.is_finite() {
+        crate::real::normaliser(largest)
+    } else {
+        T::one()
+    };
     let mut squares = [T::zero(); N];
     for row in &at.jacobian {
         for (square, v) in squares.iter_mut().zip(row) {
-            *square = *square + *v * *v;
+            let v = *v * scale;
+            *square = *square + v * v;
         }
     }
     let shortest = squares.iter().fold(T::infinity(), |m, c| m.min(*c));
@@ -294,7 +307,7 @@ fn kantorovich<T: Real, const N: usize, P>(at: &Linearisation<T, N, P>, conditio
     let residual = at
         .residual
         .iter()
-        .fold(T::zero(), |acc, f| acc + *f * *f)
+        .fold(T::zero(), |acc, f| acc + (*f * scale) * (*f * scale))
         .sqrt();
     condition * condition * residual * longest / shortest
 }

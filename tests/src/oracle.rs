@@ -1832,6 +1832,21 @@ pub fn relative_residual(model: &Model, input: f64, q: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The largest loop residual relative to the magnitudes of all the loops together: what
+/// Newton, which solves coupled loops at once, documents its floor against (`16·ε·Σ|r|`).
+/// A small loop that shares unknowns with a large one inherits the large one's rounding.
+pub fn coupled_relative_residual(model: &Model, input: f64, q: &[f64]) -> f64 {
+    let state = State::from_f64(model, input, q);
+    let total = model
+        .loop_magnitudes(&state)
+        .iter()
+        .fold(0.0, |sum, m| sum + m.to_f64());
+    residual(model, &state)
+        .iter()
+        .map(|r| r.norm().to_f64() / total)
+        .fold(0.0, f64::max)
+}
+
 // ---------------------------------------------------------------------------------------------
 // Cases
 
@@ -2169,6 +2184,15 @@ pub mod judge {
                 iterations,
                 residual_norm: f(residual_norm),
             },
+            Error::Inaccurate {
+                order,
+                estimate,
+                required,
+            } => Error::Inaccurate {
+                order,
+                estimate: f(estimate),
+                required: f(required),
+            },
             _ => Error::NonFinite {
                 quantity: "an error mechgen added since",
             },
@@ -2186,6 +2210,7 @@ pub mod judge {
             Error::Singular { .. } => "Singular",
             Error::OtherBranch => "OtherBranch",
             Error::NoConvergence { .. } => "NoConvergence",
+            Error::Inaccurate { .. } => "Inaccurate",
             _ => "other",
         }
     }
@@ -2624,6 +2649,28 @@ pub mod judge {
             self.truth.as_ref().map_or(1.0, |t| t.aspect(self.size()))
         }
 
+        /// Whether mechgen's estimate (`mechgen::Accuracy::estimate`) of `order` at the true
+        /// position, with κ up to twice the truth's (as it is at a position within rounding
+        /// of it near a toggle) and the judge's aspect, exceeds `mechgen::Accuracy::required`:
+        /// then `Inaccurate` is the documented answer.
+        fn inaccuracy_allowed(&self, order: mechgen::Order) -> bool {
+            let Some(t) = &self.truth else {
+                return true;
+            };
+            let kappa = 2.0 * t.condition.max(1.0);
+            let shrunk = (self.rho() / 16.0).max(1.0);
+            let e = self.eps;
+            let (estimate, required) = match order {
+                mechgen::Order::Position => (FACTOR * e * kappa, e.sqrt()),
+                mechgen::Order::Velocity => (e * kappa * (64.0 + 4.0 * kappa) * shrunk, e.cbrt()),
+                mechgen::Order::Acceleration => (
+                    e * kappa * (256.0 + kappa * kappa) * shrunk * shrunk,
+                    e.sqrt().sqrt(),
+                ),
+            };
+            !kappa.is_finite() || estimate > required
+        }
+
         /// Whether some position within the bound of the truth is at the singular threshold.
         fn singular_allowed(&self) -> bool {
             if self.near_limit() {
@@ -2657,7 +2704,11 @@ pub mod judge {
             // rounds (each vector to ε, each of the n − 1 sums to ε/2: under n·ε·Σ|r|).
             let terms = self.model.loops.iter().map(Vec::len).max().unwrap_or(0) as f64;
             let floor = (FACTOR + terms) * self.eps;
-            let residual = relative_residual(&self.model, self.input, q);
+            let residual = if matches!(api, Api::Position | Api::MotionNear) {
+                coupled_relative_residual(&self.model, self.input, q)
+            } else {
+                relative_residual(&self.model, self.input, q)
+            };
             if residual > floor {
                 v.fail(
                     api,
@@ -2821,8 +2872,30 @@ pub mod judge {
             }
         }
 
+        /// Whether a true rate or acceleration (times its column: a point's speed) is beyond
+        /// a sixteenth of the float's largest number, where computing it may overflow and
+        /// `NonFinite` is the honest answer.
+        fn rates_unrepresentable(&self) -> bool {
+            let Some(t) = &self.truth else {
+                return false;
+            };
+            let largest = if self.eps > 1e-10 {
+                f64::from(f32::MAX)
+            } else {
+                f64::MAX
+            } / 16.0;
+            [&t.velocity, &t.acceleration]
+                .into_iter()
+                .flatten()
+                .flat_map(|values| values.iter().zip(&t.columns))
+                .any(|(value, column)| (value.to_f64() * column).abs() > largest)
+        }
+
         /// Judges an error.
         fn error(&self, v: &mut Verdict, api: Api, e: &Error<f64>, newton_outside_basin: bool) {
+            if matches!(e, Error::NonFinite { .. }) && self.rates_unrepresentable() {
+                return;
+            }
             let documented_newton = matches!(
                 e,
                 Error::OtherBranch
@@ -2862,6 +2935,16 @@ pub mod judge {
                             api,
                             "Singular away from the threshold",
                             format!("true κ {kappa:.2e} (threshold {:.2e}), reported relative determinant {relative_determinant:.2e}", 1.0 / self.eps.sqrt()),
+                        );
+                    }
+                }
+                Error::Inaccurate { order, .. } => {
+                    if !self.singular_allowed() && !self.inaccuracy_allowed(*order) {
+                        let kappa = self.truth.as_ref().map_or(f64::NAN, |t| t.condition);
+                        v.fail(
+                            api,
+                            "Inaccurate where the estimate is within what is required",
+                            format!("true κ {kappa:.2e}, ρ {:.2e}: {e:?}", self.rho()),
                         );
                     }
                 }

@@ -11,7 +11,8 @@
 //! every angle's bits alone). A failing case prints the Rust that repeats it.
 //!
 //! The seeds are proptest's, from a fixed one unless `PROPTEST_RNG_SEED` says otherwise; each
-//! seed draws one case. The tests marked `#[ignore = "issue 12: …"]` fail today, one class of failure each;
+//! seed draws one case. The two tests marked `#[ignore = "issue 12: …"]` fail today, on one
+//! class of failure (the reduced Newton at extreme link ratios);
 //! `cargo test -p mechgen-tests --test edges -- --ignored` runs them, and
 //! `cargo run --release -p mechgen-tests --bin edges` runs a million cases of everything.
 
@@ -107,43 +108,30 @@ fn closed_forms_keep_the_contract_when_every_length_is_scaled() {
 /// The inverted slider-crank with its crank on the ground line: where the crank folds onto a
 /// ground link of nearly its length, the chord `A − O4` nearly vanishes.
 #[test]
-#[ignore = "issue 12: the inverted slider-crank loses digits where the chord A − O4 nearly \
-            vanishes (crank folded onto a ground link of nearly its length), a thin triangle"]
 fn inverted_slider_crank_keeps_the_contract_with_the_crank_folded() {
     keeps_the_contract("flat/closed/inverted", 4000);
 }
 
 /// Link ratios to 1e8 at moderate sizes.
 #[test]
-#[ignore = "issue 12: thin triangles and long/short link pairs lose digits in the closed forms, \
-            and the tangency tolerance, relative to the longest link, accepts inputs beyond the \
-            range of motion"]
 fn closed_forms_keep_the_contract_at_link_ratios_to_1e8() {
     keeps_the_contract("ratios/closed", 2000);
 }
 
 /// Sizes across each float's range: 1e-300 to 1e300 in f64, 1e-37 to 1e37 in f32.
 #[test]
-#[ignore = "issue 12: squares of lengths overflow or underflow beyond about 1e±154 (f64) and \
-            1e±19 (f32): NaN or wrong angles inside Ok, NonFinite, Singular at κ ≈ 1, \
-            CannotAssemble inside the range, constructors and scenes() refusing valid dimensions"]
 fn closed_forms_keep_the_contract_at_extreme_scales() {
     keeps_the_contract("extreme/closed", 2000);
 }
 
 /// Newton from a guess Kantorovich certifies, at moderate sizes and ratios.
 #[test]
-#[ignore = "issue 12: Newton stops once the residual is 16·ε·Σ|r| over all loops together, \
-            which lets the position err up to about √N·κ·16·ε·Σ|r|/size (past 16·ε·κ) and a \
-            small loop's residual past its own floor"]
 fn newton_keeps_the_contract_on_ordinary_mechanisms() {
     keeps_the_contract("ordinary/newton", 1000);
 }
 
 /// Newton at the limits, beyond them, on the ground line and under scaling.
 #[test]
-#[ignore = "issue 12: Newton's stopping floor (as on ordinary mechanisms); certified guesses \
-            that end in NoConvergence, and silent branch switches on the six-bars"]
 fn newton_keeps_the_contract_near_the_limits_and_under_scaling() {
     keeps_the_contract("inside/newton", 300);
     keeps_the_contract("outside/newton", 300);
@@ -153,8 +141,8 @@ fn newton_keeps_the_contract_near_the_limits_and_under_scaling() {
 
 /// Newton at link ratios to 1e8 and at sizes across each float's range.
 #[test]
-#[ignore = "issue 12: Newton returns its guess when the sum of the lengths overflows (its floor \
-            is then infinite), and loses digits at extreme ratios"]
+#[ignore = "issue 12: the reduced Newton of the Stephenson six-bar ends in NoConvergence from \
+            guesses Kantorovich certifies, at link ratios near 1e4 and more"]
 fn newton_keeps_the_contract_at_extreme_ratios_and_scales() {
     keeps_the_contract("ratios/newton", 1000);
     keeps_the_contract("extreme/newton", 1000);
@@ -162,14 +150,13 @@ fn newton_keeps_the_contract_at_extreme_ratios_and_scales() {
 
 /// Everything mixed, as the large run draws it.
 #[test]
-#[ignore = "issue 12: every class above"]
+#[ignore = "issue 12: as newton_keeps_the_contract_at_extreme_ratios_and_scales"]
 fn everything_keeps_the_contract() {
     keeps_the_contract("everything", 3000);
 }
 
 /// The issue's own reproducer: a rod of 1.9e19 in f32, whose square overflows.
 #[test]
-#[ignore = "issue 12: NaN inside Ok when squares of lengths overflow f32"]
 fn an_f32_slider_crank_with_a_rod_of_1_9e19_answers_finitely_or_says_why() {
     let linkage = mechanisms::SliderCrank::<f32>::new(5.0, 1.9e19, 6.0).unwrap();
     match linkage.assemble(0.17, Branch::Open) {
