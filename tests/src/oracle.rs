@@ -2164,40 +2164,7 @@ pub mod judge {
     /// Every scene's outputs, by scene name (or why `scenes()` refused).
     pub type Scenes = Got<Vec<(&'static str, Got<Vec<Quantity>>)>>;
 
-    fn widen<T: Real>(e: Error<T>) -> Error<f64> {
-        let f = |v: T| v.to_f64().unwrap_or(f64::NAN);
-        match e {
-            Error::NonFinite { quantity } => Error::NonFinite { quantity },
-            Error::CannotAssemble { input } => Error::CannotAssemble { input: f(input) },
-            Error::Singular {
-                determinant,
-                relative_determinant,
-            } => Error::Singular {
-                determinant: f(determinant),
-                relative_determinant: f(relative_determinant),
-            },
-            Error::OtherBranch => Error::OtherBranch,
-            Error::NoConvergence {
-                iterations,
-                residual_norm,
-            } => Error::NoConvergence {
-                iterations,
-                residual_norm: f(residual_norm),
-            },
-            Error::Inaccurate {
-                order,
-                estimate,
-                required,
-            } => Error::Inaccurate {
-                order,
-                estimate: f(estimate),
-                required: f(required),
-            },
-            _ => Error::NonFinite {
-                quantity: "an error mechgen added since",
-            },
-        }
-    }
+    use crate::reference::widen_error as widen;
 
     fn f<T: Real>(v: &[T]) -> Vec<f64> {
         v.iter().map(|x| x.to_f64().unwrap_or(f64::NAN)).collect()

@@ -110,7 +110,8 @@ fn widen<T: Real>(values: [T; 2]) -> [f64; 2] {
     values.map(|v| v.to_f64().unwrap_or(f64::NAN))
 }
 
-fn widen_error<T: Real>(error: Error<T>) -> Error<f64> {
+/// An error in `T`, with its numbers widened to `f64`.
+pub fn widen_error<T: Real>(error: Error<T>) -> Error<f64> {
     let f = |v: T| v.to_f64().unwrap_or(f64::NAN);
     match error {
         Error::NonFinite { quantity } => Error::NonFinite { quantity },
