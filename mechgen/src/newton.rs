@@ -116,6 +116,11 @@ pub struct Converged<T, const N: usize, P> {
     pub jacobian: Factored<T, N>,
 }
 
+/// How far above the rounding floor `16 ε Σ|r|` a residual that no step lowers still counts as
+/// converged: the floor is an estimate, and a coupled evaluation (closed forms inside the
+/// iteration) rounds at intermediate magnitudes somewhat above its vectors'.
+const STAGNATION_FLOOR: f64 = 4.0;
+
 /// How many times a Newton step is halved, at most, looking for a smaller residual.
 const MAX_HALVINGS: u32 = 10;
 
@@ -251,8 +256,10 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         let mut halvings = 0;
         // Not lower (a NaN residual is not lower either).
         while max_abs(&there.residual).partial_cmp(&residual_norm) != Some(Ordering::Less) {
-            if residual_norm <= floor {
-                // At the rounding floor no step lowers the residual: converged.
+            if residual_norm <= T::constant(STAGNATION_FLOOR) * floor {
+                // Within a few units of the rounding floor no step lowers the residual: this is
+                // what rounding lets the loops close to (intermediate values of a coupled
+                // evaluation can exceed its vectors' magnitudes), so converged.
                 return accept(here, jacobian, x);
             }
             if halvings == MAX_HALVINGS {
