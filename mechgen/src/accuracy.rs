@@ -20,8 +20,8 @@
 //! tests. Near a change point the κ³ of the acceleration is reached; near a toggle the true
 //! error grows only as κ², so there the estimate is pessimistic by up to κ.
 //!
-//! Here `s = max(1, ρ/16)`, with ρ the aspect: the sum of the mechanism's declared lengths
-//! over the shortest column of an angle unknown. An angle whose vector shrinks (a slide
+//! Here `s = max(1, ρ/16)`, with ρ the aspect: the sum of the lengths the mechanism's loops
+//! declare over the shortest column of an angle unknown. An angle whose vector shrinks (a slide
 //! passing near its pivot) is less determined than κ says, since κ does not see a column's
 //! scale; ordinary mechanisms have ρ below 16, where `s` is 1.
 //!

@@ -480,3 +480,18 @@ fn the_caller_states_the_accuracy_it_needs() {
         "{refused:?}"
     );
 }
+
+/// A tracked point far off its link does not make the loops' rates less accurate: the aspect
+/// counts the lengths of the loops' vectors only (a coupler point 1e9 away made Example 1's
+/// accelerations Inaccurate).
+#[test]
+fn a_far_coupler_point_does_not_refuse_the_rates() {
+    let linkage = FourBar::<f64>::new(180.0, 80.0, 200.0, 150.0)
+        .unwrap()
+        .with_coupler_point(1e9, 0.3)
+        .unwrap();
+    let motion = linkage
+        .motion(60f64.to_radians(), Branch::Open, 10.0, 0.0)
+        .unwrap();
+    assert!((motion.position.theta4 - 72.1377f64.to_radians()).abs() < 1e-5);
+}

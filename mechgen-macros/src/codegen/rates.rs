@@ -189,8 +189,8 @@ impl Generator<'_> {
 
     /// `rates_accuracy(condition, jacobian, size, angles, highest, required)?;` for the
     /// Jacobian `matrix` (an expression of type `&[[T; N]; N]`) of condition `condition`,
-    /// against `required` (of type `&Accuracy<T>`), the sum of the declared lengths as the
-    /// size.
+    /// against `required` (of type `&Accuracy<T>`), the sum of the lengths the loops declare
+    /// as the size.
     pub(super) fn rates_check(
         &self,
         matrix: TokenStream,
@@ -198,12 +198,26 @@ impl Generator<'_> {
         highest: &str,
         required: TokenStream,
     ) -> TokenStream {
+        // The lengths of the loops' vectors only: a tracked point's distance (a coupler
+        // point far off its link) does not make the loops' rates any less accurate.
+        let in_loops: std::collections::BTreeSet<usize> = self
+            .model
+            .loops
+            .iter()
+            .flat_map(|sum| &sum.terms)
+            .flat_map(|term| term.magnitude.coefficients.keys())
+            .filter_map(|symbol| match symbol {
+                SymbolRef::Param(i) => Some(*i),
+                _ => None,
+            })
+            .collect();
         let lengths: Vec<&Ident> = self
             .model
             .params
             .iter()
-            .filter(|param| param.kind == crate::model::Kind::Length)
-            .map(|param| &param.name)
+            .enumerate()
+            .filter(|(i, param)| param.kind == crate::model::Kind::Length && in_loops.contains(i))
+            .map(|(_, param)| &param.name)
             .collect();
         let size = if lengths.is_empty() {
             quote!(T::one())
