@@ -1,0 +1,286 @@
+//! `position` and `motion_near` for a mechanism whose loops do not all come down to closed
+//! forms but do once a few unknowns are known (see `symbolic::reduction`): Newton iterates on
+//! those few; each evaluation solves in closed form the loops the residual depends on, then
+//! evaluates the leftover loops' residual and its Jacobian by implicit differentiation (a
+//! Schur complement of the loops' Jacobian). The loops nothing in the iteration reads are
+//! solved once, at its solution.
+//!
+//! Inside the iteration a closed-form angle exists only as its unit vector (no `atan2`); the
+//! angles are computed once, at the solution. The closed forms' branches are the guess's,
+//! fixed before the iteration, and Newton keeps the orientation of its Jacobian, so landing
+//! on another assembly is `Error::OtherBranch`. Where the closed forms cannot close at the
+//! guess itself there is nothing to iterate on, and the functions fall back to Newton on
+//! every unknown.
+//!
+//! At the solution, the loops' full Jacobian gives `condition`, the singular check and the
+//! rates through its blocks (see [`block_solver`]): the closed-form loops' 2×2 blocks and the
+//! reduced Jacobian Newton has already factored, with the full Jacobian factored whole only
+//! where the blocks are ill-conditioned or the full one is near the singular threshold.
+//!
+//! The two public functions are put together here from what the submodules emit:
+//! [`iteration`] the iteration up to its solution, with the closure Newton evaluates;
+//! [`schur`] the reduced Jacobian inside that closure; [`steps`] the calls to the closed
+//! forms and what they bind; [`branches`] the guess's branch of each closed form;
+//! [`finish`] the loops solved after the iteration and the loops' Jacobian at its solution;
+//! [`blocks`] that Jacobian solved through its blocks.
+
+mod blocks;
+mod branches;
+mod finish;
+mod iteration;
+mod schur;
+mod steps;
+
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
+use syn::ext::IdentExt;
+
+use super::docs::doc;
+use super::emit::local;
+use super::{Generator, arg};
+use crate::symbolic::{ExprId, Reduction, Step};
+use blocks::{block_solve, block_solver};
+use finish::Finish;
+use iteration::Iteration;
+
+impl Generator<'_> {
+    /// `position` by the reduced iteration, and the Newton on every unknown it falls back to.
+    pub(super) fn reduced_position(&self, reduction: &Reduction) -> TokenStream {
+        let input = &self.model.input.name;
+        let (guess, options) = (arg("guess"), arg("options"));
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let fallback = self.fallback_name();
+        let fall_back = quote! {
+            return self.#fallback(#input, #guess, #options);
+        };
+        let after = self.roots_after(reduction, &[]);
+        let iteration = self.reduced_iteration(reduction, &fall_back, &after);
+        let Finish {
+            solves,
+            jacobian,
+            entries,
+            ..
+        } = self.finish(reduction, &iteration, &[], false);
+        let Iteration { check, solve, .. } = iteration;
+        let unknown_names = self.model.unknowns.iter().map(|u| &u.name);
+        let (converged, factored) = (arg("converged"), arg("jacobian"));
+        let after_failure = if reduction.after.is_empty() {
+            ""
+        } else {
+            ", or a loop solved after the iteration cannot close"
+        };
+        let doc = doc(&format!(
+            "{}\n\nErrors: a non-finite parameter, input or guess; a singular Jacobian on the \
+             way or at the solution; [`mechgen::Error::OtherBranch`]; \
+             [`mechgen::Error::CannotAssemble`] where the iterates press against a toggle the \
+             loops cannot pass{after_failure}; no convergence within `options.max_iterations`.",
+            self.reduction_doc(reduction)
+        ));
+        let full = self.full_position(false);
+        let (factor, relative) = if reduction.after.is_empty() {
+            let relative = local("block_relative");
+            (
+                block_solver(reduction, &self.equations.graph, &entries),
+                quote!(#relative),
+            )
+        } else {
+            (
+                quote!(let #factored = ::mechgen::__private::Factored::new(#jacobian)?;),
+                quote!(#factored.relative()),
+            )
+        };
+        quote! {
+            #doc
+            pub fn position(
+                &self,
+                #input: T,
+                #guess: &#unknowns,
+                #options: &::mechgen::NewtonOptions<T>,
+            ) -> ::core::result::Result<::mechgen::Solved<#unknowns, T>, ::mechgen::Error<T>> {
+                #check
+                #solve
+                #solves
+                #factor
+                ::core::result::Result::Ok(::mechgen::Solved {
+                    value: #ty { #(#unknown_names),* },
+                    iterations: #converged.solved.iterations,
+                    residual_norm: #converged.solved.residual_norm,
+                    condition: T::one() / #relative.abs(),
+                })
+            }
+            #full
+        }
+    }
+
+    /// `motion_near` by the reduced iteration: the rates at its solution from the loops'
+    /// Jacobian, from the values its last evaluation named, solved through its blocks (see
+    /// [`block_solver`]).
+    pub(super) fn reduced_motion_near(&self, reduction: &Reduction) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (guess, options, solved) = (arg("guess"), arg("options"), arg("solved"));
+        let ty = &self.unknowns_type;
+        let n = self.model.unknowns.len();
+        let fallback = self.fallback_name();
+        let motion = local("motion");
+        let fall_back = quote! {
+            let #solved = self.#fallback(#input, #guess, #options)?;
+            let #motion = self.motion_at(#input, &#solved.value, #input_dot, #input_ddot)?;
+            return ::core::result::Result::Ok(#solved.map(|_| #motion));
+        };
+        let right_sides: Vec<ExprId> = reduction
+            .velocity_rhs
+            .iter()
+            .chain(&reduction.acceleration_rhs)
+            .copied()
+            .collect();
+        let after = self.roots_after(reduction, &right_sides);
+        let iteration = self.reduced_iteration(reduction, &fall_back, &after);
+        let Finish {
+            solves,
+            after_rates,
+            jacobian,
+            entries,
+            extra,
+        } = self.finish(reduction, &iteration, &right_sides, true);
+        let Iteration { check, solve, .. } = iteration;
+        let (velocity_rhs, acceleration_rhs) = extra.split_at(n);
+        let rate_names = &self.unknown_dots;
+        let unknown_names = self.model.unknowns.iter().map(|u| &u.name);
+        let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let (converged, factored) = (arg("converged"), arg("jacobian"));
+        let graph = &self.equations.graph;
+        // Through the blocks where there is no loop solved after the iteration.
+        let (factor, velocity, acceleration, relative) = if reduction.after.is_empty() {
+            let zeros =
+                |ids: &[ExprId]| ids.iter().map(|&id| graph.is_zero(id)).collect::<Vec<_>>();
+            let relative = local("block_relative");
+            (
+                block_solver(reduction, graph, &entries),
+                block_solve(
+                    reduction,
+                    graph,
+                    velocity_rhs,
+                    &zeros(&reduction.velocity_rhs),
+                ),
+                block_solve(
+                    reduction,
+                    graph,
+                    acceleration_rhs,
+                    &zeros(&reduction.acceleration_rhs),
+                ),
+                quote!(#relative),
+            )
+        } else {
+            (
+                quote!(let #factored = ::mechgen::__private::Factored::new(#jacobian)?;),
+                quote!(#factored.solve([#(#velocity_rhs),*])),
+                quote!(#factored.solve([#(#acceleration_rhs),*])),
+                quote!(#factored.relative()),
+            )
+        };
+        let docs = doc(&format!(
+            "Position by Newton-Raphson from `guess` (as [`Self::position`]: on the iterated \
+             unknowns, the rest in closed form), then velocity and acceleration at the solution \
+             for the input moving at `{input_dot}` and accelerating at `{input_ddot}` (as \
+             [`Self::motion_at`]), from the loops' Jacobian evaluated once at the solution with \
+             the sines, cosines and products of Newton's last evaluation: the fastest way to \
+             all three without a closed form.\n\nErrors: as [`Self::position`] and \
+             [`Self::motion_at`]."
+        ));
+        let body = quote! {
+                #solve
+                #solves
+                #factor
+                ::mechgen::__private::rates_accuracy_at(
+                    T::one() / #relative.abs(),
+                    ::mechgen::Order::Acceleration,
+                    &#options.accuracy,
+                )?;
+                let #rates = #velocity;
+                let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
+                #after_rates
+                let #accelerations = #acceleration;
+                let #accelerations = ::mechgen::__private::finite(#accelerations, "acceleration")?;
+                ::core::result::Result::Ok(::mechgen::Solved {
+                    value: ::mechgen::Motion {
+                        position: #ty { #(#unknown_names),* },
+                        velocity: #ty::from_array(#rates),
+                        acceleration: #ty::from_array(#accelerations),
+                    },
+                    iterations: #converged.solved.iterations,
+                    residual_norm: #converged.solved.residual_norm,
+                    condition: T::one() / #relative.abs(),
+                })
+        };
+        self.motion_near_function(docs, TokenStream::new(), check, body)
+    }
+
+    /// The private Newton on every unknown that the reduced functions fall back to.
+    pub(super) fn fallback_name(&self) -> Ident {
+        Ident::new("mechgen_newton_all", Span::call_site())
+    }
+
+    /// The docs' account of the reduction: which unknowns Newton iterates on, which loops are
+    /// solved in closed form for which, and the stopping rules.
+    fn reduction_doc(&self, reduction: &Reduction) -> String {
+        let input = &self.model.input.name;
+        let name = |u: usize| format!("`{}`", self.model.unknowns[u].name.unraw());
+        let iterated = list(reduction.iterated.iter().map(|&u| name(u)).collect());
+        let loops = |ls: &[usize]| list(ls.iter().map(|l| format!("loop {}", l + 1)).collect());
+        let residual_loops = loops(&reduction.residual_loops);
+        let describe = |steps: &[Step]| {
+            list(
+                steps
+                    .iter()
+                    .map(|step| {
+                        format!(
+                            "loop {} for {} ({})",
+                            step.loop_index + 1,
+                            list(step.unknowns.iter().map(|&u| name(u)).collect()),
+                            step.case.description()
+                        )
+                    })
+                    .collect(),
+            )
+        };
+        let after = if reduction.after.is_empty() {
+            String::new()
+        } else {
+            format!(
+                " At the solution it then solves, once, {}.",
+                describe(&reduction.after)
+            )
+        };
+        format!(
+            "Solves the loops for the unknowns at `{input}` by a safeguarded Newton-Raphson \
+             from `guess` (see `mechgen::__private::newton`: halved steps, a certified root, \
+             stagnation reported) on {iterated} alone: each evaluation solves, in closed form \
+             and in this order, {}, then {residual_loops} gives the residual Newton drives to \
+             zero, with its Jacobian from the loops' by implicit differentiation (a Schur \
+             complement).{after}\n\n\
+             It keeps to the guess's assembly: each loop solved in closed form stays on the \
+             branch the guess is on (by the sign its closed form documents), and Newton keeps \
+             the orientation (the determinant's sign) of its own Jacobian; landing on another \
+             assembly is [`mechgen::Error::OtherBranch`], never a silent switch. Where a \
+             closed form cannot close at the guess itself, there is nothing to iterate on and \
+             it falls back to Newton on every unknown together.\n\n\
+             The stopping rules are those of Newton on every unknown, applied to the residual \
+             of {residual_loops} (the loops solved in closed form close to rounding): at most \
+             the tolerance in every component, the rounding floor `16 ε Σ|r|` summed over \
+             every loop's vectors, and Kantorovich's certificate on this iteration's Jacobian. \
+             The returned `iterations` and `residual_norm` are this iteration's; `condition` \
+             is the loops' full Jacobian's at the solution, as the accuracy contract reads it.",
+            describe(&reduction.steps),
+        )
+    }
+}
+
+/// `a`, `a and b`, `a, b and c`.
+fn list(items: Vec<String>) -> String {
+    match items.len() {
+        0 | 1 => items.concat(),
+        n => format!("{} and {}", items[..n - 1].join(", "), items[n - 1]),
+    }
+}
