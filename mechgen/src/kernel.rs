@@ -38,6 +38,16 @@ pub fn all_finite<T: Real, const N: usize>(
     }
 }
 
+/// Whether every one of `values` is finite, as far as a fast kernel needs to know: their sum
+/// is NaN or infinite if one of them is (an infinity plus anything finite is infinite, and
+/// opposite infinities make NaN), so `sum·0 = 0` says all are finite. A sum that overflows
+/// from finite values says no, wrongly but safely: the checked kernel then decides.
+#[inline(always)]
+pub fn outputs_finite<T: Real, const N: usize>(values: &[T; N]) -> bool {
+    let sum = values.iter().copied().reduce(|sum, value| sum + value);
+    sum.is_none_or(|sum| sum * T::zero() == T::zero())
+}
+
 /// `sign·√(plus − minus)`: a loop's branch-dependent root. A radicand below zero by no more
 /// than rounding of `plus + |minus|` is a tangency (the root is zero); further below, the
 /// loop cannot close.
@@ -179,16 +189,22 @@ pub mod lanes {
         sign * (plus - minus).sqrt()
     }
 
-    /// [`super::triangle_root`], with NaN where a gap is negative (a tangency within rounding
-    /// included): the checked kernel redoes those lanes and decides.
+    /// [`super::triangle_root`] from the squares of its sides, `½·√((sum² − span²)·(span² −
+    /// difference²))` with `sign`: no square root for the span, and NaN where the circles do
+    /// not meet (a tangency within rounding included), for the checked kernel to decide.
+    /// The product is negative exactly when one gap is: both cannot be, since
+    /// `sum² ≥ difference²`. The squared gaps are as accurate as the linear ones where the
+    /// span's square is what was computed (its rounding dominates either way).
     #[inline(always)]
-    pub fn triangle_root<T: Real>(sum: T, difference: T, span: T, sign: T) -> T {
-        let difference = difference.abs();
-        let (outer, inner) = (sum - span, span - difference);
-        // Each gap under its own root: NaN for either negative, however the signs pair up.
-        sign * T::constant(0.5)
-            * (outer * (sum + span)).sqrt()
-            * (inner * (span + difference)).sqrt()
+    pub fn triangle_root<T: Real>(
+        sum_squared: T,
+        difference_squared: T,
+        span_squared: T,
+        sign: T,
+    ) -> T {
+        // `sign·½` first: a choice between two constants, not a product on each call.
+        (sign * T::constant(0.5))
+            * ((sum_squared - span_squared) * (span_squared - difference_squared)).sqrt()
     }
 
     /// [`super::inverse_determinant`], with NaN for "singular".

@@ -37,7 +37,7 @@ pub mod __private {
     pub use crate::accuracy::{rate_threshold, rates_accuracy, rates_accuracy_at};
     pub use crate::kernel::{
         all_finite as finite_all, blame, branch_root, inverse, inverse_determinant, lanes,
-        length_scale, rates_inverse_determinant, triangle_root, unit_angle,
+        length_scale, outputs_finite, rates_inverse_determinant, triangle_root, unit_angle,
     };
     pub use crate::linear::{Factored, orientation, solve_lu, solve2};
     pub use crate::newton::{Linearisation, Turning, all_finite, check_finite, finite, newton};

@@ -244,7 +244,16 @@ impl<const N: usize> Outputs for [f32; N] {
 }
 
 fn summed<O: Outputs>(mut kernel: impl FnMut(f64) -> O + 'static) -> Boxed {
-    Box::new(move |t| kernel(t).total())
+    Box::new(move |t| called(&mut kernel, t).total())
+}
+
+/// `kernel(t)` as a function of its own, which the harness calls: every kernel, hand-written
+/// or generated, is compiled whole into it and called the same way (a small one would
+/// otherwise be inlined into the harness and a large one not, and the difference is the
+/// harness's, not the kernel's).
+#[inline(never)]
+fn called<O>(kernel: &mut impl FnMut(f64) -> O, t: f64) -> O {
+    kernel(t)
 }
 
 fn listed<O: Outputs>(mut kernel: impl FnMut(f64) -> O + 'static) -> Listed {

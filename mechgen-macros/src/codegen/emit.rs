@@ -44,18 +44,6 @@ impl Emitted {
     }
 }
 
-impl Emitted {
-    /// The expression times `factor`, parenthesised if it needs to be.
-    pub fn times(&self, factor: &Ident) -> TokenStream {
-        let tokens = &self.tokens;
-        if self.precedence < Precedence::Product {
-            quote!((#tokens) * #factor)
-        } else {
-            quote!(#tokens * #factor)
-        }
-    }
-}
-
 impl quote::ToTokens for Emitted {
     fn to_tokens(&self, tokens: &mut TokenStream) {
         self.tokens.to_tokens(tokens);

@@ -163,6 +163,7 @@ impl<'a> Generator<'a> {
             Var::Accel(SymbolRef::Input) => self.input_ddot.clone(),
             Var::Accel(SymbolRef::Unknown(i)) => self.unknown_ddots[i].clone(),
             Var::Aux(k) => local(&format!("aux{k}")),
+            Var::Unscale => local("unscale"),
             // Parameters are constant: the graph never holds their rates.
             Var::Rate(SymbolRef::Param(i)) | Var::Accel(SymbolRef::Param(i)) => {
                 self.model.params[i].name.clone()

@@ -5,9 +5,12 @@
 //! by `scenes()`, into `{Name}Scenes`; the closed forms, rates and points are one expression
 //! graph written out as arithmetic (`symbolic::straight`), in which solved angles are read
 //! through their unit vectors, so an angle itself (an arc sine or cosine) is paid for only if
-//! the scene lists it; the parameters were checked when the constants were made, and a call
-//! checks its arguments only on the failing path. Each scene also gets a batch form,
-//! `{scene}_batch`, the same arithmetic in a loop the compiler vectorises.
+//! the scene lists it; the parameters were checked when the constants were made. A step that
+//! can fail (a circle that misses, a singular block) is not tested where it happens: it gives
+//! NaN or an infinity, which reaches the outputs, and one test of the outputs at the end hands
+//! any failure to the scene's checked kernel, which tests each step and says why. Each scene
+//! also gets a batch form, `{scene}_batch`, the same arithmetic in a loop the compiler
+//! vectorises.
 
 use std::collections::BTreeSet;
 
@@ -67,7 +70,8 @@ impl Generator<'_> {
             .iter()
             .map(|scene| self.scene_output(scene));
         let kernels = self.model.scenes.iter().flat_map(|scene| {
-            [false, true].map(|lanes| self.kernel(scene, exprs, &constants, lanes))
+            [Mode::Fast, Mode::Checked, Mode::Lanes]
+                .map(|mode| self.kernel(scene, exprs, &constants, mode))
         });
         let docs = doc(&format!(
             "[`{name}`]'s scene kernels (see [`{name}::scenes`]): the mechanism, and what \
@@ -225,12 +229,15 @@ impl Generator<'_> {
             .iter()
             .flat_map(|scene| {
                 let outputs = scene_outputs(scene, straight);
-                let needed = needed_aux(graph, straight, &outputs);
-                needed
+                let arguments: Vec<ExprId> = [Mode::Checked, Mode::Fast]
                     .into_iter()
-                    .flat_map(|k| aux_arguments(&straight.aux[k]))
-                    .chain(outputs)
-                    .collect::<Vec<_>>()
+                    .flat_map(|mode| {
+                        needed_aux(graph, straight, &outputs, mode)
+                            .into_iter()
+                            .flat_map(move |k| aux_arguments(&straight.aux[k], mode))
+                    })
+                    .collect();
+                arguments.into_iter().chain(outputs).collect::<Vec<_>>()
             })
             .collect();
         let mut reachable = vec![false; graph.len()];
@@ -328,11 +335,12 @@ impl Generator<'_> {
     ) -> TokenStream {
         let KernelKind {
             inputs,
-            lanes,
+            mode,
             rates_threshold,
             rates_order,
         } = kernel;
-        let lanes = *lanes;
+        // Fast and batch kernels pass a failure on as NaN, for the checked kernel to explain.
+        let lanes = *mode != Mode::Checked;
         let input = &self.model.input.name;
         // A length input was scaled with the mechanism; an error reports it as given.
         let input = if self.model.input.kind == Kind::Length {
@@ -343,7 +351,10 @@ impl Generator<'_> {
         let failure = arg("failure");
         let name = self.var_name(Var::Aux(k as u32));
         let kind = &straight.aux[k];
-        let args: Vec<Emitted> = emitted.by_ref().take(aux_arguments(kind).len()).collect();
+        let args: Vec<Emitted> = emitted
+            .by_ref()
+            .take(aux_arguments(kind, *mode).len())
+            .collect();
         let value = match kind {
             AuxKind::BranchRoot { branch, .. } if lanes => {
                 let choice = branches.get_mut(*branch).map(std::mem::take);
@@ -354,6 +365,10 @@ impl Generator<'_> {
                 let choice = branches.get_mut(*branch).map(std::mem::take);
                 let [sum, difference, span] = [&args[0], &args[1], &args[2]];
                 quote!(::mechgen::__private::lanes::triangle_root(#sum, #difference, #span, #choice.sign::<T>()))
+            }
+            AuxKind::Bind(_) => {
+                let value = &args[0];
+                quote!(#value)
             }
             AuxKind::Inverse(_) if lanes => {
                 let x = args[0].receiver();
@@ -414,7 +429,7 @@ impl Generator<'_> {
                 }
             }
             // In a batch, the branch-free angle vectorises; alone, an arc sine is cheaper.
-            AuxKind::Angle { .. } if lanes => {
+            AuxKind::Angle { .. } if *mode == Mode::Lanes => {
                 let (y, x) = (&args[0], &args[1]);
                 quote!(::mechgen::fast::unit_angle(#y, #x))
             }
@@ -426,26 +441,22 @@ impl Generator<'_> {
         quote!(let #name = #value;)
     }
 
-    /// One scene's kernel: the auxiliary values it needs, each after the statements its
-    /// arguments read, then its outputs.
-    ///
-    /// With `lanes`, the scene's batch form instead: the same arithmetic over a slice of
-    /// inputs, with no branch or early return in the loop (a failing step gives NaN, and the
-    /// branch-free [`mechgen::fast::sin_cos`]), so the compiler can vectorise it; lanes that
-    /// come out non-finite are done again by the checked kernel, which gives the error.
+    /// One scene's kernel, in `mode`: the auxiliary values it needs, each after the
+    /// statements its arguments read, then its outputs.
     fn kernel(
         &self,
         scene: &Scene,
         straight: &Straight,
         constants: &Constants,
-        lanes: bool,
+        mode: Mode,
     ) -> TokenStream {
+        let lanes = mode == Mode::Lanes;
         let graph = &self.equations.graph;
         let input = &self.model.input.name;
         let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
         let order = scene.order();
         let outputs = scene_outputs(scene, straight);
-        let needed = needed_aux(graph, straight, &outputs);
+        let needed = needed_aux(graph, straight, &outputs, mode);
 
         let constant_names: Vec<Ident> = (0..constants.ids.len())
             .map(|k| local(&format!("constant_{k}")))
@@ -490,7 +501,7 @@ impl Generator<'_> {
         };
         let arguments: Vec<ExprId> = needed
             .iter()
-            .flat_map(|&k| aux_arguments(&straight.aux[k]))
+            .flat_map(|&k| aux_arguments(&straight.aux[k], mode))
             .collect();
         let roots: Vec<ExprId> = arguments.iter().chain(&outputs).copied().collect();
         let block = emit(graph, &roots, &|var| self.var_name(var), &context);
@@ -523,7 +534,7 @@ impl Generator<'_> {
         };
         let kind = KernelKind {
             inputs: inputs.clone(),
-            lanes,
+            mode,
             rates_threshold,
             rates_order,
         };
@@ -553,14 +564,9 @@ impl Generator<'_> {
             });
         let unscale = local("unscale");
         let parameter_bindings = self.parameter_bindings(&block.used, quote!(self.scaled));
-        // Lengths come out in the scaled units: unknown lengths, points and their rates.
-        let in_lengths = |item: &crate::scene::SceneItem| match item.quantity {
-            Quantity::Point(_) => true,
-            Quantity::Unknown(u) => self.model.unknowns[u].kind == Kind::Length,
-        };
-        let reads_unscale =
-            scene.items.iter().any(in_lengths) || self.model.input.kind == Kind::Length;
-        let parameter_bindings = if reads_unscale {
+        // The outputs in lengths are back in the mechanism's units through `1/scale`, which
+        // mostly sits in a constant; the kernel reads it where one does not hold it.
+        let parameter_bindings = if block.used.contains(&Var::Unscale) {
             quote!(#parameter_bindings let #unscale = self.unscale;)
         } else {
             parameter_bindings
@@ -596,16 +602,11 @@ impl Generator<'_> {
                 } else {
                     1
                 };
-                let in_length = in_lengths(item);
                 let parts: Vec<TokenStream> = values
                     .by_ref()
                     .take(count)
                     .map(|value| {
-                        let value = if in_length {
-                            value.times(&unscale)
-                        } else {
-                            quote!(#value)
-                        };
+                        let value = quote!(#value);
                         if lanes {
                             return value;
                         }
@@ -628,10 +629,6 @@ impl Generator<'_> {
             })
             .collect();
         let checked_values = local("values");
-        let check = quote! {
-            let #checked_values = ::mechgen::__private::finite_all([#(#checked),*], "scene output")
-                .map_err(|error| ::mechgen::__private::blame(#inputs, error))?;
-        };
 
         let steps = self.equations.closed_form.as_deref().unwrap_or_default();
         let branch_parameter = self.branch_parameter(steps);
@@ -669,6 +666,46 @@ impl Generator<'_> {
                 },
             );
         }
+        let checked_name = checked_kernel(name);
+        if mode == Mode::Checked {
+            let docs = doc(&format!(
+                "[`Self::{}`] with each step that can fail checked where it happens: the fast \
+                 kernel's way out, which says why it failed.",
+                name.unraw()
+            ));
+            return quote! {
+                #docs
+                #[cold]
+                #[inline(never)]
+                fn #checked_name(
+                    &self,
+                    #input: T #branch_parameter,
+                    #(#arguments)*
+                ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
+                    #input_trig
+                    #(#constant_bindings)*
+                    #parameter_bindings
+                    #scaled_input
+                    #scaled_rates
+                    #(#body)*
+                    let #checked_values = ::mechgen::__private::finite_all([#(#checked),*], "scene output")
+                        .map_err(|error| ::mechgen::__private::blame(#inputs, error))?;
+                    ::core::result::Result::Ok(#output_type { #(#fields),* })
+                }
+            };
+        }
+        // The arguments as given, for the checked kernel: a length input is rescaled below.
+        let passed = self.checked_arguments(scene);
+        let (given, keep) = if self.model.input.kind == Kind::Length {
+            let given: Vec<Ident> = passed
+                .iter()
+                .map(|name| local(&format!("given_{}", name.unraw())))
+                .collect();
+            let keep = quote!(#(let #given = #passed;)*);
+            (given, keep)
+        } else {
+            (passed, TokenStream::new())
+        };
         let docs = docs_or(&scene.docs, &fallback);
         let errors = doc(
             "Errors: [`mechgen::Error::CannotAssemble`] outside the range of motion; \
@@ -685,16 +722,43 @@ impl Generator<'_> {
                 #input: T #branch_parameter,
                 #(#arguments)*
             ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
+                #keep
                 #input_trig
                 #(#constant_bindings)*
                 #parameter_bindings
                 #scaled_input
                 #scaled_rates
                 #(#body)*
-                #check
-                ::core::result::Result::Ok(#output_type { #(#fields),* })
+                // Every step that can fail gave NaN or an infinity, which reaches an output:
+                // one test here stands for all of them, and the checked kernel says why.
+                let #checked_values = [#(#checked),*];
+                if ::mechgen::__private::outputs_finite(&#checked_values) {
+                    ::core::result::Result::Ok(#output_type { #(#fields),* })
+                } else {
+                    self.#checked_name(#(#given),*)
+                }
             }
         }
+    }
+
+    /// The kernel's arguments after the input, by name: the branch choice, if any, and the
+    /// input's rate and acceleration, as far as the scene's order reads them.
+    fn checked_arguments(&self, scene: &Scene) -> Vec<Ident> {
+        let order = scene.order();
+        let steps = self.equations.closed_form.as_deref().unwrap_or_default();
+        let mut pass = vec![self.model.input.name.clone()];
+        match steps.iter().filter(|step| step.case.has_branches()).count() {
+            0 => {}
+            1 => pass.push(arg("branch")),
+            _ => pass.push(arg("branches")),
+        }
+        if order >= Order::Rate {
+            pass.push(self.input_dot.clone());
+        }
+        if order >= Order::Acceleration {
+            pass.push(self.input_ddot.clone());
+        }
+        pass
     }
 
     /// `{scene}_batch(inputs, branch, …, out)`: the scene at every input, into `out`.
@@ -723,21 +787,8 @@ impl Generator<'_> {
             local("index"),
             local("error"),
         );
-        // The checked kernel's arguments, as the batch took them.
-        let order = scene.order();
-        let steps = self.equations.closed_form.as_deref().unwrap_or_default();
-        let mut pass = Vec::new();
-        match steps.iter().filter(|step| step.case.has_branches()).count() {
-            0 => {}
-            1 => pass.push(arg("branch")),
-            _ => pass.push(arg("branches")),
-        }
-        if order >= Order::Rate {
-            pass.push(self.input_dot.clone());
-        }
-        if order >= Order::Acceleration {
-            pass.push(self.input_ddot.clone());
-        }
+        // The scalar kernel's arguments after the input, as the batch took them.
+        let pass: Vec<Ident> = self.checked_arguments(scene).into_iter().skip(1).collect();
         let finite: Vec<TokenStream> = scene
             .items
             .iter()
@@ -802,7 +853,7 @@ impl Generator<'_> {
 /// a batch's lanes, and the threshold below which its blocks' rates are refused.
 struct KernelKind {
     inputs: TokenStream,
-    lanes: bool,
+    mode: Mode,
     rates_threshold: TokenStream,
     /// The highest order the kernel's rates are for.
     rates_order: Ident,
@@ -832,8 +883,28 @@ fn scene_outputs(scene: &Scene, straight: &Straight) -> Vec<ExprId> {
         .collect()
 }
 
-/// What an auxiliary value is computed from.
-fn aux_arguments(kind: &AuxKind) -> Vec<ExprId> {
+/// The three forms of a scene's kernel.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Mode {
+    /// `{scene}`: no test on the way (a step that fails gives NaN or an infinity, which
+    /// reaches the outputs) and one at the end, which hands anything non-finite to the
+    /// checked kernel. The common path pays for one test, not one per step.
+    Fast,
+    /// The fast kernel's way out: each step that can fail tested where it happens, with the
+    /// error that says why.
+    Checked,
+    /// `{scene}_batch`: the fast kernel's arithmetic over a slice, branch-free, with the
+    /// branch-free sine, cosine and angle of `mechgen::fast`, so the compiler vectorises it.
+    Lanes,
+}
+
+/// The checked kernel of scene `name`.
+fn checked_kernel(name: &Ident) -> Ident {
+    format_ident!("mechgen_{}_checked", name.unraw())
+}
+
+/// What an auxiliary value is computed from, in a kernel of `mode`.
+fn aux_arguments(kind: &AuxKind, mode: Mode) -> Vec<ExprId> {
     match *kind {
         AuxKind::BranchRoot { plus, minus, .. } => vec![plus, minus],
         AuxKind::TriangleRoot {
@@ -841,7 +912,14 @@ fn aux_arguments(kind: &AuxKind) -> Vec<ExprId> {
             difference,
             span,
             ..
-        } => vec![sum, difference, span],
+        } if mode == Mode::Checked => vec![sum, difference, span],
+        AuxKind::TriangleRoot {
+            sum_squared,
+            difference_squared,
+            span_squared,
+            ..
+        } => vec![sum_squared, difference_squared, span_squared],
+        AuxKind::Bind(x) => vec![x],
         AuxKind::Inverse(x) => vec![x],
         AuxKind::InverseDeterminant {
             det, inverse_norms, ..
@@ -852,7 +930,12 @@ fn aux_arguments(kind: &AuxKind) -> Vec<ExprId> {
 
 /// The auxiliary values `outputs` read, directly or through other auxiliary values, in
 /// order.
-fn needed_aux(graph: &Graph, straight: &Straight, outputs: &[ExprId]) -> BTreeSet<usize> {
+fn needed_aux(
+    graph: &Graph,
+    straight: &Straight,
+    outputs: &[ExprId],
+    mode: Mode,
+) -> BTreeSet<usize> {
     let mut needed = BTreeSet::new();
     let mut seen = vec![false; graph.len()];
     let mut stack = outputs.to_vec();
@@ -863,7 +946,7 @@ fn needed_aux(graph: &Graph, straight: &Straight, outputs: &[ExprId]) -> BTreeSe
         if let Node::Var(Var::Aux(k)) = graph.node(id)
             && needed.insert(k as usize)
         {
-            stack.extend(aux_arguments(&straight.aux[k as usize]));
+            stack.extend(aux_arguments(&straight.aux[k as usize], mode));
         }
         stack.extend(children(graph.node(id)));
     }

@@ -167,7 +167,12 @@ impl Equations {
         };
         let scenes = scenes.map(|exprs| {
             let steps = closed_form.as_deref().unwrap_or_default();
-            super::straight::build(&mut graph, steps, &exprs)
+            let lengths: Vec<bool> = model
+                .unknowns
+                .iter()
+                .map(|unknown| unknown.kind == crate::model::Kind::Length)
+                .collect();
+            super::straight::build(&mut graph, steps, &exprs, &lengths)
         });
         Equations {
             closed_form,

@@ -19,6 +19,9 @@ pub enum Var {
     Rate(SymbolRef),
     /// Second time derivative of the input or an unknown.
     Accel(SymbolRef),
+    /// `1/scale` of a straight-line kernel, which computes with every length times `scale`:
+    /// its outputs in lengths are multiplied by this. It depends on the dimensions alone.
+    Unscale,
     /// A value a straight-line kernel gets from a checked runtime helper (a square root that
     /// may say "cannot assemble", a reciprocal that may say "singular"): see
     /// [`super::straight`].
@@ -33,7 +36,7 @@ impl Var {
             Var::Value(SymbolRef::Param(_)) => None,
             Var::Value(symbol) => Some(Var::Rate(symbol)),
             Var::Rate(symbol) => Some(Var::Accel(symbol)),
-            Var::Accel(_) | Var::Aux(_) => None,
+            Var::Accel(_) | Var::Aux(_) | Var::Unscale => None,
         }
     }
 }
@@ -115,7 +118,7 @@ impl Graph {
         }
         let id = ExprId::from_index(self.nodes.len());
         let fixed = match node {
-            Node::Const(_) | Node::Var(Var::Value(SymbolRef::Param(_))) => true,
+            Node::Const(_) | Node::Var(Var::Value(SymbolRef::Param(_)) | Var::Unscale) => true,
             Node::Var(_) => false,
             Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Recip(a) | Node::Sqrt(a) => {
                 self.fixed[a.index()]
@@ -186,6 +189,22 @@ impl Graph {
             _ if self.is_zero(b) => a,
             (Node::Neg(x), _) if x == b => self.constant(0.0),
             (_, Node::Neg(y)) if y == a => self.constant(0.0),
+            // x − (y + x) = −y, and (y + x) − x = y: a length found as one part plus another
+            // and then taken apart again.
+            (_, Node::Neg(sum)) if self.sum_without(sum, a).is_some() => {
+                let rest = self.sum_without(sum, a).expect("just matched");
+                self.neg(rest)
+            }
+            (Node::Neg(sum), _) if self.sum_without(sum, b).is_some() => {
+                let rest = self.sum_without(sum, b).expect("just matched");
+                self.neg(rest)
+            }
+            (Node::Add(..), Node::Neg(y)) if self.sum_without(a, y).is_some() => {
+                self.sum_without(a, y).expect("just matched")
+            }
+            (Node::Neg(x), Node::Add(..)) if self.sum_without(b, x).is_some() => {
+                self.sum_without(b, x).expect("just matched")
+            }
             _ if a == b => {
                 let two = self.constant(2.0);
                 self.mul(two, a)
@@ -195,8 +214,90 @@ impl Graph {
                 let sum = self.add(x, y);
                 self.neg(sum)
             }
+            _ if self.common_fixed_factor(a, b).is_some() => {
+                let (factor, x, y) = self.common_fixed_factor(a, b).expect("just matched");
+                let sum = self.add(x, y);
+                self.mul(factor, sum)
+            }
             _ => self.intern(Node::Add(a, b)),
         }
+    }
+
+    /// `f·(g·x + h·y)` as `(f·g)·x + (f·h)·y` where `f`, `g` and `h` are fixed by the
+    /// dimensions (`g ≠ h`, else the sum would be `g·(x + y)`): the fixed products are
+    /// computed once per mechanism, so the kernel saves a product.
+    fn distributed(&mut self, a: ExprId, b: ExprId) -> Option<ExprId> {
+        if !self.group_fixed {
+            return None;
+        }
+        let (factor, sum) = match (self.is_fixed(a), self.is_fixed(b)) {
+            (true, false) => (a, b),
+            (false, true) => (b, a),
+            _ => return None,
+        };
+        let Node::Add(x, y) = self.node(sum) else {
+            return None;
+        };
+        let [fx, fy] = [x, y].map(|term| self.fixed_factor(term));
+        match (fx, fy) {
+            (Some(fx), Some(fy)) if fx != fy => {
+                let (x, y) = (self.mul(factor, x), self.mul(factor, y));
+                Some(self.add(x, y))
+            }
+            _ => None,
+        }
+    }
+
+    /// The fixed factor `f` of a term `f·x` or `−(f·x)` with `x` moving.
+    fn fixed_factor(&self, term: ExprId) -> Option<ExprId> {
+        let inner = match self.node(term) {
+            Node::Neg(inner) => inner,
+            _ => term,
+        };
+        match self.node(inner) {
+            Node::Mul(fixed, moving) if self.is_fixed(fixed) && !self.is_fixed(moving) => {
+                Some(fixed)
+            }
+            _ => None,
+        }
+    }
+
+    /// `y` where `sum` is `x + y` or `y + x`.
+    fn sum_without(&self, sum: ExprId, x: ExprId) -> Option<ExprId> {
+        match self.node(sum) {
+            Node::Add(p, q) if p == x => Some(q),
+            Node::Add(p, q) if q == x => Some(p),
+            _ => None,
+        }
+    }
+
+    /// `(f, x, y)` where `a = f·x` and `b = f·y` (either possibly negated, the sign carried
+    /// into `x` or `y`) for one factor `f` fixed by the dimensions, once products group
+    /// their fixed factors: `f·x + f·y` is then built as `f·(x + y)`, one product fewer.
+    fn common_fixed_factor(&mut self, a: ExprId, b: ExprId) -> Option<(ExprId, ExprId, ExprId)> {
+        if !self.group_fixed {
+            return None;
+        }
+        let split = |graph: &Self, e: ExprId| {
+            let (negated, inner) = match graph.node(e) {
+                Node::Neg(inner) => (true, inner),
+                _ => (false, e),
+            };
+            match graph.node(inner) {
+                Node::Mul(fixed, moving) if graph.is_fixed(fixed) && !graph.is_fixed(moving) => {
+                    Some((negated, fixed, moving))
+                }
+                _ => None,
+            }
+        };
+        let (negate_x, fixed, x) = split(self, a)?;
+        let (negate_y, other, y) = split(self, b)?;
+        if fixed != other {
+            return None;
+        }
+        let x = if negate_x { self.neg(x) } else { x };
+        let y = if negate_y { self.neg(y) } else { y };
+        Some((fixed, x, y))
     }
 
     pub fn sub(&mut self, a: ExprId, b: ExprId) -> ExprId {
@@ -220,12 +321,19 @@ impl Graph {
             let product = self.mul(a, y);
             return self.neg(product);
         }
+        if let Some(distributed) = self.distributed(a, b) {
+            return distributed;
+        }
         // A product is kept as one constant times its other factors sorted by arena order,
         // so `x·(y·z)` and `(z·x)·y` are one node, and a negative constant becomes a negation.
         let mut factors = Vec::new();
         let mut constant = 1.0;
         for side in [a, b] {
             self.collect_factors(side, &mut factors, &mut constant);
+        }
+        self.cancel_reciprocals(&mut factors, &mut constant);
+        if factors.is_empty() {
+            return self.constant(constant);
         }
         if self.group_fixed && constant.abs() != 1.0 {
             // The constant is one of the fixed factors; only its sign stays outside.
@@ -278,6 +386,54 @@ impl Graph {
                 self.collect_factors(y, factors, constant);
             }
             _ => factors.push(e),
+        }
+    }
+
+    /// Cancels each factor of a product against the same factor under a reciprocal among
+    /// `factors` (`l3·l3·(1/(l3·l3))` is 1): a kernel that divides by a length's square and
+    /// multiplies by it again pays for neither. A zero factor made the product undefined
+    /// and now leaves it finite, but every such factor is a length a loop needs (its other
+    /// uses still divide by it) or a chord the closed forms check. Nothing changes unless
+    /// something cancels.
+    fn cancel_reciprocals(&mut self, factors: &mut Vec<ExprId>, constant: &mut f64) {
+        let mut k = 0;
+        while k < factors.len() {
+            let Node::Recip(denominator) = self.node(factors[k]) else {
+                k += 1;
+                continue;
+            };
+            let mut under = Vec::new();
+            let mut under_constant = 1.0;
+            self.collect_factors(denominator, &mut under, &mut under_constant);
+            let before = under.len();
+            under.retain(
+                |&factor| match factors.iter().position(|&other| other == factor) {
+                    Some(at) => {
+                        factors.swap_remove(at);
+                        false
+                    }
+                    None => true,
+                },
+            );
+            if under.len() == before {
+                k += 1;
+                continue;
+            }
+            // The reciprocal moved if a cancelled factor sat before it; find it again.
+            let at = factors
+                .iter()
+                .position(|&f| matches!(self.node(f), Node::Recip(d) if d == denominator))
+                .expect("the reciprocal is still among the factors");
+            factors.swap_remove(at);
+            *constant /= under_constant;
+            if let Some(rest) = under
+                .into_iter()
+                .reduce(|product, factor| self.intern(Node::Mul(product, factor)))
+            {
+                let inverse = self.recip(rest);
+                factors.push(inverse);
+            }
+            k = 0;
         }
     }
 

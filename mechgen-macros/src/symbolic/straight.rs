@@ -10,7 +10,10 @@
 //! solved angle is read through its unit vector `(cos θ, sin θ)`; the angle itself is an
 //! `atan2` of it, computed only if an output needs it. The rates then come from the Jacobian,
 //! block lower-triangular in plan order, by Cramer's rule on each loop's 2×2 block, with the
-//! block's reciprocal determinant checked once and shared by velocity and acceleration.
+//! block's reciprocal determinant checked once and shared by velocity and acceleration. The
+//! determinant is the one the closed form already holds (the triangle's height, the
+//! quadratic's root), which keeps its digits where `j00·j11 − j01·j10` would cancel, near a
+//! toggle; each rate gets a name, so an acceleration reads its square as one product.
 
 use std::collections::HashMap;
 
@@ -36,10 +39,18 @@ pub enum AuxKind {
     /// `difference = r1 − r2`), with the sign of branch `branch`: a gap (`sum − span` or
     /// `span − |difference|`) below zero by more than rounding of the sides means the loop
     /// cannot close.
+    ///
+    /// The squares (`span_squared` is what `span` is the root of) are for kernels that decide
+    /// only that the circles meet: `(sum² − span²)·(span² − difference²)` is the same product
+    /// without a square root, and its sign is the gaps' (both cannot be negative, as
+    /// `sum ≥ |difference|`), so a failure there is passed on to the checked form.
     TriangleRoot {
         sum: ExprId,
         difference: ExprId,
         span: ExprId,
+        sum_squared: ExprId,
+        difference_squared: ExprId,
+        span_squared: ExprId,
         branch: usize,
     },
     /// `1/x`; a zero `x` is a degenerate configuration.
@@ -53,6 +64,10 @@ pub enum AuxKind {
     },
     /// A solved angle from its unit vector `(x, y)`, as `atan2(y, x)` would give it.
     Angle { y: ExprId, x: ExprId },
+    /// A value given a name of its own, so that products read it whole: a rate, whose
+    /// square the accelerations read, is one product there rather than the four of its
+    /// factors.
+    Bind(ExprId),
 }
 
 /// Where a 2×2 block counts as singular.
@@ -86,6 +101,10 @@ struct Builder<'g> {
     /// knows the columns' norms (`|w1|` and `|w2|` for two angles, say), which for fixed
     /// vectors are constants of the mechanism.
     inverse_norms: Vec<ExprId>,
+    /// For each closed-form step, its loop's Jacobian block's determinant as the closed form
+    /// knows it (the triangle's height, the quadratic's root): the same value as Cramer's
+    /// `j00·j11 − j01·j10`, without that difference's cancellation near a toggle.
+    determinants: Vec<ExprId>,
 }
 
 impl Builder<'_> {
@@ -98,6 +117,15 @@ impl Builder<'_> {
         self.aux.push(kind);
         self.known.insert(kind, var);
         var
+    }
+
+    /// `value` as a [`AuxKind::Bind`] value, unless it is a number (which needs no name).
+    fn bound(&mut self, value: ExprId) -> ExprId {
+        if self.graph.constant_value(value).is_some() {
+            value
+        } else {
+            self.aux(AuxKind::Bind(value))
+        }
     }
 
     /// `exprs` with every solved quantity so far replaced by its expression.
@@ -196,6 +224,8 @@ impl Builder<'_> {
                 let columns = [self.dot(v1, v1), self.dot(v2, v2)];
                 self.block_columns(columns);
                 let inverse_norms = *self.inverse_norms.last().expect("just recorded");
+                // ∂/∂l1 = v1, ∂/∂l2 = v2: the block is the one solved here.
+                self.determinants.push(det);
                 let inverse = self.aux(AuxKind::InverseDeterminant {
                     det,
                     inverse_norms,
@@ -231,17 +261,27 @@ impl Builder<'_> {
                 let span = self.graph.sqrt(chord_squared);
                 let sides_sum = self.graph.add(n1, n2);
                 let sides_difference = self.graph.sub(n1, n2);
+                let sum_squared = self.graph.mul(sides_sum, sides_sum);
+                let difference_squared = self.graph.mul(sides_difference, sides_difference);
                 let height = self.aux(AuxKind::TriangleRoot {
                     sum: sides_sum,
                     difference: sides_difference,
                     span,
+                    sum_squared,
+                    difference_squared,
+                    span_squared: chord_squared,
                     branch: *branch,
                 });
                 *branch += 1;
+                // The block's columns are i·P1 and i·P2, so its determinant is
+                // P1 × P2 = P1 × chord = −height (P1 = (chord·along + i·chord·height)/c²).
+                let det = self.graph.neg(height);
+                self.determinants.push(det);
                 let normal = [self.graph.neg(chord[1]), chord[0]];
                 let (on, off) = (self.scaled(chord, along), self.scaled(normal, height));
                 let sum = self.plus(on, off);
-                let p1 = self.scaled(sum, inverse);
+                // Named, so that the rates' and points' products read P1 whole.
+                let p1 = self.scaled(sum, inverse).map(|c| self.bound(c));
                 let minus_p1 = self.negated(p1);
                 let p2 = self.plus(chord, minus_p1);
                 let (e1, e2) = (self.turn(p1, w1), self.turn(p2, w2));
@@ -263,6 +303,9 @@ impl Builder<'_> {
                 let minus = self.graph.mul(skew, skew);
                 let root = branch_root(self, plus, minus);
                 let length = self.quadratic_solution(half_b, root, quadratic);
+                // Columns e^{iq}·w1 and i·e^{iq}·(l·w1 + w0): the determinant is
+                // w1·(l·w1 + w0) = l·|w1|² + w1·w0, the root.
+                self.determinants.push(root);
                 let moving = self.scaled(w1, length);
                 let turned = self.plus(moving, w0);
                 let target = self.negated(k);
@@ -287,6 +330,10 @@ impl Builder<'_> {
                 let minus = self.graph.mul(skew, skew);
                 let root = branch_root(self, plus, minus);
                 let length = self.quadratic_solution(half_b, root, quadratic);
+                // Columns v and i·W with W = −(K + l·v): the determinant is
+                // v·W = −(v·K + l·|v|²), minus the root.
+                let det = self.graph.neg(root);
+                self.determinants.push(det);
                 let along = self.scaled(v, length);
                 let point = self.plus(k, along);
                 let target = self.negated(point);
@@ -306,7 +353,15 @@ impl Builder<'_> {
 
     /// Solves `J·x = rhs` block by block in plan order (the Jacobian is block
     /// lower-triangular in that order), each 2×2 block by Cramer's rule.
-    fn solve(&mut self, steps: &[Step], jacobian: &[ExprId], rhs: &[ExprId]) -> Vec<ExprId> {
+    ///
+    /// With `bind`, each solution is a [`AuxKind::Bind`] value, read whole where it is read.
+    fn solve(
+        &mut self,
+        steps: &[Step],
+        jacobian: &[ExprId],
+        rhs: &[ExprId],
+        bind: bool,
+    ) -> Vec<ExprId> {
         let n = rhs.len();
         let entry = |row: usize, column: usize| jacobian[row * n + column];
         let mut x: Vec<Option<ExprId>> = vec![None; n];
@@ -323,17 +378,19 @@ impl Builder<'_> {
                 })
             });
             let [[j00, j01], [j10, j11]] = rows.map(|row| [entry(row, a), entry(row, b)]);
-            let (p, q) = (self.graph.mul(j00, j11), self.graph.mul(j01, j10));
-            let det = self.graph.sub(p, q);
             let inverse = self.aux(AuxKind::InverseDeterminant {
-                det,
+                det: self.determinants[s],
                 inverse_norms: self.inverse_norms[s],
                 threshold: Threshold::Rates,
             });
             let first = self.cross([right[0], right[1]], [j01, j11]);
             let second = self.cross([j00, j10], [right[0], right[1]]);
-            x[a] = Some(self.graph.mul(first, inverse));
-            x[b] = Some(self.graph.mul(second, inverse));
+            let [first, second] = [first, second].map(|numerator| {
+                let value = self.graph.mul(numerator, inverse);
+                if bind { self.bound(value) } else { value }
+            });
+            x[a] = Some(first);
+            x[b] = Some(second);
         }
         x.into_iter()
             .map(|value| value.expect("a closed-form plan solves every unknown"))
@@ -350,8 +407,9 @@ impl Builder<'_> {
 }
 
 /// Builds the straight-line form of a closed-form plan from the scene expressions
-/// (angle sums already taken apart).
-pub fn build(graph: &mut Graph, steps: &[Step], exprs: &SceneExprs) -> Straight {
+/// (angle sums already taken apart). `lengths` says which unknowns are lengths: those, and
+/// the points, come out times [`Var::Unscale`], in the mechanism's units.
+pub fn build(graph: &mut Graph, steps: &[Step], exprs: &SceneExprs, lengths: &[bool]) -> Straight {
     let n = exprs.velocity_rhs.len();
     let mut builder = Builder {
         graph,
@@ -359,6 +417,7 @@ pub fn build(graph: &mut Graph, steps: &[Step], exprs: &SceneExprs) -> Straight 
         known: HashMap::new(),
         replace: HashMap::new(),
         inverse_norms: Vec::new(),
+        determinants: Vec::new(),
     };
     let mut values = vec![ExprId::from_index(0); n];
     let mut branch = 0;
@@ -367,12 +426,12 @@ pub fn build(graph: &mut Graph, steps: &[Step], exprs: &SceneExprs) -> Straight 
     }
     let jacobian = builder.substituted(&exprs.jacobian);
     let velocity_rhs = builder.substituted(&exprs.velocity_rhs);
-    let rates = builder.solve(steps, &jacobian, &velocity_rhs);
+    let rates = builder.solve(steps, &jacobian, &velocity_rhs, true);
     builder.solved_derivatives(Var::Rate, &rates);
     let acceleration_rhs = builder.substituted(&exprs.acceleration_rhs);
-    let accelerations = builder.solve(steps, &jacobian, &acceleration_rhs);
+    let accelerations = builder.solve(steps, &jacobian, &acceleration_rhs, false);
     builder.solved_derivatives(Var::Accel, &accelerations);
-    let points = exprs
+    let points: Vec<[[ExprId; 2]; 3]> = exprs
         .points
         .iter()
         .map(|point| {
@@ -381,6 +440,20 @@ pub fn build(graph: &mut Graph, steps: &[Step], exprs: &SceneExprs) -> Straight 
                 [rewritten[0], rewritten[1]]
             })
         })
+        .collect();
+    // Back to the mechanism's units, with `1/scale` among the fixed factors: where a product
+    // has one (a length), it costs nothing.
+    let unscale = builder.graph.var(Var::Unscale);
+    let mut unscaled = |e: ExprId| builder.graph.mul(unscale, e);
+    let [values, rates, accelerations] = [values, rates, accelerations].map(|all| {
+        all.into_iter()
+            .zip(lengths)
+            .map(|(e, &length)| if length { unscaled(e) } else { e })
+            .collect::<Vec<_>>()
+    });
+    let points: Vec<[[ExprId; 2]; 3]> = points
+        .into_iter()
+        .map(|point: [[ExprId; 2]; 3]| point.map(|pair| pair.map(&mut unscaled)))
         .collect();
     Straight {
         aux: builder.aux,
