@@ -223,43 +223,22 @@ impl Graph {
         }
     }
 
-    /// `f·(g·x + h·y)` as `(f·g)·x + (f·h)·y` where `f`, `g` and `h` are fixed by the
-    /// dimensions (`g ≠ h`, else the sum would be `g·(x + y)`): the fixed products are
-    /// computed once per mechanism, so the kernel saves a product.
-    fn distributed(&mut self, a: ExprId, b: ExprId) -> Option<ExprId> {
-        if !self.group_fixed {
-            return None;
-        }
-        let (factor, sum) = match (self.is_fixed(a), self.is_fixed(b)) {
-            (true, false) => (a, b),
-            (false, true) => (b, a),
-            _ => return None,
-        };
-        let Node::Add(x, y) = self.node(sum) else {
-            return None;
-        };
-        let [fx, fy] = [x, y].map(|term| self.fixed_factor(term));
-        match (fx, fy) {
-            (Some(fx), Some(fy)) if fx != fy => {
-                let (x, y) = (self.mul(factor, x), self.mul(factor, y));
-                Some(self.add(x, y))
+    /// Sorted `factors` with each repeated pair made one square, placed first: `x·ω·ω` is
+    /// `ω²·x`, so every product of a rate's square reads the one square.
+    fn paired(&mut self, factors: Vec<ExprId>) -> Vec<ExprId> {
+        let mut squares = Vec::new();
+        let mut single = Vec::new();
+        let mut rest = factors.into_iter().peekable();
+        while let Some(factor) = rest.next() {
+            if rest.peek() == Some(&factor) {
+                rest.next();
+                squares.push(self.intern(Node::Mul(factor, factor)));
+            } else {
+                single.push(factor);
             }
-            _ => None,
         }
-    }
-
-    /// The fixed factor `f` of a term `f·x` or `−(f·x)` with `x` moving.
-    fn fixed_factor(&self, term: ExprId) -> Option<ExprId> {
-        let inner = match self.node(term) {
-            Node::Neg(inner) => inner,
-            _ => term,
-        };
-        match self.node(inner) {
-            Node::Mul(fixed, moving) if self.is_fixed(fixed) && !self.is_fixed(moving) => {
-                Some(fixed)
-            }
-            _ => None,
-        }
+        squares.extend(single);
+        squares
     }
 
     /// `y` where `sum` is `x + y` or `y + x`.
@@ -321,9 +300,6 @@ impl Graph {
             let product = self.mul(a, y);
             return self.neg(product);
         }
-        if let Some(distributed) = self.distributed(a, b) {
-            return distributed;
-        }
         // A product is kept as one constant times its other factors sorted by arena order,
         // so `x·(y·z)` and `(z·x)·y` are one node, and a negative constant becomes a negation.
         let mut factors = Vec::new();
@@ -344,6 +320,7 @@ impl Graph {
         let product = if self.group_fixed {
             let (fixed, moving): (Vec<ExprId>, Vec<ExprId>) =
                 factors.iter().partition(|&&f| self.fixed[f.index()]);
+            let moving = self.paired(moving);
             let [fixed, moving] = [fixed, moving].map(|group| {
                 group
                     .into_iter()
