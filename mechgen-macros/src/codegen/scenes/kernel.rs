@@ -1,0 +1,371 @@
+//! One scene's kernel: the statements and auxiliary values in stage order, the constants and
+//! parameters it reads from `self`, and its outputs, then the fast kernel (one test at the
+//! end) or the checked one (its way out, which says why), or these pieces handed to the
+//! batch form. Separate because it is the one body every form of a scene shares.
+
+use std::collections::BTreeSet;
+
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
+use syn::ext::IdentExt;
+
+use super::auxiliary::{KernelKind, aux_arguments, needed_aux};
+use super::batch::BatchParts;
+use super::constants::Constants;
+use super::{Mode, scene_outputs};
+use crate::codegen::docs::{doc, docs_or};
+use crate::codegen::emit::{Context, Emitted, children, emit, local};
+use crate::codegen::{Generator, arg};
+use crate::model::{Kind, SymbolRef};
+use crate::scene::{Order, Quantity, Scene};
+use crate::symbolic::{ExprId, Graph, Node, Straight, Var};
+
+impl Generator<'_> {
+    /// One scene's kernel, in `mode`: the auxiliary values it needs, each after the
+    /// statements its arguments read, then its outputs.
+    pub(super) fn kernel(
+        &self,
+        scene: &Scene,
+        straight: &Straight,
+        constants: &Constants,
+        mode: Mode,
+    ) -> TokenStream {
+        let lanes = mode == Mode::Lanes;
+        let graph = &self.equations.graph;
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let order = scene.order();
+        let outputs = scene_outputs(scene, straight);
+        let needed = needed_aux(graph, straight, &outputs, mode);
+
+        let constant_names: Vec<Ident> = (0..constants.ids.len())
+            .map(|k| local(&format!("constant_{k}")))
+            .collect();
+        let mut presets: Vec<(ExprId, Ident, usize)> = constants
+            .ids
+            .iter()
+            .zip(&constant_names)
+            .map(|(&id, name)| (id, name.clone(), 0))
+            .collect();
+        let mut reserved = self.reserved.clone();
+        reserved.extend(constant_names.iter().map(Ident::to_string));
+        // The input's sine and cosine come first, before anything is read from `self`, so
+        // that nothing lives across the call.
+        let input_trig = graph
+            .lookup(Node::Var(Var::Value(SymbolRef::Input)))
+            .filter(|_| self.model.input.kind == crate::model::Kind::Angle)
+            .map(|var| {
+                let stem = input.unraw().to_string();
+                let (sin, cos) = (local(&format!("sin_{stem}")), local(&format!("cos_{stem}")));
+                for (node, name) in [(Node::Sin(var), &sin), (Node::Cos(var), &cos)] {
+                    if let Some(id) = graph.lookup(node) {
+                        presets.push((id, name.clone(), 0));
+                    }
+                }
+                reserved.extend([sin.to_string(), cos.to_string()]);
+                if lanes {
+                    quote!(let (#sin, #cos) = ::mechgen::fast::sin_cos(#input);)
+                } else {
+                    quote!(let (#sin, #cos) = #input.sin_cos();)
+                }
+            });
+        // Auxiliary value k is known from stage k + 1.
+        let stage = |var: Var| match var {
+            Var::Aux(k) => k as usize + 1,
+            _ => 0,
+        };
+        let context = Context {
+            reserved: &reserved,
+            presets: &presets,
+            stage: &stage,
+        };
+        let arguments: Vec<ExprId> = needed
+            .iter()
+            .flat_map(|&k| aux_arguments(&straight.aux[k], mode))
+            .collect();
+        let roots: Vec<ExprId> = arguments.iter().chain(&outputs).copied().collect();
+        let block = emit(graph, &roots, &|var| self.var_name(var), &context);
+        let mut statements = block.statements;
+        statements.resize(straight.aux.len() + 1, Vec::new());
+        let mut emitted = block.outputs.into_iter();
+
+        // A failure blames a non-finite argument if there is one.
+        let mut labelled = vec![(input, format!("input `{}`", input.unraw()))];
+        if order >= Order::Rate {
+            labelled.push((input_dot, format!("input rate `{input_dot}`")));
+        }
+        if order >= Order::Acceleration {
+            labelled.push((input_ddot, format!("input acceleration `{input_ddot}`")));
+        }
+        let inputs = {
+            let pairs = labelled.iter().map(|(name, label)| quote!((#name, #label)));
+            quote!([#(#pairs),*])
+        };
+
+        // A block's rates are refused where they would be less accurate than required, for
+        // the highest order the scene asks for.
+        let (rates_threshold, rates_order) = if order >= Order::Acceleration {
+            (
+                quote!(self.rate_thresholds[1]),
+                format_ident!("Acceleration"),
+            )
+        } else {
+            (quote!(self.rate_thresholds[0]), format_ident!("Velocity"))
+        };
+        let kind = KernelKind {
+            inputs: inputs.clone(),
+            mode,
+            rates_threshold,
+            rates_order,
+        };
+        // Statements of stage k, then auxiliary value k.
+        let mut body = Vec::new();
+        let mut branches =
+            self.branch_choices(self.equations.closed_form.as_deref().unwrap_or_default());
+        for (k, stage_statements) in statements.iter().enumerate() {
+            body.extend(stage_statements.iter().cloned());
+            if needed.contains(&k) {
+                body.push(self.aux_definition(k, straight, &mut emitted, &mut branches, &kind));
+            }
+        }
+        let values: Vec<Emitted> = emitted.collect();
+
+        // The constants and parameters the kernel reads, from `self`.
+        let read = read_presets(graph, &roots, &presets);
+        let constant_bindings = constants
+            .ids
+            .iter()
+            .zip(&constant_names)
+            .enumerate()
+            .filter(|(_, (id, _))| read.contains(id))
+            .map(|(k, (_, name))| {
+                let k = Literal::usize_unsuffixed(k);
+                quote!(let #name = self.constants[#k];)
+            });
+        let unscale = local("unscale");
+        let parameter_bindings = self.parameter_bindings(&block.used, quote!(self.scaled));
+        // The outputs in lengths are back in the mechanism's units through `1/scale`, which
+        // mostly sits in a constant; the kernel reads it where one does not hold it.
+        let parameter_bindings = if block.used.contains(&Var::Unscale) {
+            quote!(#parameter_bindings let #unscale = self.unscale;)
+        } else {
+            parameter_bindings
+        };
+        // A length input, its rate and acceleration, in the scaled units.
+        let scaled_inputs = |names: &[&Ident]| {
+            if self.model.input.kind != Kind::Length {
+                return TokenStream::new();
+            }
+            let names = names.iter();
+            quote!(#(let #names = #names * self.scale;)*)
+        };
+        let mut rate_names = Vec::new();
+        if order >= Order::Rate {
+            rate_names.push(input_dot);
+        }
+        if order >= Order::Acceleration {
+            rate_names.push(input_ddot);
+        }
+        let scaled_rates = scaled_inputs(&rate_names);
+        let scaled_input = scaled_inputs(&[input]);
+
+        // Outputs in the order listed, checked finite together.
+        let mut values = values.into_iter();
+        let mut checked = Vec::new();
+        let fields: Vec<TokenStream> = scene
+            .items
+            .iter()
+            .map(|item| {
+                let field = &item.field;
+                let count = if matches!(item.quantity, Quantity::Point(_)) {
+                    2
+                } else {
+                    1
+                };
+                let parts: Vec<TokenStream> = values
+                    .by_ref()
+                    .take(count)
+                    .map(|value| {
+                        let value = quote!(#value);
+                        if lanes {
+                            return value;
+                        }
+                        let index = Literal::usize_unsuffixed(checked.len());
+                        checked.push(quote!(#value));
+                        let checked_values = local("values");
+                        quote!(#checked_values[#index])
+                    })
+                    .collect();
+                match item.quantity {
+                    Quantity::Point(_) => {
+                        let [x, y] = [&parts[0], &parts[1]];
+                        quote!(#field: ::mechgen::Vec2 { x: #x, y: #y })
+                    }
+                    Quantity::Unknown(_) => {
+                        let value = &parts[0];
+                        quote!(#field: #value)
+                    }
+                }
+            })
+            .collect();
+        let checked_values = local("values");
+
+        let steps = self.equations.closed_form.as_deref().unwrap_or_default();
+        let branch_parameter = self.branch_parameter(steps);
+        let mut arguments = Vec::new();
+        if order >= Order::Rate {
+            arguments.push(quote!(#input_dot: T,));
+        }
+        if order >= Order::Acceleration {
+            arguments.push(quote!(#input_ddot: T,));
+        }
+        let output_type = self.scene_output_type(scene);
+        let name = &scene.name;
+        let fallback = format!(
+            "Scene `{}`: {} at `{input}`, on the chosen assembly branch.",
+            name.unraw(),
+            scene
+                .items
+                .iter()
+                .map(|item| format!("`{}`", item.field.unraw()))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        if lanes {
+            return self.batch(
+                scene,
+                &branch_parameter,
+                &arguments,
+                BatchParts {
+                    input_trig,
+                    bindings: quote!(#(#constant_bindings)* #parameter_bindings),
+                    // In the loop, so the redo of a failed lane passes the rates as given.
+                    scaled_input: quote!(#scaled_input #scaled_rates),
+                    body,
+                    fields,
+                },
+            );
+        }
+        let checked_name = checked_kernel(name);
+        if mode == Mode::Checked {
+            let docs = doc(&format!(
+                "[`Self::{}`] with each step that can fail checked where it happens: the fast \
+                 kernel's way out, which says why it failed.",
+                name.unraw()
+            ));
+            return quote! {
+                #docs
+                #[cold]
+                #[inline(never)]
+                fn #checked_name(
+                    &self,
+                    #input: T #branch_parameter,
+                    #(#arguments)*
+                ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
+                    #input_trig
+                    #(#constant_bindings)*
+                    #parameter_bindings
+                    #scaled_input
+                    #scaled_rates
+                    #(#body)*
+                    let #checked_values = ::mechgen::__private::finite_all([#(#checked),*], "scene output")
+                        .map_err(|error| ::mechgen::__private::blame(#inputs, error))?;
+                    ::core::result::Result::Ok(#output_type { #(#fields),* })
+                }
+            };
+        }
+        // The arguments as given, for the checked kernel: a length input is rescaled below.
+        let passed = self.checked_arguments(scene);
+        let (given, keep) = if self.model.input.kind == Kind::Length {
+            let given: Vec<Ident> = passed
+                .iter()
+                .map(|name| local(&format!("given_{}", name.unraw())))
+                .collect();
+            let keep = quote!(#(let #given = #passed;)*);
+            (given, keep)
+        } else {
+            (passed, TokenStream::new())
+        };
+        let docs = docs_or(&scene.docs, &fallback);
+        let errors = doc(
+            "Errors: [`mechgen::Error::CannotAssemble`] outside the range of motion; \
+             [`mechgen::Error::Singular`] where rates are asked for at a toggle; a non-finite \
+             argument or result.",
+        );
+        quote! {
+            #docs
+            ///
+            #errors
+            #[inline(always)]
+            pub fn #name(
+                &self,
+                #input: T #branch_parameter,
+                #(#arguments)*
+            ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
+                #keep
+                #input_trig
+                #(#constant_bindings)*
+                #parameter_bindings
+                #scaled_input
+                #scaled_rates
+                #(#body)*
+                // Every step that can fail gave NaN or an infinity, which reaches an output:
+                // one test here stands for all of them, and the checked kernel says why.
+                let #checked_values = [#(#checked),*];
+                if ::mechgen::__private::outputs_finite(&#checked_values) {
+                    ::core::result::Result::Ok(#output_type { #(#fields),* })
+                } else {
+                    self.#checked_name(#(#given),*)
+                }
+            }
+        }
+    }
+
+    /// The kernel's arguments after the input, by name: the branch choice, if any, and the
+    /// input's rate and acceleration, as far as the scene's order reads them.
+    pub(super) fn checked_arguments(&self, scene: &Scene) -> Vec<Ident> {
+        let order = scene.order();
+        let steps = self.equations.closed_form.as_deref().unwrap_or_default();
+        let mut pass = vec![self.model.input.name.clone()];
+        match steps.iter().filter(|step| step.case.has_branches()).count() {
+            0 => {}
+            1 => pass.push(arg("branch")),
+            _ => pass.push(arg("branches")),
+        }
+        if order >= Order::Rate {
+            pass.push(self.input_dot.clone());
+        }
+        if order >= Order::Acceleration {
+            pass.push(self.input_ddot.clone());
+        }
+        pass
+    }
+}
+
+/// The checked kernel of scene `name`.
+fn checked_kernel(name: &Ident) -> Ident {
+    format_ident!("mechgen_{}_checked", name.unraw())
+}
+
+/// The presets (of `presets`) that `roots` read, stopping at presets.
+fn read_presets(
+    graph: &Graph,
+    roots: &[ExprId],
+    presets: &[(ExprId, Ident, usize)],
+) -> BTreeSet<ExprId> {
+    let preset: BTreeSet<ExprId> = presets.iter().map(|(id, _, _)| *id).collect();
+    let mut seen = vec![false; graph.len()];
+    let mut read = BTreeSet::new();
+    let mut stack = roots.to_vec();
+    while let Some(id) = stack.pop() {
+        if std::mem::replace(&mut seen[id.index()], true) {
+            continue;
+        }
+        if preset.contains(&id) {
+            read.insert(id);
+        } else {
+            stack.extend(children(graph.node(id)));
+        }
+    }
+    read
+}
