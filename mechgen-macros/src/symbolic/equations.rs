@@ -9,7 +9,7 @@
 use crate::model::{Model, SymbolRef, VectorSum};
 
 use super::graph::{ExprId, Graph, Var};
-use super::straight::Straight;
+use super::straight::{SceneExprs, Straight};
 
 /// A tracked point's position, velocity and acceleration as `(x, y)` expressions, and its
 /// acceleration split into tangential, normal, sliding and Coriolis parts.
@@ -43,20 +43,6 @@ pub struct Equations {
     pub reduction: Option<super::reduction::Reduction>,
     /// What scene kernels evaluate, when the declaration has scenes and a closed form.
     pub scenes: Option<Straight>,
-}
-
-/// The expressions scene kernels evaluate: those of the closed form, the rates and the
-/// points, with angle sums taken apart (see [`super::angles`]) so a solved angle is only
-/// ever read through its unit vector.
-pub struct SceneExprs {
-    /// Each closed-form step's coefficients, as [`super::Case::coefficients`] orders them.
-    pub coefficients: Vec<Vec<ExprId>>,
-    /// The Jacobian, row-major.
-    pub jacobian: Vec<ExprId>,
-    pub velocity_rhs: Vec<ExprId>,
-    pub acceleration_rhs: Vec<ExprId>,
-    /// Each point's `[position, velocity, acceleration]`, each `(x, y)`.
-    pub points: Vec<[[ExprId; 2]; 3]>,
 }
 
 impl Equations {

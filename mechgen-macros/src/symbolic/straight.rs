@@ -19,10 +19,23 @@ use std::collections::HashMap;
 
 use crate::model::SymbolRef;
 
-use super::SceneExprs;
 use super::closed_form::{Case, Complex, Step};
 use super::graph::{ExprId, Graph, Node, Var};
 use super::rewrite::Rewriter;
+
+/// What [`build`] reads: the expressions scene kernels evaluate: those of the closed form, the rates and the
+/// points, with angle sums taken apart (see [`super::angles`]) so a solved angle is only
+/// ever read through its unit vector.
+pub struct SceneExprs {
+    /// Each closed-form step's coefficients, as [`super::Case::coefficients`] orders them.
+    pub coefficients: Vec<Vec<ExprId>>,
+    /// The Jacobian, row-major.
+    pub jacobian: Vec<ExprId>,
+    pub velocity_rhs: Vec<ExprId>,
+    pub acceleration_rhs: Vec<ExprId>,
+    /// Each point's `[position, velocity, acceleration]`, each `(x, y)`.
+    pub points: Vec<[[ExprId; 2]; 3]>,
+}
 
 /// How an auxiliary variable is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
