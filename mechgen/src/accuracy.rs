@@ -92,6 +92,7 @@ impl<T: Real> Accuracy<T> {
     /// // A vector shrunk below √ε of the size: its angle's rates are undetermined.
     /// assert!(mechgen::Accuracy::<f64>::estimate(1.0, 1e9).velocity.is_infinite());
     /// ```
+    #[inline]
     pub fn estimate(condition: T, aspect: T) -> Self {
         let kappa = condition.max(T::one());
         let e = T::epsilon();
@@ -151,7 +152,7 @@ impl<T: Real> Accuracy<T> {
 /// at a position of a mechanism whose declared lengths sum to `size`, `angles[j]` telling
 /// whether unknown `j` is an angle; an error if the velocity's or (with `highest` the
 /// acceleration) the acceleration's exceeds `required`.
-#[inline]
+#[inline(always)]
 pub fn rates_accuracy<T: Real, const N: usize>(
     condition: T,
     jacobian: &[[T; N]; N],
@@ -160,9 +161,67 @@ pub fn rates_accuracy<T: Real, const N: usize>(
     highest: Order,
     required: &Accuracy<T>,
 ) -> Result<Accuracy<T>, Error<T>> {
-    let estimate = Accuracy::estimate(condition, aspect(jacobian, size, angles));
+    // An ordinary aspect gives the estimate of an aspect of 1, which is then within or not:
+    // the common case, without the aspect's scaling, square root and division.
+    if ordinary(jacobian, size, angles) {
+        let estimate = Accuracy::estimate(condition, T::one());
+        if estimate.velocity <= required.velocity
+            && (highest < Order::Acceleration || estimate.acceleration <= required.acceleration)
+        {
+            return Ok(estimate);
+        }
+    }
+    rates_accuracy_aside(condition, *jacobian, size, angles, highest, required)
+}
+
+/// [`rates_accuracy`] in full, out of line, from a copy of the Jacobian (so that the caller
+/// need not keep it in memory for this rare path).
+#[cold]
+#[inline(never)]
+fn rates_accuracy_aside<T: Real, const N: usize>(
+    condition: T,
+    jacobian: [[T; N]; N],
+    size: T,
+    angles: [bool; N],
+    highest: Order,
+    required: &Accuracy<T>,
+) -> Result<Accuracy<T>, Error<T>> {
+    let estimate = Accuracy::estimate(condition, aspect(&jacobian, size, angles));
     estimate.within(&rates_only(required), highest)?;
     Ok(estimate)
+}
+
+/// Whether [`aspect`] is certainly at most [`ORDINARY_ASPECT`], where [`Accuracy::estimate`]
+/// is that of an aspect of 1 (`shrunk` is 1): every angle's column at least `size/15.9` long,
+/// tested on squares with no scaling where they neither overflow nor underflow (else `false`,
+/// and [`aspect`] decides). With no angle unknown, or no size, the aspect is 1.
+#[inline(always)]
+fn ordinary<T: Real, const N: usize>(jacobian: &[[T; N]; N], size: T, angles: [bool; N]) -> bool {
+    let size_squared = size * size;
+    // False for NaN.
+    let finite = size_squared <= T::max_value();
+    if !finite {
+        return false;
+    }
+    // The first row's squares to start with, not zeros: the same sums as a factorisation's
+    // column norms, which the compiler can then share.
+    let Some((first, rest)) = jacobian.split_first() else {
+        return true;
+    };
+    let mut squares = first.map(|v| v * v);
+    for row in rest {
+        for (square, v) in squares.iter_mut().zip(row) {
+            *square = *square + *v * *v;
+        }
+    }
+    // 15.9² = 252.81: a margin over the rounding of `aspect`'s arithmetic.
+    let bound = T::constant(252.81);
+    squares.iter().zip(angles).all(|(square, angle)| {
+        !angle
+            || (*square >= T::min_positive_value()
+                && *square <= T::max_value()
+                && size_squared <= bound * *square)
+    })
 }
 
 /// `ρ`: `size` over the shortest column of an angle unknown (1 without one), with `size` and

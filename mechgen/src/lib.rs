@@ -40,6 +40,9 @@ pub mod __private {
         length_scale, outputs_finite, rates_inverse_determinant, triangle_root, unit_angle,
     };
     pub use crate::linear::{Factored, orientation, solve_lu, solve2};
-    pub use crate::newton::{Linearisation, Turning, all_finite, check_finite, finite, newton};
+    pub use crate::newton::{
+        Linearisation, Turning, Turnings, all_finite, check_all_finite, check_finite, finite,
+        newton, newton_common,
+    };
     pub use core::result::Result::{Err, Ok};
 }

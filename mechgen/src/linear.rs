@@ -129,8 +129,58 @@ pub fn solve_lu<T: Real, const N: usize>(
     a: [[T; N]; N],
     b: [T; N],
 ) -> Result<([T; N], T), Error<T>> {
-    let factored = Factored::by_lu(a)?;
-    Ok((factored.solve(b), factored.relative))
+    let (lu, pivots, scales, relative) = factor_lu(a)?;
+    Ok((solve_factors(&lu, &pivots, scales, b), relative))
+}
+
+/// LU with partial pivoting on the scaled matrix: the factors, the pivots, the columns'
+/// scales and the signed relative determinant.
+#[allow(clippy::type_complexity)]
+fn factor_lu<T: Real, const N: usize>(
+    a: [[T; N]; N],
+) -> Result<([[T; N]; N], [usize; N], [T; N], T), Error<T>> {
+    let mut lu = a;
+    let (columns, scales) = normalise(&mut lu)?;
+    let mut pivots = [0; N];
+    let determinant = eliminate(&mut lu, &mut pivots);
+    let relative = check_determinant(determinant, columns)?;
+    Ok((lu, pivots, scales, relative))
+}
+
+/// The solution of `a·x = b` from [`factor_lu`]'s factors of `a`.
+fn solve_factors<T: Real, const N: usize>(
+    lu: &[[T; N]; N],
+    pivots: &[usize; N],
+    scales: [T; N],
+    b: [T; N],
+) -> [T; N] {
+    let mut x = b;
+    // Whole rows were swapped while factoring, multipliers included: P·A = L·U.
+    for (k, &pivot) in pivots.iter().enumerate() {
+        swap(&mut x, k, pivot);
+    }
+    // Rows are zipped with `x`, and `x` read with `get`, rather than indexed with indices
+    // the compiler cannot always bound: no bounds check, so no panic path, is left.
+    for k in 0..N {
+        let x_k = x[k];
+        for (xi, row) in x.iter_mut().zip(lu).skip(k + 1) {
+            *xi = *xi - row[k] * x_k;
+        }
+    }
+    for (k, row) in lu.iter().enumerate().rev() {
+        // (row[k], x[k]), then the entries right of the diagonal.
+        let mut entries = row.iter().zip(&x).skip(k);
+        if let Some((&diagonal, &x_k)) = entries.next() {
+            let sum = entries.fold(x_k, |acc, (r, xj)| acc - *r * *xj);
+            if let Some(x_k) = x.get_mut(k) {
+                *x_k = sum / diagonal;
+            }
+        }
+    }
+    for (xi, scale) in x.iter_mut().zip(scales) {
+        *xi = *xi * scale;
+    }
+    x
 }
 
 /// Swaps entries `i` and `j` of `v`, both in range (else it leaves `v` as it is): unlike
@@ -187,11 +237,11 @@ fn eliminate<T: Real, const N: usize>(lu: &mut [[T; N]; N], pivots: &mut [usize;
 /// right-hand sides: the velocity's and the acceleration's share their Jacobian.
 #[derive(Clone, Copy, Debug)]
 pub struct Factored<T, const N: usize> {
-    /// LU factors, or for a 2×2 matrix the inverse of the scaled matrix.
+    /// LU factors, or for a 2×2 matrix (which [`Factored::new`] always inverts) the inverse
+    /// of the scaled matrix. No flag says which: an `Option` or `Result` of a `Factored`
+    /// would keep its tag in the flag's byte, and the optimiser the factors in memory.
     lu: [[T; N]; N],
     pivots: [usize; N],
-    /// Whether `lu` is an inverse.
-    inverse: bool,
     /// The powers of two the matrix's columns were scaled by, for the solutions.
     scales: [T; N],
     /// The signed relative determinant.
@@ -223,27 +273,66 @@ impl<T: Real, const N: usize> Factored<T, N> {
             return Ok(Factored {
                 lu,
                 pivots: [0; N],
-                inverse: true,
                 scales,
                 relative,
             });
         }
-        Self::by_lu(a)
-    }
-
-    /// LU with partial pivoting on the scaled matrix.
-    fn by_lu(a: [[T; N]; N]) -> Result<Self, Error<T>> {
-        let mut lu = a;
-        let (columns, scales) = normalise(&mut lu)?;
-        let mut pivots = [0; N];
-        let determinant = eliminate(&mut lu, &mut pivots);
-        let relative = check_determinant(determinant, columns)?;
+        let (lu, pivots, scales, relative) = factor_lu(a)?;
         Ok(Factored {
             lu,
             pivots,
-            inverse: false,
             scales,
             relative,
+        })
+    }
+
+    /// [`Factored::new`] where its verdict is certain without its square root and division
+    /// (a 2×2 matrix that needs no scaling and whose relative determinant exceeds `2√ε`,
+    /// tested on squares), else `None` and the caller asks [`Factored::new`]. The factors are
+    /// `new`'s, bit for bit; the relative determinant is left to [`Quick::relative`] and
+    /// [`Quick::finish`], which compute it as `new` does. Larger matrices are factored by
+    /// `new` itself.
+    #[inline(always)]
+    pub(crate) fn quick(a: [[T; N]; N]) -> Option<Quick<T, N>> {
+        if N != 2 {
+            let factored = Self::new(a).ok()?;
+            return Some(Quick {
+                factored,
+                determinant: factored.relative,
+                column_product: T::one(),
+            });
+        }
+        let (i, j) = (0, N - 1);
+        let (a00, a01, a10, a11) = (a[i][i], a[i][j], a[j][i], a[j][j]);
+        let column_product = (a00 * a00 + a10 * a10) * (a01 * a01 + a11 * a11);
+        // `unscaled_columns2`'s test: the squares neither overflow nor underflow (nor are NaN).
+        if !(column_product >= T::min_positive_value() && column_product <= T::max_value()) {
+            return None;
+        }
+        let determinant = a00 * a11 - a01 * a10;
+        // |det|/√product > 2√ε, so `check_determinant`'s rounded ratio exceeds √ε (false for
+        // NaN; an overflowing square is a determinant far from singular).
+        let four_epsilon = T::constant(4.0) * T::epsilon();
+        let regular = determinant * determinant > four_epsilon * column_product;
+        if !regular {
+            return None;
+        }
+        let inverse = T::one() / determinant;
+        let mut lu = a;
+        lu[i][i] = a11 * inverse;
+        lu[i][j] = -a01 * inverse;
+        lu[j][i] = -a10 * inverse;
+        lu[j][j] = a00 * inverse;
+        Some(Quick {
+            factored: Factored {
+                lu,
+                pivots: [0; N],
+                scales: [T::one(); N],
+                // Until `finish`.
+                relative: T::zero(),
+            },
+            determinant,
+            column_product,
         })
     }
 
@@ -254,46 +343,66 @@ impl<T: Real, const N: usize> Factored<T, N> {
     }
 
     /// The solution of `a·x = b`.
+    #[inline(always)]
     pub fn solve(&self, b: [T; N]) -> [T; N] {
-        if self.inverse {
-            // The explicit inverse of `new`'s 2×2 case.
+        if N == 2 {
+            // The explicit inverse of `new`'s 2×2 case: each row's two products summed (not
+            // added to a zero first, which would cost an addition for the sign of a zero).
             let mut x = b;
             for ((xi, row), scale) in x.iter_mut().zip(&self.lu).zip(self.scales) {
-                *xi = row
-                    .iter()
-                    .zip(&b)
-                    .fold(T::zero(), |acc, (r, v)| acc + *r * *v)
-                    * scale;
+                let mut products = row.iter().zip(&b).map(|(r, v)| *r * *v);
+                if let Some(first) = products.next() {
+                    *xi = products.fold(first, |acc, product| acc + product) * scale;
+                }
             }
             return x;
         }
-        let mut x = b;
-        // Whole rows were swapped while factoring, multipliers included: P·A = L·U.
-        for (k, &pivot) in self.pivots.iter().enumerate() {
-            swap(&mut x, k, pivot);
+        solve_factors(&self.lu, &self.pivots, self.scales, b)
+    }
+}
+
+/// A matrix factored by [`Factored::quick`], its relative determinant not yet computed.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Quick<T, const N: usize> {
+    /// `relative` is not yet set for a 2×2 matrix.
+    factored: Factored<T, N>,
+    /// The determinant (for a larger matrix, the relative determinant).
+    determinant: T,
+    /// The product of the squared column norms (for a larger matrix, 1).
+    column_product: T,
+}
+
+impl<T: Real, const N: usize> Quick<T, N> {
+    /// The signed relative determinant, as [`Factored::new`] computes it.
+    #[inline(always)]
+    pub(crate) fn relative(&self) -> T {
+        if N == 2 {
+            // `check_determinant(determinant, unscaled_columns2(a))`.
+            self.determinant / self.column_product.sqrt()
+        } else {
+            self.factored.relative
         }
-        // Rows are zipped with `x`, and `x` read with `get`, rather than indexed with indices
-        // the compiler cannot always bound: no bounds check, so no panic path, is left.
-        for k in 0..N {
-            let x_k = x[k];
-            for (xi, row) in x.iter_mut().zip(&self.lu).skip(k + 1) {
-                *xi = *xi - row[k] * x_k;
-            }
+    }
+
+    /// Whether the determinant is positive (the sign of [`Quick::relative`]).
+    #[inline(always)]
+    pub(crate) fn positive(&self) -> bool {
+        self.determinant > T::zero()
+    }
+
+    /// The solution of `a·x = b`, as [`Factored::solve`].
+    #[inline(always)]
+    pub(crate) fn solve(&self, b: [T; N]) -> [T; N] {
+        self.factored.solve(b)
+    }
+
+    /// What [`Factored::new`] returns for the matrix.
+    #[inline(always)]
+    pub(crate) fn finish(self) -> Factored<T, N> {
+        Factored {
+            relative: self.relative(),
+            ..self.factored
         }
-        for (k, row) in self.lu.iter().enumerate().rev() {
-            // (row[k], x[k]), then the entries right of the diagonal.
-            let mut entries = row.iter().zip(&x).skip(k);
-            if let Some((&diagonal, &x_k)) = entries.next() {
-                let sum = entries.fold(x_k, |acc, (r, xj)| acc - *r * *xj);
-                if let Some(x_k) = x.get_mut(k) {
-                    *x_k = sum / diagonal;
-                }
-            }
-        }
-        for (xi, scale) in x.iter_mut().zip(self.scales) {
-            *xi = *xi * scale;
-        }
-        x
     }
 }
 

@@ -286,6 +286,125 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     }
 }
 
+/// [`newton`]'s common path, for generated code to inline: `then` of the solution where
+/// Newton takes full steps each of which lowers the residual, else `otherwise()` (which
+/// generated code makes an out-of-line call of [`newton`] from `guess` again, with an
+/// evaluation in its initial state). The common path makes the same iterates from the same
+/// evaluations, the same factors ([`Factored::quick`], which defers the relative determinant's
+/// square root and division to the solution) and the same tests in the same arithmetic, so
+/// that what it hands `then` is what [`newton`] returns, bit for bit. It leaves the solve to
+/// `otherwise` wherever [`newton`] would do something else or its verdict is not certain
+/// here: an argument or a value that is not finite, a Jacobian near singular or in need of
+/// scaling, a step that does not lower the residual (which [`newton`] halves, or takes as
+/// stagnation), the iteration cap, the other branch. (The solution goes to `then` rather
+/// than out in an `Option`, whose tag would share a byte with the factors' and keep them in
+/// memory.)
+#[inline(always)]
+pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
+    guess: [T; N],
+    options: &NewtonOptions<T>,
+    keep_orientation: bool,
+    mut linearise: impl FnMut(&[T; N]) -> Linearisation<T, N, P>,
+    then: impl FnOnce(Converged<T, N, P>) -> R,
+    otherwise: impl FnOnce() -> R,
+) -> R {
+    let tolerance = options.tolerance;
+    'common: {
+        // Finite and not negative (false for NaN).
+        if !(tolerance >= T::zero() && tolerance <= T::max_value() && all_finite(&guess)) {
+            break 'common;
+        }
+        let rounding_floor = T::constant(16.0) * T::epsilon();
+        let quarter = T::constant(0.25);
+        let mut x = guess;
+        let mut iterations = 0;
+        let mut started_positive = false;
+        let mut previous_residual = T::infinity();
+        loop {
+            let here = linearise(&x);
+            // Every component lower than the residual before the step (which [`newton`] takes
+            // whole only then), so finite and not NaN; at the guess, below infinity. Then
+            // their largest is [`max_abs`]'s.
+            if !here.residual.iter().all(|r| r.abs() < previous_residual) || !here.scale.is_finite()
+            {
+                break 'common;
+            }
+            let residual_norm = here
+                .residual
+                .iter()
+                .fold(T::zero(), |norm, r| norm.max(r.abs()));
+            let Some(jacobian) = Factored::quick(here.jacobian) else {
+                break 'common;
+            };
+            let positive = jacobian.positive();
+            if iterations == 0 {
+                started_positive = positive;
+            }
+            let condition = || T::one() / jacobian.relative().abs();
+            let floor = rounding_floor * here.scale;
+            let met = if tolerance > T::zero() {
+                // `tolerance.max(floor)`, both finite.
+                residual_norm <= if tolerance > floor { tolerance } else { floor }
+                    && (residual_norm <= floor
+                        || kantorovich_aside(here.residual, here.jacobian, condition()) <= quarter)
+            } else {
+                residual_norm == T::zero()
+                    || (residual_norm <= floor
+                        && (previous_residual <= T::epsilon().sqrt() * here.scale
+                            || condition() * T::epsilon().sqrt().sqrt() >= T::one()))
+            };
+            if met {
+                if keep_orientation && positive != started_positive {
+                    break 'common;
+                }
+                let jacobian = jacobian.finish();
+                return then(Converged {
+                    solved: Solved {
+                        value: x,
+                        iterations,
+                        residual_norm,
+                        condition: T::one() / jacobian.relative().abs(),
+                    },
+                    at: here,
+                    jacobian,
+                });
+            }
+            if iterations >= options.max_iterations {
+                break 'common;
+            }
+            let step = jacobian.solve(here.residual);
+            if !all_finite(&step) {
+                break 'common;
+            }
+            // [`newton`]'s full step, `x − 1·step`.
+            for (t, d) in x.iter_mut().zip(step) {
+                *t = *t - T::one() * d;
+            }
+            previous_residual = residual_norm;
+            iterations += 1;
+        }
+    }
+    otherwise()
+}
+
+/// [`kantorovich`] out of line, from copies: the evaluation it reads stays in registers on
+/// the common path.
+#[cold]
+#[inline(never)]
+fn kantorovich_aside<T: Real, const N: usize>(
+    residual: [T; N],
+    jacobian: [[T; N]; N],
+    condition: T,
+) -> T {
+    let at = Linearisation {
+        residual,
+        jacobian,
+        scale: T::zero(),
+        payload: (),
+    };
+    kantorovich(&at, condition)
+}
+
 /// Kantorovich's `h = ‖J⁻¹‖²·L·‖f‖` at an iterate, estimated from the Jacobian's columns:
 /// `‖J⁻¹‖ ≈ κ / min‖column‖` and, the loops being sums of `r·e^{iθ}`, `L ≈ max‖column‖`.
 /// Below 1/2 a root is certain to lie near the iterate.
@@ -330,15 +449,56 @@ pub(crate) fn max_abs<T: Real>(values: &[T]) -> T {
     })
 }
 
-/// Whether every component is finite.
+/// Whether every component is finite: one product and sum per component and a single
+/// comparison (an infinity or NaN times zero is NaN), no branch per component.
+#[inline]
 pub fn all_finite<T: Real>(values: &[T]) -> bool {
-    values.iter().all(|v| v.is_finite())
+    values
+        .iter()
+        .fold(T::zero(), |sum, value| sum + *value * T::zero())
+        == T::zero()
 }
 
 /// `Err(NonFinite)` naming the first of `values` that is NaN or infinite.
 #[inline]
 pub fn check_finite<T: Real>(values: &[(T, &'static str)]) -> Result<(), Error<T>> {
     match values.iter().find(|(value, _)| !value.is_finite()) {
+        Some((_, quantity)) => Err(Error::NonFinite { quantity }),
+        None => Ok(()),
+    }
+}
+
+/// As [`check_finite`], with the values and their names apart: on the common path (every
+/// value finite) one product and sum per value and a single comparison, the names read only
+/// to blame one.
+#[inline(always)]
+pub fn check_all_finite<T: Real, const N: usize>(
+    values: [T; N],
+    quantities: &[&'static str; N],
+) -> Result<(), Error<T>> {
+    // An infinity or NaN times zero is NaN.
+    let zero = values
+        .iter()
+        .fold(T::zero(), |sum, value| sum + *value * T::zero());
+    if zero == T::zero() {
+        Ok(())
+    } else {
+        blame_non_finite(values, quantities)
+    }
+}
+
+/// `Err(NonFinite)` naming the first of `values` that is not finite, out of line.
+#[cold]
+#[inline(never)]
+fn blame_non_finite<T: Real, const N: usize>(
+    values: [T; N],
+    quantities: &[&'static str; N],
+) -> Result<(), Error<T>> {
+    match values
+        .iter()
+        .zip(quantities)
+        .find(|(value, _)| !value.is_finite())
+    {
         Some((_, quantity)) => Err(Error::NonFinite { quantity }),
         None => Ok(()),
     }
@@ -403,17 +563,7 @@ impl<T: Real> Turning<T> {
         let step = angle - self.angle;
         let small = T::constant(1.0 / 1024.0);
         if self.turns < Self::MAX_TURNS && step.abs() <= small {
-            let squared = step * step;
-            // sin δ = δ(1 − δ²/6·(1 − δ²/20)), cos δ = 1 − δ²/2·(1 − δ²/12): the next terms
-            // are below 2⁻⁶⁹ relative for |δ| ≤ 2⁻¹⁰.
-            let sin_step = step
-                * (T::one()
-                    - squared * T::constant(1.0 / 6.0) * (T::one() - squared * T::constant(0.05)));
-            let cos_step = T::one()
-                - squared * T::constant(0.5) * (T::one() - squared * T::constant(1.0 / 12.0));
-            let (sin, cos) = (self.sin, self.cos);
-            self.sin = sin * cos_step + cos * sin_step;
-            self.cos = cos * cos_step - sin * sin_step;
+            (self.sin, self.cos) = rotate(self.sin, self.cos, step);
             self.turns += 1;
         } else {
             (self.sin, self.cos) = angle.sin_cos();
@@ -427,5 +577,239 @@ impl<T: Real> Turning<T> {
 impl<T: Real> Default for Turning<T> {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+/// The sines and cosines of several unknown angles along a Newton iteration: each rotated as
+/// [`Turning`] rotates it (the same arithmetic, the same rule for when to start afresh), and
+/// where some need a fresh pair, [`fast::sin_cos`](crate::fast::sin_cos) of every angle at
+/// once, straight-line code the compiler packs into vector instructions (two angles for the
+/// price of about one platform `sin_cos`; the platform's for an angle beyond
+/// [`fast::sin_cos_limit`](crate::fast::sin_cos_limit), or not finite).
+#[derive(Clone, Copy, Debug)]
+pub struct Turnings<T, const K: usize> {
+    angle: [T; K],
+    sin: [T; K],
+    cos: [T; K],
+    turns: [u8; K],
+}
+
+impl<T: Real, const K: usize> Turnings<T, K> {
+    /// No angles yet: the first call computes their sines and cosines.
+    #[inline]
+    pub fn new() -> Self {
+        Turnings {
+            angle: [T::nan(); K],
+            sin: [T::nan(); K],
+            cos: [T::nan(); K],
+            turns: [0; K],
+        }
+    }
+
+    /// `(sin angles, cos angles)`.
+    #[inline(always)]
+    pub fn sin_cos(&mut self, angles: [T; K]) -> ([T; K], [T; K]) {
+        let small = T::constant(1.0 / 1024.0);
+        let mut fresh = [false; K];
+        let lanes = self
+            .angle
+            .iter_mut()
+            .zip(&mut self.sin)
+            .zip(&mut self.cos)
+            .zip(&mut self.turns)
+            .zip(&mut fresh)
+            .zip(angles);
+        for (((((last, sin), cos), turns), fresh), angle) in lanes {
+            // As `Turning::sin_cos`.
+            let step = angle - *last;
+            if *turns < Turning::<T>::MAX_TURNS && step.abs() <= small {
+                (*sin, *cos) = rotate(*sin, *cos, step);
+                *turns += 1;
+            } else {
+                *fresh = true;
+                *turns = 0;
+            }
+            *last = angle;
+        }
+        if fresh.iter().any(|f| *f) {
+            let (sines, cosines) = fresh_sin_cos(angles);
+            let lanes = self
+                .sin
+                .iter_mut()
+                .zip(&mut self.cos)
+                .zip(fresh)
+                .zip(sines.iter().zip(cosines));
+            for (((sin, cos), fresh), (s, c)) in lanes {
+                if fresh {
+                    (*sin, *cos) = (*s, c);
+                }
+            }
+        }
+        (self.sin, self.cos)
+    }
+}
+
+/// `(sin, cos)` of an angle rotated by `step`, `|step| ≤ 2⁻¹⁰`: [`Turning`]'s rotation.
+#[inline(always)]
+fn rotate<T: Real>(sin: T, cos: T, step: T) -> (T, T) {
+    let squared = step * step;
+    // sin δ = δ(1 − δ²/6·(1 − δ²/20)), cos δ = 1 − δ²/2·(1 − δ²/12): the next terms are
+    // below 2⁻⁶⁹ relative for |δ| ≤ 2⁻¹⁰.
+    let sin_step = step
+        * (T::one() - squared * T::constant(1.0 / 6.0) * (T::one() - squared * T::constant(0.05)));
+    let cos_step =
+        T::one() - squared * T::constant(0.5) * (T::one() - squared * T::constant(1.0 / 12.0));
+    (
+        sin * cos_step + cos * sin_step,
+        cos * cos_step - sin * sin_step,
+    )
+}
+
+impl<T: Real, const K: usize> Default for Turnings<T, K> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Every angle's sine and cosine: [`fast::sin_cos`](crate::fast::sin_cos) lane by lane where
+/// all are within its limit, else the platform's `sin_cos`. Out of line: called once per
+/// solve, inline it would only crowd the iteration's registers.
+#[inline(never)]
+fn fresh_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K]) {
+    let limit = crate::fast::sin_cos_limit::<T>();
+    // Not all within (NaN is not within either).
+    if !angles.iter().all(|a| a.abs() <= limit) {
+        return platform_sin_cos(angles);
+    }
+    let mut sines = angles;
+    let mut cosines = angles;
+    for ((s, c), a) in sines.iter_mut().zip(&mut cosines).zip(angles) {
+        (*s, *c) = crate::fast::sin_cos(a);
+    }
+    (sines, cosines)
+}
+
+/// Every angle's sine and cosine by the platform's `sin_cos`, out of line.
+#[cold]
+#[inline(never)]
+fn platform_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K]) {
+    let mut sines = angles;
+    let mut cosines = angles;
+    for ((s, c), a) in sines.iter_mut().zip(&mut cosines).zip(angles) {
+        (*s, *c) = a.sin_cos();
+    }
+    (sines, cosines)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The four-bar of the seeds' Example 1 at `theta2`, as generated code evaluates it.
+    fn four_bar(theta2: f64) -> impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, [f64; 4]> + Clone {
+        let [l1, l2, l3, l4] = [180.0, 80.0, 200.0, 150.0];
+        let (s2, c2) = theta2.sin_cos();
+        let mut turnings = Turnings::<f64, 2>::new();
+        move |x: &[f64; 2]| {
+            let ([s3, s4], [c3, c4]) = turnings.sin_cos(*x);
+            let (t0, t1, t2, t3) = (l3 * c3, l3 * s3, l4 * c4, l4 * s4);
+            Linearisation {
+                residual: [l2 * c2 + t0 - t2 - l1, l2 * s2 + t1 - t3],
+                jacobian: [[-t1, t3], [t0, -t2]],
+                scale: l1 + l2 + l3 + l4,
+                payload: [s3, c3, s4, c4],
+            }
+        }
+    }
+
+    fn bits(converged: &Converged<f64, 2, [f64; 4]>) -> [u64; 6] {
+        let [a, b] = converged.solved.value;
+        let [c, d] = converged.jacobian.solve([1.0, -2.0]);
+        [
+            a,
+            b,
+            c,
+            d,
+            converged.solved.residual_norm,
+            converged.solved.condition,
+        ]
+        .map(f64::to_bits)
+    }
+
+    #[test]
+    fn the_common_path_returns_what_newton_returns_bit_for_bit() {
+        let mut common = 0;
+        for tolerance in [0.0, 1e-12, 1e-4] {
+            let options = NewtonOptions::new(tolerance, 50);
+            for k in 0..360 {
+                let theta2 = f64::from(k).to_radians();
+                // From near the open branch's solution to far from it.
+                for offset in [1e-9, 1e-4, 1e-2, 0.3, 2.0] {
+                    let guess = [0.37 + offset, 1.26 - offset];
+                    let safeguarded = newton(theta2, guess, &options, true, four_bar(theta2));
+                    let quick =
+                        newton_common(guess, &options, true, four_bar(theta2), Some, || None);
+                    if let Some(quick) = quick {
+                        common += 1;
+                        let safeguarded = safeguarded.expect("the common path solved it");
+                        assert_eq!(bits(&quick), bits(&safeguarded), "θ2 = {theta2}");
+                        assert_eq!(quick.solved.iterations, safeguarded.solved.iterations);
+                        assert_eq!(
+                            quick.at.payload.map(f64::to_bits),
+                            safeguarded.at.payload.map(f64::to_bits)
+                        );
+                    }
+                }
+            }
+        }
+        // Most solves take the common path.
+        assert!(common > 3 * 360 * 3, "{common}");
+    }
+
+    #[test]
+    fn the_common_path_leaves_the_unusual_to_newton() {
+        let options = NewtonOptions::default();
+        let fallback = || None;
+        // A guess that is not finite, a negative tolerance, no updates allowed.
+        assert!(
+            newton_common(
+                [f64::NAN, 1.0],
+                &options,
+                true,
+                four_bar(1.0),
+                Some,
+                fallback
+            )
+            .is_none()
+        );
+        let negative = NewtonOptions::new(-1.0, 50);
+        assert!(
+            newton_common([0.4, 1.2], &negative, true, four_bar(1.0), Some, fallback).is_none()
+        );
+        let none = NewtonOptions::new(0.0, 0);
+        assert!(newton_common([0.4, 1.2], &none, true, four_bar(1.0), Some, fallback).is_none());
+    }
+
+    #[test]
+    fn turnings_rotate_as_a_turning_does() {
+        let mut turnings = Turnings::<f64, 2>::new();
+        let mut turning = [Turning::<f64>::new(), Turning::new()];
+        for angles in [
+            [0.3, -2.0],
+            [0.3001, -2.0002],
+            [0.30010001, -2.00020001],
+            [1.0, -2.0],
+        ] {
+            let (sines, cosines) = turnings.sin_cos(angles);
+            for k in 0..2 {
+                let (s, c) = turning[k].sin_cos(angles[k]);
+                // Fresh pairs differ by rounding (the platform's against `fast::sin_cos`).
+                assert!((s - sines[k]).abs() <= 2.0 * f64::EPSILON);
+                assert!((c - cosines[k]).abs() <= 2.0 * f64::EPSILON);
+            }
+        }
+        let (sines, _) = Turnings::<f64, 2>::new().sin_cos([2e6, f64::NAN]);
+        assert_eq!(sines[0], 2e6f64.sin());
+        assert!(sines[1].is_nan());
     }
 }

@@ -10,20 +10,25 @@ use super::{Generator, arg, matrix};
 use crate::symbolic::ExprId;
 
 impl Generator<'_> {
-    /// `(self.l1, "parameter `l1`"), ...`: every parameter, then the listed extras.
+    /// `mechgen_check_finite`: every parameter, then the input, finite. Their names are a
+    /// constant table apart from the values, read only to blame one that is not.
     pub(super) fn check_finite(&self) -> TokenStream {
         let input = &self.model.input.name;
-        let checks = self.model.params.iter().map(|param| {
-            let field = &param.name;
-            let label = format!("parameter `{}`", field.unraw());
-            quote!((self.#field, #label),)
-        });
+        let fields = self.model.params.iter().map(|param| &param.name);
+        let labels = self
+            .model
+            .params
+            .iter()
+            .map(|param| format!("parameter `{}`", param.name.unraw()));
         let input_label = format!("input `{}`", input.unraw());
         quote! {
             /// Checks that the parameters and the input are finite.
             #[inline]
             fn mechgen_check_finite(&self, #input: T) -> ::core::result::Result<(), ::mechgen::Error<T>> {
-                ::mechgen::__private::check_finite(&[#(#checks)* (#input, #input_label)])
+                ::mechgen::__private::check_all_finite(
+                    [#(self.#fields,)* #input],
+                    &[#(#labels,)* #input_label],
+                )
             }
         }
     }

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeSet;
 
-use proc_macro2::{Ident, Literal, TokenStream};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 use syn::ext::IdentExt;
 
@@ -27,6 +27,7 @@ impl Generator<'_> {
     pub(super) fn full_position(&self, public: bool) -> TokenStream {
         let input = &self.model.input.name;
         let (guess, options, x, solved) = (arg("guess"), arg("options"), arg("x"), arg("solved"));
+        let converged = arg("converged");
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
         let (keep_orientation, branch_check) = self.branch_keeping(quote!(&#solved.value));
@@ -60,27 +61,69 @@ impl Generator<'_> {
             );
             (doc, quote!(fn #fallback))
         };
-        quote! {
-            #doc
-            #signature(
+        let result = quote! {
+            ::core::result::Result<::mechgen::Solved<#unknowns, T>, ::mechgen::Error<T>>
+        };
+        let signature_args = quote! {
+            (
                 &self,
                 #input: T,
                 #guess: &#unknowns,
                 #options: &::mechgen::NewtonOptions<T>,
-            ) -> ::core::result::Result<::mechgen::Solved<#unknowns, T>, ::mechgen::Error<T>> {
+            ) -> #result
+        };
+        let finish = quote! {
+            let #solved = #converged.solved.map(#ty::from_array);
+            #branch_check
+            ::core::result::Result::Ok(#solved)
+        };
+        let safeguarded = quote! {
+            #hoisted
+            let #converged = ::mechgen::__private::newton(
+                #input,
+                #guess.to_array(),
+                #options,
+                #keep_orientation,
+                #closure,
+            )?;
+            #finish
+        };
+        if !public {
+            // The reduced `position`'s fallback is itself the rare path.
+            return quote! {
+                #doc
+                #signature #signature_args {
+                    self.mechgen_check_finite(#input)?;
+                    #safeguarded
+                }
+            };
+        }
+        // Newton's common path inline; anything else is the safeguarded solve's to decide,
+        // from the guess again, out of line.
+        let aside = Ident::new("mechgen_position_safeguarded", Span::call_site());
+        let aside_doc = super::docs::doc(
+            "[`Self::position`] by the safeguarded Newton alone (`mechgen::__private::newton`), \
+             out of line: what it falls back to where Newton's common path cannot decide.",
+        );
+        quote! {
+            #doc
+            #signature #signature_args {
                 self.mechgen_check_finite(#input)?;
                 #hoisted
-                let #solved = ::mechgen::__private::newton(
-                    #input,
+                ::mechgen::__private::newton_common(
                     #guess.to_array(),
                     #options,
                     #keep_orientation,
                     #closure,
-                )?
-                .solved
-                .map(#ty::from_array);
-                #branch_check
-                ::core::result::Result::Ok(#solved)
+                    |#converged| -> #result { #finish },
+                    || self.#aside(#input, #guess, #options),
+                )
+            }
+            #aside_doc
+            #[cold]
+            #[inline(never)]
+            fn #aside #signature_args {
+                #safeguarded
             }
         }
     }
@@ -169,15 +212,8 @@ impl Generator<'_> {
             "Acceleration",
             quote!(&#options.accuracy),
         );
-        let body = quote! {
-                #hoisted
-                let #converged = ::mechgen::__private::newton(
-                    #input,
-                    #guess.to_array(),
-                    #options,
-                    #keep_orientation,
-                    #closure,
-                )?;
+        // From Newton's solution on: the same on either path.
+        let rates_body = quote! {
                 #branch_check
                 #accuracy_check
                 let [#(#names),*] = #converged.solved.value;
@@ -196,12 +232,55 @@ impl Generator<'_> {
                     acceleration: #ty::from_array(#accelerations),
                 }))
         };
-        self.motion_near_function(
+        // Newton's common path inline; anything else is the safeguarded solve's to decide,
+        // from the guess again, out of line.
+        let aside = Ident::new("mechgen_motion_near_safeguarded", Span::call_site());
+        let body = quote! {
+                #hoisted
+                ::mechgen::__private::newton_common(
+                    #guess.to_array(),
+                    #options,
+                    #keep_orientation,
+                    #closure,
+                    |#converged| -> ::core::result::Result<
+                        ::mechgen::Solved<::mechgen::Motion<#ty<T>>, T>,
+                        ::mechgen::Error<T>,
+                    > {
+                        #rates_body
+                    },
+                    || self.#aside(#input, #guess, #options, #input_dot, #input_ddot),
+                )
+        };
+        let aside_body = quote! {
+                #hoisted
+                let #converged = ::mechgen::__private::newton(
+                    #input,
+                    #guess.to_array(),
+                    #options,
+                    #keep_orientation,
+                    #closure,
+                )?;
+                #rates_body
+        };
+        let hot = self.motion_near_function(
             docs,
             quote!(#[allow(unused_variables)]),
             quote!(self.mechgen_check_finite(#input)?;),
             body,
-        )
+        );
+        let aside_docs = doc(
+            "[`Self::motion_near`] by the safeguarded Newton alone (`mechgen::__private::newton`), \
+             out of line: what it falls back to where Newton's common path cannot decide. Its \
+             arguments are checked.",
+        );
+        let cold = self.motion_near_item(
+            quote!(fn #aside),
+            aside_docs,
+            quote!(#[allow(unused_variables)] #[cold] #[inline(never)]),
+            TokenStream::new(),
+            aside_body,
+        );
+        quote!(#hot #cold)
     }
 
     /// The `motion_near` item around its body: the signature, the check of the arguments
@@ -213,19 +292,38 @@ impl Generator<'_> {
         check: TokenStream,
         body: TokenStream,
     ) -> TokenStream {
-        let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
-        let (guess, options) = (arg("guess"), arg("options"));
-        let (unknowns, _, _) = self.signature_types();
+        let input_dot = &self.input_dot;
+        let input_ddot = &self.input_ddot;
         let labels = [
             format!("input rate `{input_dot}`"),
             format!("input acceleration `{input_ddot}`"),
         ];
         let [dot_label, ddot_label] = &labels;
+        let check = quote! {
+            #check
+            ::mechgen::__private::check_all_finite([#input_dot, #input_ddot], &[#dot_label, #ddot_label])?;
+        };
+        self.motion_near_item(quote!(pub fn motion_near), docs, attrs, check, body)
+    }
+
+    /// An item with `motion_near`'s signature, named and scoped by `name` (`pub fn
+    /// motion_near`): `check`, then `body`.
+    fn motion_near_item(
+        &self,
+        name: TokenStream,
+        docs: TokenStream,
+        attrs: TokenStream,
+        check: TokenStream,
+        body: TokenStream,
+    ) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (guess, options) = (arg("guess"), arg("options"));
+        let (unknowns, _, _) = self.signature_types();
         quote! {
             #docs
             #attrs
-            pub fn motion_near(
+            #name(
                 &self,
                 #input: T,
                 #guess: &#unknowns,
@@ -237,7 +335,6 @@ impl Generator<'_> {
                 ::mechgen::Error<T>,
             > {
                 #check
-                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
                 #body
             }
         }
@@ -263,8 +360,7 @@ impl Generator<'_> {
         let graph = &self.equations.graph;
         let read = reachable(graph, &entries);
         let mut turned: Vec<(ExprId, Ident, usize)> = Vec::new();
-        let mut turnings = Vec::new();
-        let mut turns = Vec::new();
+        let mut angles = Vec::new();
         for (u, unknown) in self.model.unknowns.iter().enumerate() {
             let Some(var) = graph.lookup(Node::Var(Var::Value(SymbolRef::Unknown(u)))) else {
                 continue;
@@ -285,11 +381,30 @@ impl Generator<'_> {
                 continue;
             }
             let [sin, cos] = names.map(|name| name.map_or(quote!(_), |name| quote!(#name)));
-            let turning = local(&format!("turning_{stem}"));
-            let name = &unknown.name;
-            turnings.push(quote!(let mut #turning = ::mechgen::__private::Turning::new();));
-            turns.push(quote!(let (#sin, #cos) = #turning.sin_cos(#name);));
+            angles.push((stem, &unknown.name, sin, cos));
         }
+        // Several angles share one `Turnings`, whose fresh sines and cosines come from one
+        // pass of vector arithmetic; a lone angle has its `Turning`.
+        let (turnings, turns) = match angles.as_slice() {
+            [(stem, name, sin, cos)] => {
+                let turning = local(&format!("turning_{stem}"));
+                (
+                    quote!(let mut #turning = ::mechgen::__private::Turning::new();),
+                    quote!(let (#sin, #cos) = #turning.sin_cos(#name);),
+                )
+            }
+            _ if angles.is_empty() => (TokenStream::new(), TokenStream::new()),
+            _ => {
+                let turnings = local("turnings");
+                let names = angles.iter().map(|(_, name, _, _)| name);
+                let sines = angles.iter().map(|(_, _, sin, _)| sin);
+                let cosines = angles.iter().map(|(_, _, _, cos)| cos);
+                (
+                    quote!(let mut #turnings = ::mechgen::__private::Turnings::new();),
+                    quote!(let ([#(#sines),*], [#(#cosines),*]) = #turnings.sin_cos([#(#names),*]);),
+                )
+            }
+        };
         let (
             bindings,
             Block {
@@ -344,18 +459,22 @@ impl Generator<'_> {
                 #bindings
                 #(#hoisted)*
                 #scale_before
-                #(#turnings)*
             },
+            // With its own turnings, so that it can be emitted more than once (for the common
+            // path and the fallback of `fast_newton`); it copies the values it reads.
             closure: quote! {
-                |#x: &[T; #count]| {
-                    let [#(#names),*] = *#x;
-                    #(#turns)*
-                    #(#per_iterate)*
-                    ::mechgen::__private::Linearisation {
-                        residual: [#(#residual),*],
-                        jacobian: #jacobian,
-                        #scale,
-                        payload: #payload,
+                {
+                    #turnings
+                    move |#x: &[T; #count]| {
+                        let [#(#names),*] = *#x;
+                        #turns
+                        #(#per_iterate)*
+                        ::mechgen::__private::Linearisation {
+                            residual: [#(#residual),*],
+                            jacobian: #jacobian,
+                            #scale,
+                            payload: #payload,
+                        }
                     }
                 }
             },
@@ -369,7 +488,8 @@ impl Generator<'_> {
 struct Linearised {
     /// The parameters' bindings and the work on parameters and input alone.
     hoisted: TokenStream,
-    /// The evaluation at an iterate.
+    /// The evaluation at an iterate: a block that makes the closure, with the state its
+    /// turnings keep.
     closure: TokenStream,
     /// Every value the two name, with its stage: 0 hoisted, 1 in the closure's payload.
     named: Vec<(ExprId, Ident, usize)>,
