@@ -248,9 +248,9 @@ fn summed<O: Outputs>(mut kernel: impl FnMut(f64) -> O + 'static) -> Boxed {
 }
 
 /// `kernel(t)` as a function of its own, which the harness calls: every kernel, hand-written
-/// or generated, is compiled whole into it and called the same way (a small one would
-/// otherwise be inlined into the harness and a large one not, and the difference is the
-/// harness's, not the kernel's).
+/// or generated, is compiled whole into it (each kernel's closure is `#[inline(always)]`) and
+/// called the same way. Left to itself, the compiler inlines a small kernel into the harness
+/// and calls a large one, and the difference is the harness's, not the kernel's.
 #[inline(never)]
 fn called<O>(kernel: &mut impl FnMut(f64) -> O, t: f64) -> O {
     kernel(t)
@@ -315,11 +315,13 @@ fn none() -> impl FnMut(f64) -> [f64; 1] {
 
 fn hand_norton() -> impl FnMut(f64) -> [f64; 6] {
     let hand = FourBarNorton::new(FOUR_BAR);
+    #[inline(always)]
     move |t| flat(hand.motion(t, OMEGA, ALPHA))
 }
 
 fn scene_angles() -> impl FnMut(f64) -> [f64; 6] {
     let scenes = four_bar().scenes().expect("scene constants");
+    #[inline(always)]
     move |t| {
         let s = scenes.angles(t, Branch::Open, OMEGA, ALPHA).unwrap();
         [
@@ -335,6 +337,7 @@ fn scene_angles() -> impl FnMut(f64) -> [f64; 6] {
 
 fn scene_angles_f32() -> impl FnMut(f64) -> [f32; 6] {
     let scenes = four_bar_f32().scenes().expect("scene constants");
+    #[inline(always)]
     move |t| {
         let s = scenes
             .angles(t as f32, Branch::Open, OMEGA as f32, ALPHA as f32)
@@ -352,6 +355,7 @@ fn scene_angles_f32() -> impl FnMut(f64) -> [f32; 6] {
 
 fn motion() -> impl FnMut(f64) -> [f64; 6] {
     let linkage = four_bar();
+    #[inline(always)]
     move |t| {
         let m = linkage.motion(t, Branch::Open, OMEGA, ALPHA).unwrap();
         flat([
@@ -364,6 +368,7 @@ fn motion() -> impl FnMut(f64) -> [f64; 6] {
 
 fn assemble_velocity_acceleration() -> impl FnMut(f64) -> [f64; 6] {
     let linkage = four_bar();
+    #[inline(always)]
     move |t| {
         let q = linkage.assemble(t, Branch::Open).unwrap();
         let v = linkage.velocity(t, &q, OMEGA).unwrap();
@@ -383,6 +388,7 @@ fn four_bar_start() -> [f64; 2] {
 fn hand_newton() -> impl FnMut(f64) -> [f64; 6] {
     let hand = FourBarNewton::new(FOUR_BAR);
     let mut guess = four_bar_start();
+    #[inline(always)]
     move |t| {
         let s = hand.motion(t, guess, NEWTON_TOLERANCE, OMEGA, ALPHA);
         guess = predict(s[0], s[1]);
@@ -394,6 +400,7 @@ fn motion_near() -> impl FnMut(f64) -> [f64; 6] {
     let linkage = four_bar();
     let options = NewtonOptions::new(NEWTON_TOLERANCE, 50);
     let mut guess = FourBarUnknowns::from_array(four_bar_start());
+    #[inline(always)]
     move |t| {
         let m = linkage
             .motion_near(t, &guess, &options, OMEGA, ALPHA)
@@ -409,6 +416,7 @@ fn position_motion_at() -> impl FnMut(f64) -> [f64; 6] {
     let linkage = four_bar();
     let options = NewtonOptions::new(NEWTON_TOLERANCE, 50);
     let mut guess = FourBarUnknowns::from_array(four_bar_start());
+    #[inline(always)]
     move |t| {
         let q = linkage.position(t, &guess, &options).unwrap().value;
         let m = linkage.motion_at(t, &q, OMEGA, ALPHA).unwrap();
@@ -420,6 +428,7 @@ fn position_motion_at() -> impl FnMut(f64) -> [f64; 6] {
 
 fn num_dual_newton() -> impl FnMut(f64) -> [f64; 6] {
     let mut guess = four_bar_start();
+    #[inline(always)]
     move |t| {
         let s = baselines::four_bar_num_dual(&FOUR_BAR, t, guess, NEWTON_TOLERANCE, OMEGA, ALPHA);
         guess = predict(s[0], s[1]);
@@ -429,6 +438,7 @@ fn num_dual_newton() -> impl FnMut(f64) -> [f64; 6] {
 
 fn nalgebra_newton() -> impl FnMut(f64) -> [f64; 6] {
     let mut guess = four_bar_start();
+    #[inline(always)]
     move |t| {
         let s = baselines::four_bar_nalgebra(&FOUR_BAR, t, guess, NEWTON_TOLERANCE, OMEGA, ALPHA);
         guess = predict(s[0], s[1]);
@@ -439,11 +449,13 @@ fn nalgebra_newton() -> impl FnMut(f64) -> [f64; 6] {
 fn hand_point() -> impl FnMut(f64) -> [f64; 2] {
     let (distance, angle) = COUPLER_POINT;
     let hand = FourBarCouplerPoint::new(FOUR_BAR, distance, angle.to_radians());
+    #[inline(always)]
     move |t| hand.position(t)
 }
 
 fn scene_coupler_path() -> impl FnMut(f64) -> [f64; 2] {
     let scenes = four_bar().scenes().expect("scene constants");
+    #[inline(always)]
     move |t| {
         let p = scenes.coupler_path(t, Branch::Open).unwrap().coupler_point;
         [p.x, p.y]
@@ -452,6 +464,7 @@ fn scene_coupler_path() -> impl FnMut(f64) -> [f64; 2] {
 
 fn scene_coupler_path_f32() -> impl FnMut(f64) -> [f32; 2] {
     let scenes = four_bar_f32().scenes().expect("scene constants");
+    #[inline(always)]
     move |t| {
         let p = scenes
             .coupler_path(t as f32, Branch::Open)
@@ -463,6 +476,7 @@ fn scene_coupler_path_f32() -> impl FnMut(f64) -> [f32; 2] {
 
 fn assemble_points() -> impl FnMut(f64) -> [f64; 2] {
     let linkage = four_bar();
+    #[inline(always)]
     move |t| {
         let q = linkage.assemble(t, Branch::Open).unwrap();
         let p = linkage.points(t, &q).unwrap().coupler_point;
@@ -473,11 +487,13 @@ fn assemble_points() -> impl FnMut(f64) -> [f64; 2] {
 fn hand_point_motion() -> impl FnMut(f64) -> [f64; 6] {
     let (distance, angle) = COUPLER_POINT;
     let hand = FourBarCouplerPoint::new(FOUR_BAR, distance, angle.to_radians());
+    #[inline(always)]
     move |t| flat(hand.motion(t, OMEGA, ALPHA))
 }
 
 fn scene_coupler_motion() -> impl FnMut(f64) -> [f64; 6] {
     let scenes = four_bar().scenes().expect("scene constants");
+    #[inline(always)]
     move |t| {
         let m = scenes
             .coupler_motion(t, Branch::Open, OMEGA, ALPHA)
@@ -489,6 +505,7 @@ fn scene_coupler_motion() -> impl FnMut(f64) -> [f64; 6] {
 
 fn scene_coupler_motion_f32() -> impl FnMut(f64) -> [f32; 6] {
     let scenes = four_bar_f32().scenes().expect("scene constants");
+    #[inline(always)]
     move |t| {
         let m = scenes
             .coupler_motion(t as f32, Branch::Open, OMEGA as f32, ALPHA as f32)
@@ -500,6 +517,7 @@ fn scene_coupler_motion_f32() -> impl FnMut(f64) -> [f32; 6] {
 
 fn motion_points() -> impl FnMut(f64) -> [f64; 6] {
     let linkage = four_bar();
+    #[inline(always)]
     move |t| {
         let m = linkage.motion(t, Branch::Open, OMEGA, ALPHA).unwrap();
         let (q, v, a) = (m.position, m.velocity, m.acceleration);
@@ -519,11 +537,13 @@ fn motion_points() -> impl FnMut(f64) -> [f64; 6] {
 fn hand_slider_crank() -> impl FnMut(f64) -> [f64; 6] {
     let [l2, l3, c] = SLIDER_CRANK;
     let hand = SliderCrankClosed::new(l2, l3, c);
+    #[inline(always)]
     move |t| flat(hand.motion(t, OMEGA, ALPHA))
 }
 
 fn scene_slider_crank() -> impl FnMut(f64) -> [f64; 6] {
     let scenes = slider_crank().scenes().expect("scene constants");
+    #[inline(always)]
     move |t| {
         let s = scenes.state(t, Branch::Open, OMEGA, ALPHA).unwrap();
         [
@@ -539,6 +559,7 @@ fn scene_slider_crank() -> impl FnMut(f64) -> [f64; 6] {
 
 fn slider_crank_motion() -> impl FnMut(f64) -> [f64; 6] {
     let linkage = slider_crank();
+    #[inline(always)]
     move |t| {
         let m = linkage.motion(t, Branch::Open, OMEGA, ALPHA).unwrap();
         flat([
@@ -551,11 +572,13 @@ fn slider_crank_motion() -> impl FnMut(f64) -> [f64; 6] {
 
 fn hand_inverted_slider_crank() -> impl FnMut(f64) -> [f64; 6] {
     let hand = InvertedSliderCrankClosed::new(INVERTED_SLIDER_CRANK);
+    #[inline(always)]
     move |t| flat(hand.motion(t, OMEGA, ALPHA))
 }
 
 fn scene_inverted_slider_crank() -> impl FnMut(f64) -> [f64; 6] {
     let scenes = inverted_slider_crank().scenes().expect("scene constants");
+    #[inline(always)]
     move |t| {
         let s = scenes.state(t, Branch::Open, OMEGA, ALPHA).unwrap();
         [
@@ -571,6 +594,7 @@ fn scene_inverted_slider_crank() -> impl FnMut(f64) -> [f64; 6] {
 
 fn inverted_slider_crank_motion() -> impl FnMut(f64) -> [f64; 6] {
     let linkage = inverted_slider_crank();
+    #[inline(always)]
     move |t| {
         let m = linkage.motion(t, Branch::Open, OMEGA, ALPHA).unwrap();
         flat([
@@ -588,6 +612,7 @@ fn stephenson_motion_near() -> impl FnMut(f64) -> [f64; 12] {
         .position(0.0, &guess, &options)
         .expect("the Stephenson six-bar assembles at 0")
         .value;
+    #[inline(always)]
     move |t| {
         let m = linkage
             .motion_near(t, &guess, &options, OMEGA, ALPHA)
@@ -609,6 +634,7 @@ fn stephenson_motion_near() -> impl FnMut(f64) -> [f64; 12] {
 
 fn watt_motion() -> impl FnMut(f64) -> [f64; 12] {
     let linkage = watt();
+    #[inline(always)]
     move |t| {
         let m = linkage
             .motion(t, [Branch::Open, Branch::Open], OMEGA, ALPHA)
@@ -628,6 +654,7 @@ fn watt_motion() -> impl FnMut(f64) -> [f64; 12] {
 
 fn watt_scene_output() -> impl FnMut(f64) -> [f64; 3] {
     let scenes = watt().scenes().expect("scene constants");
+    #[inline(always)]
     move |t| {
         let s = scenes
             .output(t, [Branch::Open, Branch::Open], OMEGA, ALPHA)

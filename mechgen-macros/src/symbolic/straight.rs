@@ -132,9 +132,10 @@ impl Builder<'_> {
         var
     }
 
-    /// `value` as a [`AuxKind::Bind`] value, unless it is a number (which needs no name).
+    /// `value` as a [`AuxKind::Bind`] value, unless it depends on the dimensions alone (a
+    /// constant of the mechanism, computed once).
     fn bound(&mut self, value: ExprId) -> ExprId {
-        if self.graph.constant_value(value).is_some() {
+        if self.graph.is_fixed(value) {
             value
         } else {
             self.aux(AuxKind::Bind(value))
@@ -256,7 +257,9 @@ impl Builder<'_> {
                 // P1 = (a·K̂ ± h·iK̂), where a·c = (|w1|² − |w2|² + c²)/2 and
                 // h·c = √(|w1|²·c² − (a·c)²): one square root and one reciprocal, of c².
                 let (k, w1, w2) = (vector(0), vector(1), vector(2));
-                let chord = self.negated(k);
+                // The chord, and below the distance along it, are named: every product reads
+                // them whole.
+                let chord = self.negated(k).map(|c| self.bound(c));
                 let chord_squared = self.dot(chord, chord);
                 let inverse = self.aux(AuxKind::Inverse(chord_squared));
                 let (r1, r2) = (self.dot(w1, w1), self.dot(w2, w2));
@@ -266,6 +269,7 @@ impl Builder<'_> {
                 let difference = self.graph.sub(r1, r2);
                 let sum = self.graph.add(difference, chord_squared);
                 let along = self.graph.mul(half, sum);
+                let along = self.bound(along);
                 // h·c is twice the area of the triangle (|w1|, |w2|, c), by Heron's formula
                 // in factors: a thin triangle keeps its digits (|w1|²·c² − (a·c)² would
                 // cancel), and whether the circles meet is decided on the gaps themselves,
