@@ -207,6 +207,19 @@ pub mod lanes {
             * ((sum_squared - span_squared) * (span_squared - difference_squared)).sqrt()
     }
 
+    /// [`inverse_determinant`] for a block whose columns' norms move, from the square of
+    /// their product: `det² > threshold²·squared_norms` without a square root or a division
+    /// (the relative determinant's rounding aside, the same test).
+    #[inline(always)]
+    pub fn inverse_determinant_squared<T: Real>(det: T, squared_norms: T, threshold: T) -> T {
+        let inverse = det.recip();
+        if det * det > threshold * threshold * squared_norms {
+            inverse
+        } else {
+            T::nan()
+        }
+    }
+
     /// [`super::inverse_determinant`], with NaN for "singular".
     #[inline(always)]
     pub fn inverse_determinant<T: Real>(det: T, inverse_norms: T, threshold: T) -> T {

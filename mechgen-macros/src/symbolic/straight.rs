@@ -70,9 +70,14 @@ pub enum AuxKind {
     Inverse(ExprId),
     /// `1/det` of a 2×2 block whose columns' norms multiply to `1/inverse_norms`; singular
     /// where the relative determinant `|det|·inverse_norms` is at or below the threshold.
+    ///
+    /// Where the norms move (a column of a changing length), `squared_norms` is their
+    /// product's square, for kernels that only decide: `det² > threshold²·norms²` says the
+    /// same as the relative determinant without its square root and division.
     InverseDeterminant {
         det: ExprId,
         inverse_norms: ExprId,
+        squared_norms: Option<ExprId>,
         threshold: Threshold,
     },
     /// A solved angle from its unit vector `(x, y)`, as `atan2(y, x)` would give it.
@@ -114,6 +119,9 @@ struct Builder<'g> {
     /// knows the columns' norms (`|w1|` and `|w2|` for two angles, say), which for fixed
     /// vectors are constants of the mechanism.
     inverse_norms: Vec<ExprId>,
+    /// For each closed-form step, the product of its block's columns' squared norms, where
+    /// that moves (see [`AuxKind::InverseDeterminant`]).
+    squared_norms: Vec<Option<ExprId>>,
     /// For each closed-form step, its loop's Jacobian block's determinant as the closed form
     /// knows it (the triangle's height, the quadratic's root): the same value as Cramer's
     /// `j00·j11 − j01·j10`, without that difference's cancellation near a toggle.
@@ -209,6 +217,9 @@ impl Builder<'_> {
         let product = self.graph.mul(first, second);
         let inverse = self.graph.recip(product);
         self.inverse_norms.push(inverse);
+        let squared = self.graph.mul(squares[0], squares[1]);
+        let moving = !self.graph.is_fixed(squared);
+        self.squared_norms.push(moving.then_some(squared));
     }
 
     /// One loop in closed form; `branch` counts the branching loops so far.
@@ -243,6 +254,7 @@ impl Builder<'_> {
                 let inverse = self.aux(AuxKind::InverseDeterminant {
                     det,
                     inverse_norms,
+                    squared_norms: *self.squared_norms.last().expect("just recorded"),
                     threshold: Threshold::Position,
                 });
                 let (first, second) = (self.cross(v2, k), self.cross(k, v1));
@@ -370,15 +382,8 @@ impl Builder<'_> {
 
     /// Solves `J·x = rhs` block by block in plan order (the Jacobian is block
     /// lower-triangular in that order), each 2×2 block by Cramer's rule.
-    ///
-    /// With `bind`, each solution is a [`AuxKind::Bind`] value, read whole where it is read.
-    fn solve(
-        &mut self,
-        steps: &[Step],
-        jacobian: &[ExprId],
-        rhs: &[ExprId],
-        bind: bool,
-    ) -> Vec<ExprId> {
+    /// Each solution is named (a [`AuxKind::Bind`] value), so products read it whole.
+    fn solve(&mut self, steps: &[Step], jacobian: &[ExprId], rhs: &[ExprId]) -> Vec<ExprId> {
         let n = rhs.len();
         let entry = |row: usize, column: usize| jacobian[row * n + column];
         let mut x: Vec<Option<ExprId>> = vec![None; n];
@@ -398,14 +403,37 @@ impl Builder<'_> {
             let inverse = self.aux(AuxKind::InverseDeterminant {
                 det: self.determinants[s],
                 inverse_norms: self.inverse_norms[s],
+                squared_norms: self.squared_norms[s],
                 threshold: Threshold::Rates,
             });
-            let first = self.cross([right[0], right[1]], [j01, j11]);
             let second = self.cross([j00, j10], [right[0], right[1]]);
-            let [first, second] = [first, second].map(|numerator| {
-                let value = self.graph.mul(numerator, inverse);
-                if bind { self.bound(value) } else { value }
+            let second = self.graph.mul(second, inverse);
+            let second = self.bound(second);
+            // A column of numbers with a zero (a slider along a fixed axis) makes the block
+            // triangular: the first unknown then comes from the other row by substitution,
+            // which is cheaper than Cramer's rule and exact in the same way.
+            let triangular = [(0, 1), (1, 0)].into_iter().find_map(|(zero, other)| {
+                let entries = [[j00, j01], [j10, j11]];
+                let pivot = self.graph.constant_value(entries[other][0])?;
+                (self.graph.is_zero(entries[zero][0]) && pivot != 0.0).then_some((
+                    other,
+                    pivot,
+                    entries[other][1],
+                ))
             });
+            let first = match triangular {
+                Some((other, pivot, coupling)) => {
+                    let moved = self.graph.mul(coupling, second);
+                    let rest = self.graph.sub(right[other], moved);
+                    let factor = self.graph.constant(1.0 / pivot);
+                    self.graph.mul(factor, rest)
+                }
+                None => {
+                    let numerator = self.cross([right[0], right[1]], [j01, j11]);
+                    self.graph.mul(numerator, inverse)
+                }
+            };
+            let first = self.bound(first);
             x[a] = Some(first);
             x[b] = Some(second);
         }
@@ -434,6 +462,7 @@ pub fn build(graph: &mut Graph, steps: &[Step], exprs: &SceneExprs, lengths: &[b
         known: HashMap::new(),
         replace: HashMap::new(),
         inverse_norms: Vec::new(),
+        squared_norms: Vec::new(),
         determinants: Vec::new(),
     };
     let mut values = vec![ExprId::from_index(0); n];
@@ -443,10 +472,10 @@ pub fn build(graph: &mut Graph, steps: &[Step], exprs: &SceneExprs, lengths: &[b
     }
     let jacobian = builder.substituted(&exprs.jacobian);
     let velocity_rhs = builder.substituted(&exprs.velocity_rhs);
-    let rates = builder.solve(steps, &jacobian, &velocity_rhs, true);
+    let rates = builder.solve(steps, &jacobian, &velocity_rhs);
     builder.solved_derivatives(Var::Rate, &rates);
     let acceleration_rhs = builder.substituted(&exprs.acceleration_rhs);
-    let accelerations = builder.solve(steps, &jacobian, &acceleration_rhs, false);
+    let accelerations = builder.solve(steps, &jacobian, &acceleration_rhs);
     builder.solved_derivatives(Var::Accel, &accelerations);
     let points: Vec<[[ExprId; 2]; 3]> = exprs
         .points

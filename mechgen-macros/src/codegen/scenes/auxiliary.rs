@@ -67,13 +67,21 @@ impl Generator<'_> {
                 let x = args[0].receiver();
                 quote!(#x.recip())
             }
-            AuxKind::InverseDeterminant { threshold, .. } if lanes => {
-                let [det, inverse_norms] = [&args[0], &args[1]];
+            AuxKind::InverseDeterminant {
+                threshold,
+                squared_norms,
+                ..
+            } if lanes => {
+                let [det, norms] = [&args[0], &args[1]];
                 let threshold = match threshold {
                     Threshold::Position => quote!(T::constant(8.0) * T::epsilon()),
                     Threshold::Rates => rates_threshold.clone(),
                 };
-                quote!(::mechgen::__private::lanes::inverse_determinant(#det, #inverse_norms, #threshold))
+                if squared_norms.is_some() {
+                    quote!(::mechgen::__private::lanes::inverse_determinant_squared(#det, #norms, #threshold))
+                } else {
+                    quote!(::mechgen::__private::lanes::inverse_determinant(#det, #norms, #threshold))
+                }
             }
             AuxKind::BranchRoot { branch, .. } => {
                 let choice = branches.get_mut(*branch).map(std::mem::take);
@@ -163,6 +171,11 @@ pub(super) fn aux_arguments(kind: &AuxKind, mode: Mode) -> Vec<ExprId> {
         } => vec![sum_squared, difference_squared, span_squared],
         AuxKind::Bind(x) => vec![x],
         AuxKind::Inverse(x) => vec![x],
+        AuxKind::InverseDeterminant {
+            det,
+            squared_norms: Some(squared),
+            ..
+        } if mode != Mode::Checked => vec![det, squared],
         AuxKind::InverseDeterminant {
             det, inverse_norms, ..
         } => vec![det, inverse_norms],
