@@ -231,3 +231,49 @@ pub mod lanes {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn outputs_are_finite_only_when_every_one_is() {
+        assert!(outputs_finite(&[1.0, -2.0, 3.0e300]));
+        assert!(outputs_finite::<f64, 0>(&[]));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(!outputs_finite(&[1.0, bad, 2.0]));
+            assert!(!outputs_finite(&[bad]));
+        }
+        // Opposite infinities sum to NaN, not to a finite value.
+        assert!(!outputs_finite(&[f64::INFINITY, f64::NEG_INFINITY]));
+        // A sum that overflows from finite values says no (the checked kernel decides).
+        assert!(!outputs_finite(&[f64::MAX, f64::MAX]));
+    }
+
+    #[test]
+    fn the_squared_triangle_root_is_the_linear_one_and_nan_where_circles_miss() {
+        // Sides 3 and 4 about a span of 5: a right triangle, twice its area is 12.
+        let (sum, difference, span) = (7.0f64, -1.0f64, 5.0f64);
+        let checked = triangle_root(sum, difference, span, 1.0).unwrap();
+        let squared = lanes::triangle_root(sum * sum, difference * difference, span * span, 1.0);
+        assert_eq!(checked, 12.0);
+        assert!((squared - checked).abs() <= 4.0 * f64::EPSILON * checked);
+        assert_eq!(lanes::triangle_root(49.0, 1.0, 25.0, -1.0), -12.0);
+        // A span longer than the sum, or shorter than the difference: NaN.
+        assert!(lanes::triangle_root(49.0f64, 1.0, 64.0, 1.0).is_nan());
+        assert!(lanes::triangle_root(49.0f64, 1.0, 0.25, 1.0).is_nan());
+    }
+
+    #[test]
+    fn the_squared_condition_test_agrees_with_the_relative_determinant() {
+        let (norms, threshold) = (2.0f64, 0.1f64);
+        for det in [0.5, 0.21, 0.19, -0.21, -0.19, 0.0] {
+            let relative = inverse_determinant(det, 1.0 / norms, threshold);
+            let squared = lanes::inverse_determinant_squared(det, norms * norms, threshold);
+            assert_eq!(relative.is_ok(), !squared.is_nan(), "det {det}");
+            if let Ok(inverse) = relative {
+                assert_eq!(inverse, squared);
+            }
+        }
+    }
+}

@@ -10,6 +10,8 @@ use std::collections::HashMap;
 
 use crate::model::{Linear, SymbolRef};
 
+mod products;
+
 /// A variable of the generated code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Var {
@@ -223,24 +225,6 @@ impl Graph {
         }
     }
 
-    /// Sorted `factors` with each repeated pair made one square, placed first: `x·ω·ω` is
-    /// `ω²·x`, so every product of a rate's square reads the one square.
-    fn paired(&mut self, factors: Vec<ExprId>) -> Vec<ExprId> {
-        let mut squares = Vec::new();
-        let mut single = Vec::new();
-        let mut rest = factors.into_iter().peekable();
-        while let Some(factor) = rest.next() {
-            if rest.peek() == Some(&factor) {
-                rest.next();
-                squares.push(self.intern(Node::Mul(factor, factor)));
-            } else {
-                single.push(factor);
-            }
-        }
-        squares.extend(single);
-        squares
-    }
-
     /// `y` where `sum` is `x + y` or `y + x`.
     fn sum_without(&self, sum: ExprId, x: ExprId) -> Option<ExprId> {
         match self.node(sum) {
@@ -282,136 +266,6 @@ impl Graph {
     pub fn sub(&mut self, a: ExprId, b: ExprId) -> ExprId {
         let negated = self.neg(b);
         self.add(a, negated)
-    }
-
-    pub fn mul(&mut self, a: ExprId, b: ExprId) -> ExprId {
-        match (self.constant_value(a), self.constant_value(b)) {
-            (Some(x), Some(y)) => return self.constant(x * y),
-            (Some(0.0), _) | (_, Some(0.0)) => return self.constant(0.0),
-            (Some(1.0), _) => return b,
-            (_, Some(1.0)) => return a,
-            _ => {}
-        }
-        if let Node::Neg(x) = self.node(a) {
-            let product = self.mul(x, b);
-            return self.neg(product);
-        }
-        if let Node::Neg(y) = self.node(b) {
-            let product = self.mul(a, y);
-            return self.neg(product);
-        }
-        // A product is kept as one constant times its other factors sorted by arena order,
-        // so `x·(y·z)` and `(z·x)·y` are one node, and a negative constant becomes a negation.
-        let mut factors = Vec::new();
-        let mut constant = 1.0;
-        for side in [a, b] {
-            self.collect_factors(side, &mut factors, &mut constant);
-        }
-        self.cancel_reciprocals(&mut factors, &mut constant);
-        if factors.is_empty() {
-            return self.constant(constant);
-        }
-        if self.group_fixed && constant.abs() != 1.0 {
-            // The constant is one of the fixed factors; only its sign stays outside.
-            factors.push(self.constant(constant.abs()));
-            constant = constant.signum();
-        }
-        factors.sort_unstable();
-        let product = if self.group_fixed {
-            let (fixed, moving): (Vec<ExprId>, Vec<ExprId>) =
-                factors.iter().partition(|&&f| self.fixed[f.index()]);
-            let moving = self.paired(moving);
-            let [fixed, moving] = [fixed, moving].map(|group| {
-                group
-                    .into_iter()
-                    .reduce(|product, factor| self.intern(Node::Mul(product, factor)))
-            });
-            match (fixed, moving) {
-                (Some(fixed), Some(moving)) => self.intern(Node::Mul(fixed, moving)),
-                (Some(only), None) | (None, Some(only)) => only,
-                (None, None) => self.constant(1.0),
-            }
-        } else {
-            let mut product = factors[0];
-            for &factor in &factors[1..] {
-                product = self.intern(Node::Mul(product, factor));
-            }
-            product
-        };
-        match constant {
-            1.0 => product,
-            -1.0 => self.neg(product),
-            c if c < 0.0 => {
-                let magnitude = self.constant(-c);
-                let scaled = self.intern(Node::Mul(magnitude, product));
-                self.neg(scaled)
-            }
-            c => {
-                let factor = self.constant(c);
-                self.intern(Node::Mul(factor, product))
-            }
-        }
-    }
-
-    /// The non-constant factors of a product (pushed to `factors`) and the product of its
-    /// constant ones (multiplied into `constant`).
-    fn collect_factors(&self, e: ExprId, factors: &mut Vec<ExprId>, constant: &mut f64) {
-        match self.node(e) {
-            Node::Const(bits) => *constant *= f64::from_bits(bits),
-            Node::Mul(x, y) => {
-                self.collect_factors(x, factors, constant);
-                self.collect_factors(y, factors, constant);
-            }
-            _ => factors.push(e),
-        }
-    }
-
-    /// Cancels each factor of a product against the same factor under a reciprocal among
-    /// `factors` (`l3·l3·(1/(l3·l3))` is 1): a kernel that divides by a length's square and
-    /// multiplies by it again pays for neither. A zero factor made the product undefined
-    /// and now leaves it finite, but every such factor is a length a loop needs (its other
-    /// uses still divide by it) or a chord the closed forms check. Nothing changes unless
-    /// something cancels.
-    fn cancel_reciprocals(&mut self, factors: &mut Vec<ExprId>, constant: &mut f64) {
-        let mut k = 0;
-        while k < factors.len() {
-            let Node::Recip(denominator) = self.node(factors[k]) else {
-                k += 1;
-                continue;
-            };
-            let mut under = Vec::new();
-            let mut under_constant = 1.0;
-            self.collect_factors(denominator, &mut under, &mut under_constant);
-            let before = under.len();
-            under.retain(
-                |&factor| match factors.iter().position(|&other| other == factor) {
-                    Some(at) => {
-                        factors.swap_remove(at);
-                        false
-                    }
-                    None => true,
-                },
-            );
-            if under.len() == before {
-                k += 1;
-                continue;
-            }
-            // The reciprocal moved if a cancelled factor sat before it; find it again.
-            let at = factors
-                .iter()
-                .position(|&f| matches!(self.node(f), Node::Recip(d) if d == denominator))
-                .expect("the reciprocal is still among the factors");
-            factors.swap_remove(at);
-            *constant /= under_constant;
-            if let Some(rest) = under
-                .into_iter()
-                .reduce(|product, factor| self.intern(Node::Mul(product, factor)))
-            {
-                let inverse = self.recip(rest);
-                factors.push(inverse);
-            }
-            k = 0;
-        }
     }
 
     pub fn sin(&mut self, a: ExprId) -> ExprId {
@@ -593,6 +447,24 @@ mod tests {
         let s = g.sin(half_pi);
         assert_eq!(g.constant_value(c), Some(0.0));
         assert_eq!(g.constant_value(s), Some(1.0));
+    }
+
+    #[test]
+    fn sums_take_out_a_common_fixed_factor_and_undo_a_part() {
+        let mut g = Graph::default();
+        g.group_fixed_factors();
+        let l = g.var(Var::Value(SymbolRef::Param(0)));
+        let (x, y) = (x(&mut g), g.var(Var::Value(SymbolRef::Unknown(1))));
+        // l·x + l·y = l·(x + y), and l·x − l·y = l·(x − y).
+        let (lx, ly) = (g.mul(l, x), g.mul(l, y));
+        let (sum, difference) = (g.add(x, y), g.sub(x, y));
+        assert_eq!(g.add(lx, ly), g.mul(l, sum));
+        assert_eq!(g.sub(lx, ly), g.mul(l, difference));
+        // x − (y + x) = −y, and (y + x) − x = y.
+        let yx = g.add(y, x);
+        let minus_y = g.neg(y);
+        assert_eq!(g.sub(x, yx), minus_y);
+        assert_eq!(g.sub(yx, x), y);
     }
 
     #[test]
