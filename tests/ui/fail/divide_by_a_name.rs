@@ -1,0 +1,12 @@
+use mechgen::mechanism;
+
+mechanism! {
+    pub struct FourBar {
+        params: l1, l2, l3, l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - (l4 / l2) @ theta4 - l1 @ 0;
+    }
+}
+
+fn main() {}
