@@ -133,8 +133,24 @@ fn negated_magnitudes_converge_to_the_rounding_floor() {
         let theta2 = f64::from(degree).to_radians();
         let (reference, _) = example_1_reference(theta2);
         let guess = NegatedMagnitudesUnknowns::from_array(reference);
-        let solved = linkage.position(theta2 + 1e-3, &guess, &NewtonOptions::default());
-        assert!(solved.is_ok(), "{degree}°: {solved:?}");
+        let solved = linkage
+            .position(theta2 + 1e-3, &guess, &NewtonOptions::default())
+            .unwrap_or_else(|error| panic!("{degree}°: {error}"));
+        // The same linkage as the shipped four-bar: the same angles, a residual at the
+        // rounding of its 200-unit vectors.
+        let (expected, _) = example_1_reference(theta2 + 1e-3);
+        let found = solved.value.to_array();
+        for (found, expected) in found.iter().zip(expected) {
+            assert!(
+                (found - expected).abs() < 1e-12,
+                "{degree}°: {found} vs {expected}"
+            );
+        }
+        assert!(
+            solved.residual_norm < 1e-12,
+            "{degree}°: {}",
+            solved.residual_norm
+        );
     }
 }
 

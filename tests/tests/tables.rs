@@ -8,7 +8,6 @@
 mod common;
 
 use common::*;
-use mechgen::Real;
 use std::fmt::Write;
 
 const OMEGA2: f64 = 10.0;
@@ -173,7 +172,10 @@ fn significant_digits_and_noise_flushing() {
     assert_eq!(significant(1.0 / 3.0, 1.0), "3.333333333e-1");
     assert_eq!(significant(-123456.789012345, 1e6), "-1.234567890e5");
     assert_eq!(significant(3e-14, 200.0), "0");
-    assert_eq!(f64::constant(0.5), 0.5);
+    // Flushed at a billionth of the column's largest value, and not above it.
+    assert_eq!(significant(2e-7, 200.0), "0");
+    assert_eq!(significant(-2.5e-7, 200.0), "-2.500000000e-7");
+    assert_eq!(significant(f64::INFINITY, 1.0), "inf");
 }
 
 /// A full-turn table of a multi-loop mechanism from `row(θ)`: the unknowns, their rates and
