@@ -1,6 +1,10 @@
 #![doc = include_str!("../../README.md")]
 #![no_std]
-#![forbid(unsafe_code)]
+// One unsafe call, in `simd`, with its reason beside it; nothing else may use unsafe.
+#![deny(unsafe_code)]
+
+#[cfg(feature = "std")]
+extern crate std;
 
 mod accuracy;
 mod advantage;
@@ -13,6 +17,7 @@ mod kernel;
 mod linear;
 mod newton;
 mod real;
+pub mod simd;
 pub mod sweep;
 mod vec2;
 

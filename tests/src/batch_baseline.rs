@@ -15,11 +15,15 @@
 //! from `cos θ2`, and divides by `D` once: the division and the square root do not wait for
 //! each other, which matters because the loop is bound by latency, not by throughput.
 //!
-//! Unreachable angles, where the two circles miss (`l3²/D < k²`), are not tested for in the
-//! loop: the square root of a negative number makes B's lanes NaN, and one branch-free pass
-//! after the loop (an OR of "is NaN" over the outputs, which vectorises too) finds them and
+//! Unreachable angles, where the two circles miss (`l3²/D < k²`), are not branched on in the
+//! loop: the square root of a negative number makes B's lanes NaN, an OR of "is NaN" over
+//! the outputs (no branch, so it vectorises too) notes it, and a search after the loop
 //! reports the first. An angle beyond [`mechgen::fast::sin_cos_limit`], infinite or NaN
 //! makes A NaN and is reported the same way.
+//!
+//! The loop runs through [`mechgen::simd::widest`], as the generated batch kernels' loops
+//! do, so the two are compared on the same vectors: 4 `f64` lanes with AVX2 where the
+//! processor has it, 2 on x86-64's baseline.
 
 use mechgen::Real;
 use mechgen::Vec2;
@@ -78,6 +82,55 @@ pub fn four_bar_joints_with<T: Real>(
     sin_cos: impl Fn(T) -> (T, T),
 ) -> Result<(), Unreachable> {
     assert_eq!(theta2.len(), out.len(), "one output per crank angle");
+    let any_nan = mechgen::simd::widest(
+        #[inline(always)]
+        || joints_lanes(lengths, theta2, out, sin_cos),
+    );
+    if any_nan {
+        let index = out
+            .iter()
+            .position(|joints| joints.rocker_pin.x.is_nan())
+            .unwrap_or_default();
+        return Err(Unreachable { index });
+    }
+    Ok(())
+}
+
+/// [`four_bar_joints`] as built, never through [`mechgen::simd::widest`]'s wider copy: the
+/// other path, for the tests that hold the two to the same bits.
+///
+/// # Errors
+///
+/// As [`four_bar_joints`].
+///
+/// # Panics
+///
+/// As [`four_bar_joints`].
+#[inline(never)]
+pub fn four_bar_joints_portable<T: Real>(
+    lengths: [T; 4],
+    theta2: &[T],
+    out: &mut [Joints<T>],
+) -> Result<(), Unreachable> {
+    assert_eq!(theta2.len(), out.len(), "one output per crank angle");
+    if joints_lanes(lengths, theta2, out, sin_cos) {
+        let index = out
+            .iter()
+            .position(|joints| joints.rocker_pin.x.is_nan())
+            .unwrap_or_default();
+        return Err(Unreachable { index });
+    }
+    Ok(())
+}
+
+/// The loop of [`four_bar_joints_with`]: whether any angle failed.
+#[inline(always)]
+fn joints_lanes<T: Real>(
+    lengths: [T; 4],
+    theta2: &[T],
+    out: &mut [Joints<T>],
+    sin_cos: impl Fn(T) -> (T, T),
+) -> bool {
     let [l1, l2, l3, l4] = lengths;
     let (two, half) = (T::constant(2.0), T::constant(0.5));
     let l3_squared = l3 * l3;
@@ -87,6 +140,10 @@ pub fn four_bar_joints_with<T: Real>(
     let slope = two * l1 * l2;
     let kd_base = half * (base + l3_squared - l4 * l4);
     let kd_slope = half * slope;
+    // B is NaN wherever A is, so its x alone tells whether an angle failed; noted in the
+    // loop with no early exit, so it vectorises too, and the search for the index runs only
+    // when something failed.
+    let mut any_nan = false;
     for (&theta, joints) in theta2.iter().zip(out.iter_mut()) {
         let (s, c) = sin_cos(theta);
         let (ax, ay) = (l2 * c, l2 * s);
@@ -105,20 +162,9 @@ pub fn four_bar_joints_with<T: Real>(
                 (ay + kd * dy_over_d) + td * dx_over_d,
             ),
         };
+        any_nan |= joints.rocker_pin.x.is_nan();
     }
-    // B is NaN wherever A is, so its x alone tells. Branch-free, so it vectorises too; the
-    // search for the index runs only when something failed.
-    let any_nan = out
-        .iter()
-        .fold(false, |any, joints| any | joints.rocker_pin.x.is_nan());
-    if any_nan {
-        let index = out
-            .iter()
-            .position(|joints| joints.rocker_pin.x.is_nan())
-            .unwrap_or_default();
-        return Err(Unreachable { index });
-    }
-    Ok(())
+    any_nan
 }
 
 /// [`four_bar_joints`] for `f64`, kept out of line so its machine code can be read

@@ -4,7 +4,11 @@
 //! 360-angle turn, one degree apart, next to the scalar generated closed form
 //! (`FourBar::assemble` then `points`, one angle at a time) over the same turn. Each figure
 //! is the best of many samples of about a millisecond: the machine is small and noisy, and
-//! the best sample is the one least disturbed. Run from the repository root:
+//! the best sample is the one least disturbed. Both batch kernels run their loops through
+//! `mechgen::simd::widest` (AVX2 and FMA where the processor has them, which
+//! `batch_avx2_fma` says); the `*_baseline_*` figures are the same loops as built (SSE2 on
+//! x86-64's baseline), which must give the same bits, and this checks that they do. Run from
+//! the repository root:
 //!
 //! ```sh
 //! cargo run --release -p mechgen-tests --bin batch
@@ -19,6 +23,7 @@ use mechanisms::FourBar;
 use mechgen::{Branch, Vec2};
 use mechgen_tests::batch_baseline::{
     Joints, four_bar_joints_f32, four_bar_joints_f64, four_bar_joints_f64_platform_sin_cos,
+    four_bar_joints_portable,
 };
 
 const LENGTHS: [f64; 4] = [180.0, 80.0, 200.0, 150.0];
@@ -70,15 +75,30 @@ fn main() {
         four_bar_joints_f64(black_box(LENGTHS), black_box(&theta2), &mut out).unwrap();
         black_box(&out);
     });
+    let mut hand_baseline_out = vec![Joints::<f64>::default(); steps];
+    let hand_baseline = best_ns_per_step(steps, || {
+        four_bar_joints_portable(
+            black_box(LENGTHS),
+            black_box(&theta2),
+            &mut hand_baseline_out,
+        )
+        .unwrap();
+        black_box(&hand_baseline_out);
+    });
     let hand_f32 = best_ns_per_step(steps, || {
         let lengths = LENGTHS.map(|l| l as f32);
         four_bar_joints_f32(black_box(lengths), black_box(&theta2_f32), &mut out_f32).unwrap();
         black_box(&out_f32);
     });
+    let mut platform_out = vec![Joints::<f64>::default(); steps];
     let hand_platform = best_ns_per_step(steps, || {
-        four_bar_joints_f64_platform_sin_cos(black_box(LENGTHS), black_box(&theta2), &mut out)
-            .unwrap();
-        black_box(&out);
+        four_bar_joints_f64_platform_sin_cos(
+            black_box(LENGTHS),
+            black_box(&theta2),
+            &mut platform_out,
+        )
+        .unwrap();
+        black_box(&platform_out);
     });
 
     let [l1, l2, l3, l4] = LENGTHS;
@@ -106,6 +126,40 @@ fn main() {
             .unwrap();
         black_box(&generated_out);
     });
+    let mut generated_baseline_out = generated_out.clone();
+    let generated_baseline = best_ns_per_step(steps, || {
+        let failed = black_box(&scenes).mechgen_joints_lanes(
+            black_box(&theta2),
+            Branch::Open,
+            &mut generated_baseline_out,
+        );
+        assert!(!failed);
+        black_box(&generated_baseline_out);
+    });
+
+    // The wider copies and the loops as built give the same bits.
+    let bits = |joints: &[Joints<f64>]| -> Vec<u64> {
+        joints
+            .iter()
+            .flat_map(|j| [j.crank_pin.x, j.crank_pin.y, j.rocker_pin.x, j.rocker_pin.y])
+            .map(f64::to_bits)
+            .collect()
+    };
+    assert!(
+        bits(&out) == bits(&hand_baseline_out),
+        "the hand batch's paths differ"
+    );
+    let generated_bits = |joints: &[mechanisms::FourBarJoints<f64>]| -> Vec<u64> {
+        joints
+            .iter()
+            .flat_map(|j| [j.crank_pin.x, j.crank_pin.y, j.rocker_pin.x, j.rocker_pin.y])
+            .map(f64::to_bits)
+            .collect()
+    };
+    assert!(
+        generated_bits(&generated_out) == generated_bits(&generated_baseline_out),
+        "the generated batch's paths differ"
+    );
 
     // They agree (the tests hold them to 1e-12 mm).
     let worst = largest_distance(&out, &scalar_out);
@@ -125,6 +179,9 @@ fn main() {
 
     println!("generated_batch_ns_per_step {generated:.3}");
     println!("hand_batch_ns_per_step {hand:.3}");
+    println!("generated_batch_baseline_ns_per_step {generated_baseline:.3}");
+    println!("hand_batch_baseline_ns_per_step {hand_baseline:.3}");
+    println!("batch_avx2_fma {}", u8::from(mechgen::simd::avx2_fma()));
     println!("hand_batch_f32_ns_per_step {hand_f32:.3}");
     println!("hand_batch_platform_sin_cos_ns_per_step {hand_platform:.3}");
     println!("scalar_assemble_points_ns_per_step {scalar:.3}");

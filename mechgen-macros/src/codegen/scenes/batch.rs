@@ -1,6 +1,7 @@
 //! `{scene}_batch`: a kernel's pieces (from [`Generator::kernel`]) in a loop over a slice of
-//! inputs, then one pass that finds whether any lane failed and redoes the failed ones by the
-//! scalar kernel. Separate because the signature, the loop and the redo are its own; the
+//! inputs that also notes whether any lane failed, run through `mechgen::simd::widest`
+//! (compiled again for wider vectors, chosen at run time), then the failed lanes, if any,
+//! redone by the scalar kernel. Separate because the signature, the loop and the redo are its own; the
 //! arithmetic inside is the kernel's.
 
 use proc_macro2::{Ident, TokenStream};
@@ -32,12 +33,13 @@ impl Generator<'_> {
         let output_type = self.scene_output_type(scene);
         let name = &scene.name;
         let batch = format_ident!("{}_batch", name.unraw());
-        let (inputs, out, slot, index, error) = (
+        let (inputs, out, slot, index, error, failed) = (
             local("inputs"),
             local("out"),
             local("slot"),
             local("index"),
             local("error"),
+            local("failed"),
         );
         // The scalar kernel's arguments after the input, as the batch took them.
         let pass: Vec<Ident> = self.checked_arguments(scene).into_iter().skip(1).collect();
@@ -58,13 +60,44 @@ impl Generator<'_> {
             "[`Self::{}`] at every input of `inputs`, into the matching entry of `out` (the \
              shorter of the two sets how many): the same arithmetic in a loop the compiler can \
              vectorise, with the branch-free [`mechgen::fast::sin_cos`] (an input must be \
-             within [`mechgen::fast::sin_cos_limit`] to take the fast path). An input where \
-             that gives a non-finite value is done again by [`Self::{}`], whose result is \
-             kept, or whose error is returned with the input's index.",
+             within [`mechgen::fast::sin_cos_limit`] to take the fast path), run through \
+             [`mechgen::simd::widest`] (wider vectors where the processor has them, the same \
+             results). An input where that gives a non-finite value is done again by \
+             [`Self::{}`], whose result is kept, or whose error is returned with the input's \
+             index.",
             name.unraw(),
             name.unraw()
         ));
+        let lanes = format_ident!("mechgen_{}_lanes", name.unraw());
+        let lanes_docs = doc(&format!(
+            "The loop of [`Self::{}`]: whether any output is not finite. Public for the tests \
+             that compare [`mechgen::simd::widest`]'s paths; not API.",
+            batch
+        ));
         quote! {
+            #lanes_docs
+            #[doc(hidden)]
+            #[inline(always)]
+            pub fn #lanes(
+                &self,
+                #inputs: &[T] #branch_parameter,
+                #(#arguments)*
+                #out: &mut [#output_type<T>],
+            ) -> bool {
+                #bindings
+                // Whether any lane failed (the common answer, no), found in the loop with no
+                // early exit; only then are the failed ones found and redone.
+                let mut #failed = false;
+                for (#slot, &#input) in #out.iter_mut().zip(#inputs) {
+                    #input_trig
+                    #scaled_input
+                    #(#body)*
+                    *#slot = #output_type { #(#fields),* };
+                    #failed |= !(#(#finite)&&*);
+                }
+                #failed
+            }
+
             #docs
             pub fn #batch(
                 &self,
@@ -72,17 +105,12 @@ impl Generator<'_> {
                 #(#arguments)*
                 #out: &mut [#output_type<T>],
             ) -> ::core::result::Result<(), ::mechgen::BatchError<T>> {
-                #bindings
-                for (#slot, &#input) in #out.iter_mut().zip(#inputs) {
-                    #input_trig
-                    #scaled_input
-                    #(#body)*
-                    *#slot = #output_type { #(#fields),* };
-                }
-                // One pass with no early exit finds whether any lane failed (the common
-                // answer, no); only then are the failed ones found and redone.
-                let failed = #out.iter().fold(false, |failed, #slot| failed | !(#(#finite)&&*));
-                if !failed {
+                // Inlined into `widest`'s copies, so that each is compiled for its vectors.
+                let #failed = ::mechgen::simd::widest(
+                    #[inline(always)]
+                    || self.#lanes(#inputs #(, #pass)*, #out),
+                );
+                if !#failed {
                     return ::core::result::Result::Ok(());
                 }
                 for (#index, (#slot, &#input)) in #out.iter_mut().zip(#inputs).enumerate() {
