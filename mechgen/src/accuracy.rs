@@ -193,14 +193,17 @@ fn rates_accuracy_aside<T: Real, const N: usize>(
 
 /// Whether [`aspect`] is certainly at most [`ORDINARY_ASPECT`], where [`Accuracy::estimate`]
 /// is that of an aspect of 1 (`shrunk` is 1): every angle's column at least `size/15.9` long,
-/// tested on squares with no scaling where they neither overflow nor underflow (else `false`,
-/// and [`aspect`] decides). With no angle unknown, or no size, the aspect is 1.
+/// tested on squares without scaling where the size's square is normal (else `false`, and
+/// [`aspect`] decides). Then a column's square that overflows is long enough, and one that
+/// is NaN or too small fails; a subnormal one passes only when at least `size²/252.81`,
+/// where it keeps over 40 bits, more than the margin of 15.9 against 16 needs. With no angle
+/// unknown the aspect is 1.
 #[inline(always)]
 fn ordinary<T: Real, const N: usize>(jacobian: &[[T; N]; N], size: T, angles: [bool; N]) -> bool {
     let size_squared = size * size;
-    // False for NaN.
-    let finite = size_squared <= T::max_value();
-    if !finite {
+    // Normal and finite (false for NaN).
+    let normal = size_squared >= T::min_positive_value() && size_squared <= T::max_value();
+    if !normal {
         return false;
     }
     // The first row's squares to start with, not zeros: the same sums as a factorisation's
@@ -216,12 +219,10 @@ fn ordinary<T: Real, const N: usize>(jacobian: &[[T; N]; N], size: T, angles: [b
     }
     // 15.9² = 252.81: a margin over the rounding of `aspect`'s arithmetic.
     let bound = T::constant(252.81);
-    squares.iter().zip(angles).all(|(square, angle)| {
-        !angle
-            || (*square >= T::min_positive_value()
-                && *square <= T::max_value()
-                && size_squared <= bound * *square)
-    })
+    squares
+        .iter()
+        .zip(angles)
+        .all(|(square, angle)| !angle || size_squared <= bound * *square)
 }
 
 /// `ρ`: `size` over the shortest column of an angle unknown (1 without one), with `size` and

@@ -449,14 +449,25 @@ pub(crate) fn max_abs<T: Real>(values: &[T]) -> T {
     })
 }
 
-/// Whether every component is finite: one product and sum per component and a single
-/// comparison (an infinity or NaN times zero is NaN), no branch per component.
-#[inline]
+/// Whether every component is finite: on the common path (all finite, their sum too) one
+/// addition per component, a product and a single comparison, no branch per component. The
+/// sum of finite values is finite unless it overflows, and infinite or NaN with an infinity
+/// or NaN among them; finite, it times zero is zero, else NaN. Only where it is not (an
+/// overflow, or a value not finite) are the components looked at one by one, out of line.
+#[inline(always)]
 pub fn all_finite<T: Real>(values: &[T]) -> bool {
-    values
-        .iter()
-        .fold(T::zero(), |sum, value| sum + *value * T::zero())
-        == T::zero()
+    let Some((first, rest)) = values.split_first() else {
+        return true;
+    };
+    let sum = rest.iter().fold(*first, |sum, value| sum + *value);
+    sum * T::zero() == T::zero() || each_finite(values)
+}
+
+/// Whether every component is finite, one by one: [`all_finite`]'s rare path.
+#[cold]
+#[inline(never)]
+fn each_finite<T: Real>(values: &[T]) -> bool {
+    values.iter().all(|value| value.is_finite())
 }
 
 /// `Err(NonFinite)` naming the first of `values` that is NaN or infinite.
@@ -469,20 +480,21 @@ pub fn check_finite<T: Real>(values: &[(T, &'static str)]) -> Result<(), Error<T
 }
 
 /// As [`check_finite`], with the values and their names apart: on the common path (every
-/// value finite) one product and sum per value and a single comparison, the names read only
-/// to blame one.
+/// value finite) one addition per value and a single comparison ([`all_finite`]'s sum), the
+/// names read only to blame one.
 #[inline(always)]
 pub fn check_all_finite<T: Real, const N: usize>(
     values: [T; N],
     quantities: &[&'static str; N],
 ) -> Result<(), Error<T>> {
-    // An infinity or NaN times zero is NaN.
-    let zero = values
-        .iter()
-        .fold(T::zero(), |sum, value| sum + *value * T::zero());
-    if zero == T::zero() {
+    let Some((first, rest)) = values.split_first() else {
+        return Ok(());
+    };
+    let sum = rest.iter().fold(*first, |sum, value| sum + *value);
+    if sum * T::zero() == T::zero() {
         Ok(())
     } else {
+        // Either a value is not finite, or the sum overflowed and none is to blame.
         blame_non_finite(values, quantities)
     }
 }
@@ -529,22 +541,20 @@ pub struct Motion<U> {
 }
 
 /// An unknown angle's sine and cosine along a Newton iteration: the first from `sin_cos`, the
-/// next few by rotating the last pair through the small step between iterates (a short series
-/// for the step's sine and cosine, good to rounding for steps up to 2⁻¹⁰ rad), which costs a
-/// fraction of a `sin_cos`. After [`Turning::MAX_TURNS`] rotations, or a larger step, it calls
-/// `sin_cos` afresh, so rounding in the rotations cannot accumulate.
+/// next by rotating that pair through the way the angle has moved since (a short series for
+/// the step's sine and cosine, good to rounding for steps up to 2⁻¹⁰ rad), which costs a
+/// fraction of a `sin_cos`. Every rotation starts from the last pair `sin_cos` computed, so
+/// rounding in the rotations cannot accumulate however many there are; an angle more than
+/// 2⁻¹⁰ from that pair's calls `sin_cos` afresh.
 #[derive(Clone, Copy, Debug)]
 pub struct Turning<T> {
+    /// The angle of the last pair from `sin_cos`.
     angle: T,
     sin: T,
     cos: T,
-    turns: u8,
 }
 
 impl<T: Real> Turning<T> {
-    /// Rotations in a row before `sin_cos` is called again.
-    pub const MAX_TURNS: u8 = 3;
-
     /// No angle yet: the first call computes `sin_cos`.
     #[inline]
     pub fn new() -> Self {
@@ -552,23 +562,19 @@ impl<T: Real> Turning<T> {
             angle: T::nan(),
             sin: T::nan(),
             cos: T::nan(),
-            turns: 0,
         }
     }
 
     /// `(sin angle, cos angle)`.
     #[inline]
     pub fn sin_cos(&mut self, angle: T) -> (T, T) {
-        // Two nearby floats differ exactly (Sterbenz), so the step is the true one.
+        // Two nearby floats differ exactly (Sterbenz), so the step is the true one. Not
+        // small for NaN (no pair yet, or a NaN angle).
         let step = angle - self.angle;
-        let small = T::constant(1.0 / 1024.0);
-        if self.turns < Self::MAX_TURNS && step.abs() <= small {
-            (self.sin, self.cos) = rotate(self.sin, self.cos, step);
-            self.turns += 1;
-        } else {
-            (self.sin, self.cos) = angle.sin_cos();
-            self.turns = 0;
+        if step.abs() <= T::constant(TURN_LIMIT) {
+            return rotate(self.sin, self.cos, step);
         }
+        (self.sin, self.cos) = angle.sin_cos();
         self.angle = angle;
         (self.sin, self.cos)
     }
@@ -580,18 +586,23 @@ impl<T: Real> Default for Turning<T> {
     }
 }
 
+/// The largest step, in radians, through which [`rotate`] turns a sine and cosine.
+const TURN_LIMIT: f64 = 1.0 / 1024.0;
+
 /// The sines and cosines of several unknown angles along a Newton iteration: each rotated as
-/// [`Turning`] rotates it (the same arithmetic, the same rule for when to start afresh), and
-/// where some need a fresh pair, [`fast::sin_cos`](crate::fast::sin_cos) of every angle at
-/// once, straight-line code the compiler packs into vector instructions (two angles for the
-/// price of about one platform `sin_cos`; the platform's for an angle beyond
-/// [`fast::sin_cos_limit`](crate::fast::sin_cos_limit), or not finite).
+/// [`Turning`] rotates it (the same arithmetic, from the last fresh pair), and where any has
+/// moved more than 2⁻¹⁰ from its pair, fresh pairs of every angle from
+/// [`fast::sin_cos`](crate::fast::sin_cos) at once, straight-line code the compiler packs into
+/// vector instructions (two angles for the price of about one platform `sin_cos`; the
+/// platform's for an angle beyond [`fast::sin_cos_limit`](crate::fast::sin_cos_limit), or not
+/// finite). The fresh pairs are read, never written, while the angles turn, so they stay in
+/// registers through the iteration.
 #[derive(Clone, Copy, Debug)]
 pub struct Turnings<T, const K: usize> {
+    /// The angles of the last fresh pairs.
     angle: [T; K],
     sin: [T; K],
     cos: [T; K],
-    turns: [u8; K],
 }
 
 impl<T: Real, const K: usize> Turnings<T, K> {
@@ -602,49 +613,30 @@ impl<T: Real, const K: usize> Turnings<T, K> {
             angle: [T::nan(); K],
             sin: [T::nan(); K],
             cos: [T::nan(); K],
-            turns: [0; K],
         }
     }
 
     /// `(sin angles, cos angles)`.
     #[inline(always)]
     pub fn sin_cos(&mut self, angles: [T; K]) -> ([T; K], [T; K]) {
-        let small = T::constant(1.0 / 1024.0);
-        let mut fresh = [false; K];
-        let lanes = self
-            .angle
-            .iter_mut()
-            .zip(&mut self.sin)
-            .zip(&mut self.cos)
-            .zip(&mut self.turns)
-            .zip(&mut fresh)
-            .zip(angles);
-        for (((((last, sin), cos), turns), fresh), angle) in lanes {
-            // As `Turning::sin_cos`.
-            let step = angle - *last;
-            if *turns < Turning::<T>::MAX_TURNS && step.abs() <= small {
+        // As `Turning::sin_cos`, lane by lane.
+        let mut steps = angles;
+        for (step, last) in steps.iter_mut().zip(self.angle) {
+            *step = *step - last;
+        }
+        // Not all small (a NaN step is not small either).
+        if steps
+            .iter()
+            .all(|step| step.abs() <= T::constant(TURN_LIMIT))
+        {
+            let (mut sines, mut cosines) = (self.sin, self.cos);
+            for ((sin, cos), step) in sines.iter_mut().zip(&mut cosines).zip(steps) {
                 (*sin, *cos) = rotate(*sin, *cos, step);
-                *turns += 1;
-            } else {
-                *fresh = true;
-                *turns = 0;
             }
-            *last = angle;
+            return (sines, cosines);
         }
-        if fresh.iter().any(|f| *f) {
-            let (sines, cosines) = fresh_sin_cos(angles);
-            let lanes = self
-                .sin
-                .iter_mut()
-                .zip(&mut self.cos)
-                .zip(fresh)
-                .zip(sines.iter().zip(cosines));
-            for (((sin, cos), fresh), (s, c)) in lanes {
-                if fresh {
-                    (*sin, *cos) = (*s, c);
-                }
-            }
-        }
+        (self.sin, self.cos) = fresh_sin_cos(angles);
+        self.angle = angles;
         (self.sin, self.cos)
     }
 }
@@ -668,6 +660,20 @@ fn rotate<T: Real>(sin: T, cos: T, step: T) -> (T, T) {
 impl<T: Real, const K: usize> Default for Turnings<T, K> {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+/// `(sin x, cos x)` of an angle computed once per solve (the input's): inline
+/// [`fast::sin_cos`](crate::fast::sin_cos) within its limit (within 0.9 ulp, no call and a few
+/// instructions fewer than the platform's), else the platform's, out of line.
+#[inline(always)]
+pub fn sin_cos<T: Real>(x: T) -> (T, T) {
+    // False for NaN, which the platform's maps to NaN as well.
+    if x.abs() <= crate::fast::sin_cos_limit::<T>() {
+        crate::fast::sin_cos(x)
+    } else {
+        let ([sin], [cos]) = platform_sin_cos([x]);
+        (sin, cos)
     }
 }
 

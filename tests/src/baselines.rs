@@ -9,8 +9,8 @@
 //! holding every constant that depends only on the dimensions, and an `#[inline]` per-call
 //! method that calls one `sin_cos` (of the input), at most one `sqrt`, one inverse
 //! trigonometric call (`atan2` or `asin`) per angle returned and none otherwise, and one
-//! division (the hand Newton: two `sin_cos` and one division per evaluation). They check
-//! nothing: outside the range of motion, or at a toggle, they return NaN or infinities. The
+//! division (the hand Newton: one `sin_cos` per unknown at its guess, turns of the link
+//! vectors after that, and one division per evaluation). They check nothing: outside the range of motion, or at a toggle, they return NaN or infinities. The
 //! num-dual and nalgebra baselines are what else a user would reach for.
 
 use nalgebra::{DMatrix, DVector};
@@ -323,14 +323,24 @@ impl FourBarCouplerPoint {
 /// analytic 2×2 Jacobian, stopping at `max|f| < tolerance` (or after 50 updates), then the
 /// rates in closed form. Allocation-free.
 ///
+/// It iterates on the link vectors `b3 = l3·e^{iθ3}`, `b4 = l4·e^{iθ4}` as well as the
+/// angles: a Newton update moves each angle by a small step, so rather than call `sin_cos`
+/// again it turns the vector through the step. Each vector is turned from the last one that
+/// came from `sin_cos` ([`turned`]), through the whole way from that one's angle (exact: two
+/// nearby floats differ exactly), so a turn's rounding never accumulates; `e^{iδ}` is a short
+/// series, good to rounding for `|δ| ≤ 2⁻¹⁰`, beyond which it calls `sin_cos` afresh (a cold
+/// start's first steps). From the sweep's predicted guess, the updates are about 1e-4, 1e-8
+/// rad: every vector after the guess's is a turn.
+///
 /// Once per mechanism ([`new`](Self::new)): `l3²`, `l4²`.
 ///
-/// Per call ([`motion`](Self::motion)): one `sin_cos` (θ2); per evaluation (one more than
-/// the updates taken), two `sin_cos` (θ3, θ4) and one division: the residual
-/// `f = A + b3 − b4 − (l1, 0)` with `b3 = l3·e^{iθ3}`, `b4 = l4·e^{iθ4}`, the Jacobian's
-/// inverse `J⁻¹ = [[b4x, b4y], [b3x, b3y]]/g` with `g = b3 × b4`
-/// (`det J = −g`), so the update is `Δθ3 = −(b4·f)/g`, `Δθ4 = −(b3·f)/g`. The last
-/// evaluation's sines, cosines and `1/g` (at the returned position) serve the rates, as in
+/// Per call ([`motion`](Self::motion)): one `sin_cos` (θ2) and one per unknown at the guess;
+/// per evaluation (one more than the updates taken) one division and about 20
+/// multiplications and additions: the residual `f = Z + b3 − b4` with `Z = A − O4`, the
+/// Jacobian's inverse `J⁻¹ = [[b4x, b4y], [b3x, b3y]]/g` with `g = b3 × b4` (`det J = −g`),
+/// so the update is `Δθ3 = −(b4·f)/g`, `Δθ4 = −(b3·f)/g`; per update, each vector's turn,
+/// about 10 multiplications and additions, no `sin_cos` while the steps stay small. The last
+/// evaluation's vectors and `1/g` (at the returned position) serve the rates, as in
 /// [`FourBarNorton`]: no further trigonometry or division. No `sqrt`, no `atan2`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FourBarNewton {
@@ -367,15 +377,15 @@ impl FourBarNewton {
         let crank = [self.l2 * c2, self.l2 * s2];
         let z = [crank[0] - self.l1, crank[1]];
         let [mut theta3, mut theta4] = guess;
+        let mut link3 = Link::new(self.l3, theta3);
+        let mut link4 = Link::new(self.l4, theta4);
+        let (mut b3, mut b4) = (link3.vector, link4.vector);
         let mut updates = 0;
         loop {
-            let (s3, c3) = theta3.sin_cos();
-            let (s4, c4) = theta4.sin_cos();
-            let b3 = [self.l3 * c3, self.l3 * s3];
-            let b4 = [self.l4 * c4, self.l4 * s4];
             let f = [z[0] + b3[0] - b4[0], z[1] + b3[1] - b4[1]];
             let inv_g = 1.0 / cross(b3, b4);
-            if f[0].abs().max(f[1].abs()) < tolerance || updates == Self::MAX_UPDATES {
+            // max|f| < tolerance, without `max`'s care for NaN.
+            if (f[0].abs() < tolerance && f[1].abs() < tolerance) || updates == Self::MAX_UPDATES {
                 let [rates, accelerations] = four_bar_rates_from_vectors(
                     crank,
                     b3,
@@ -390,7 +400,47 @@ impl FourBarNewton {
             }
             theta3 -= dot(b4, f) * inv_g;
             theta4 -= dot(b3, f) * inv_g;
+            b3 = link3.turned(self.l3, theta3);
+            b4 = link4.turned(self.l4, theta4);
             updates += 1;
+        }
+    }
+}
+
+/// A link's vector `l·e^{iθ}` as [`FourBarNewton`] keeps it: the last one computed by
+/// `sin_cos`, at `angle`.
+#[derive(Clone, Copy, Debug)]
+struct Link {
+    angle: f64,
+    vector: [f64; 2],
+}
+
+impl Link {
+    #[inline(always)]
+    fn new(length: f64, angle: f64) -> Self {
+        let (s, c) = angle.sin_cos();
+        Link {
+            angle,
+            vector: [length * c, length * s],
+        }
+    }
+
+    /// `length·e^{i·angle}`: the kept vector turned through `δ = angle − self.angle` where
+    /// `|δ| ≤ 2⁻¹⁰`, with `sin δ = δ·(1 − δ²/6)` and `cos δ = 1 − δ²/2·(1 − δ²/12)` (the
+    /// next terms, `δ⁵/120` and `δ⁶/720`, are below 2⁻⁵⁶ and 2⁻⁶⁹); else `sin_cos` afresh,
+    /// kept for the next turns.
+    #[inline(always)]
+    fn turned(&mut self, length: f64, angle: f64) -> [f64; 2] {
+        let step = angle - self.angle;
+        if step.abs() <= 1.0 / 1024.0 {
+            let squared = step * step;
+            let sin = step * (1.0 - squared * (1.0 / 6.0));
+            let cos = 1.0 - squared * 0.5 * (1.0 - squared * (1.0 / 12.0));
+            let [x, y] = self.vector;
+            [x * cos - y * sin, x * sin + y * cos]
+        } else {
+            *self = Link::new(length, angle);
+            self.vector
         }
     }
 }

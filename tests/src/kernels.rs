@@ -750,7 +750,7 @@ pub static KERNELS: &[Kernel] = &[
         origin: Origin::Hand,
         float: Float::F64,
         mechanism: FOUR_BAR_DIMENSIONS,
-        description: "`baselines::FourBarNewton::motion`: plain Newton with the analytic Jacobian to max|f| < 1e-12, rates from its last evaluation",
+        description: "`baselines::FourBarNewton::motion`: plain Newton with the analytic Jacobian to max|f| < 1e-12, one `sin_cos` per angle at the guess and the link vectors turned through each step, rates from its last evaluation",
         compared_with: None,
         build: || summed(hand_newton()),
         outputs: || listed(hand_newton()),

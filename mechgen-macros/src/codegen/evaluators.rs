@@ -33,6 +33,29 @@ impl Generator<'_> {
         }
     }
 
+    /// `check_all_finite([parameters, input, rate, acceleration], names)?;`: the check
+    /// `mechgen_check_finite` makes and `motion_near`'s of the input's rate and acceleration
+    /// in one, blaming the first that is not finite in that order.
+    pub(super) fn check_finite_with_rates(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let fields = self.model.params.iter().map(|param| &param.name);
+        let labels = self
+            .model
+            .params
+            .iter()
+            .map(|param| format!("parameter `{}`", param.name.unraw()));
+        let input_label = format!("input `{}`", input.unraw());
+        let dot_label = format!("input rate `{input_dot}`");
+        let ddot_label = format!("input acceleration `{input_ddot}`");
+        quote! {
+            ::mechgen::__private::check_all_finite(
+                [#(self.#fields,)* #input, #input_dot, #input_ddot],
+                &[#(#labels,)* #input_label, #dot_label, #ddot_label],
+            )?;
+        }
+    }
+
     pub(super) fn residual(&self) -> TokenStream {
         let input = &self.model.input.name;
         let position = arg("position");

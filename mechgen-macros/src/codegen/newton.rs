@@ -206,11 +206,16 @@ impl Generator<'_> {
              three without a closed form.\n\nErrors: as [`Self::position`] and \
              [`Self::motion_at`]."
         ));
-        let accuracy_check = self.rates_check(
+        // The size the rates' accuracy weighs the columns against, computed before the
+        // iteration: one value to keep through it rather than the lengths.
+        let size = local("size");
+        let size_value = self.accuracy_size();
+        let accuracy_check = self.rates_check_sized(
             quote!(&#converged.at.jacobian),
             quote!(#converged.solved.condition),
             "Acceleration",
             quote!(&#options.accuracy),
+            quote!(#size),
         );
         // From Newton's solution on: the same on either path.
         let rates_body = quote! {
@@ -237,6 +242,7 @@ impl Generator<'_> {
         let aside = Ident::new("mechgen_motion_near_safeguarded", Span::call_site());
         let body = quote! {
                 #hoisted
+                let #size = #size_value;
                 ::mechgen::__private::newton_common(
                     #guess.to_array(),
                     #options,
@@ -253,6 +259,7 @@ impl Generator<'_> {
         };
         let aside_body = quote! {
                 #hoisted
+                let #size = #size_value;
                 let #converged = ::mechgen::__private::newton(
                     #input,
                     #guess.to_array(),
@@ -262,10 +269,11 @@ impl Generator<'_> {
                 )?;
                 #rates_body
         };
-        let hot = self.motion_near_function(
+        let hot = self.motion_near_item(
+            quote!(pub fn motion_near),
             docs,
             quote!(#[allow(unused_variables)]),
-            quote!(self.mechgen_check_finite(#input)?;),
+            self.check_finite_with_rates(),
             body,
         );
         let aside_docs = doc(
@@ -355,8 +363,9 @@ impl Generator<'_> {
             .copied()
             .collect();
         let stage = |var: Var| usize::from(matches!(var, Var::Value(SymbolRef::Unknown(_))));
-        // Each unknown angle's sine and cosine come from a `Turning`, which rotates the last
-        // iterate's by the small step Newton takes instead of calling `sin_cos` again.
+        // Each unknown angle's sine and cosine come from a `Turning`, which rotates its last
+        // `sin_cos` through the small way Newton has moved the angle since instead of calling
+        // `sin_cos` again.
         let graph = &self.equations.graph;
         let read = reachable(graph, &entries);
         let mut turned: Vec<(ExprId, Ident, usize)> = Vec::new();
@@ -382,6 +391,29 @@ impl Generator<'_> {
             }
             let [sin, cos] = names.map(|name| name.map_or(quote!(_), |name| quote!(#name)));
             angles.push((stem, &unknown.name, sin, cos));
+        }
+        // The input's sine and cosine, once per solve, from the runtime's inline `sin_cos`
+        // rather than the platform's call.
+        let mut presets: Vec<(ExprId, Ident, usize)> = Vec::new();
+        let mut input_trig = TokenStream::new();
+        if let Some(var) = graph.lookup(Node::Var(Var::Value(SymbolRef::Input))) {
+            let input = &self.model.input.name;
+            let stem = input.unraw().to_string();
+            let names = [Node::Sin(var), Node::Cos(var)].map(|node| {
+                let id = graph.lookup(node).filter(|id| read[id.index()])?;
+                let prefix = if matches!(node, Node::Sin(_)) {
+                    "sin"
+                } else {
+                    "cos"
+                };
+                let name = local(&format!("{prefix}_{stem}"));
+                presets.push((id, name.clone(), 0));
+                Some(name)
+            });
+            if names.iter().any(Option::is_some) {
+                let [sin, cos] = names.map(|name| name.map_or(quote!(_), |name| quote!(#name)));
+                input_trig = quote!(let (#sin, #cos) = ::mechgen::__private::sin_cos(#input););
+            }
         }
         // Several angles share one `Turnings`, whose fresh sines and cosines come from one
         // pass of vector arithmetic; a lone angle has its `Turning`.
@@ -413,8 +445,14 @@ impl Generator<'_> {
                 named,
                 used,
             },
-        ) = self.block_with(&entries, Bindings::ParametersOnly, &turned, &stage);
-        let named: Vec<(ExprId, Ident, usize)> = turned.into_iter().chain(named).collect();
+        ) = self.block_with(
+            &entries,
+            Bindings::ParametersOnly,
+            &[presets.as_slice(), &turned].concat(),
+            &stage,
+        );
+        let named: Vec<(ExprId, Ident, usize)> =
+            presets.into_iter().chain(turned).chain(named).collect();
         statements.resize(2, Vec::new());
         let (hoisted, per_iterate) = (&statements[0], &statements[1]);
         let (residual, rest) = outputs.split_at(n);
@@ -457,6 +495,7 @@ impl Generator<'_> {
         Linearised {
             hoisted: quote! {
                 #bindings
+                #input_trig
                 #(#hoisted)*
                 #scale_before
             },

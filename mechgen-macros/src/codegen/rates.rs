@@ -198,6 +198,39 @@ impl Generator<'_> {
         highest: &str,
         required: TokenStream,
     ) -> TokenStream {
+        self.rates_check_sized(matrix, condition, highest, required, self.accuracy_size())
+    }
+
+    /// [`Self::rates_check`] with the size already computed, as `size`.
+    pub(super) fn rates_check_sized(
+        &self,
+        matrix: TokenStream,
+        condition: TokenStream,
+        highest: &str,
+        required: TokenStream,
+        size: TokenStream,
+    ) -> TokenStream {
+        let angles = self
+            .model
+            .unknowns
+            .iter()
+            .map(|unknown| unknown.kind == crate::model::Kind::Angle);
+        let highest = Ident::new(highest, proc_macro2::Span::call_site());
+        quote! {
+            ::mechgen::__private::rates_accuracy(
+                #condition,
+                #matrix,
+                #size,
+                [#(#angles),*],
+                ::mechgen::Order::#highest,
+                #required,
+            )?;
+        }
+    }
+
+    /// The size [`Self::rates_check`] weighs the columns against: the sum of the lengths the
+    /// loops declare (1 without one).
+    pub(super) fn accuracy_size(&self) -> TokenStream {
         // The lengths of the loops' vectors only: a tracked point's distance (a coupler
         // point far off its link) does not make the loops' rates any less accurate.
         let in_loops: std::collections::BTreeSet<usize> = self
@@ -219,26 +252,10 @@ impl Generator<'_> {
             .filter(|(i, param)| param.kind == crate::model::Kind::Length && in_loops.contains(i))
             .map(|(_, param)| &param.name)
             .collect();
-        let size = if lengths.is_empty() {
+        if lengths.is_empty() {
             quote!(T::one())
         } else {
             quote!(#(self.#lengths.abs())+*)
-        };
-        let angles = self
-            .model
-            .unknowns
-            .iter()
-            .map(|unknown| unknown.kind == crate::model::Kind::Angle);
-        let highest = Ident::new(highest, proc_macro2::Span::call_site());
-        quote! {
-            ::mechgen::__private::rates_accuracy(
-                #condition,
-                #matrix,
-                #size,
-                [#(#angles),*],
-                ::mechgen::Order::#highest,
-                #required,
-            )?;
         }
     }
 

@@ -104,7 +104,8 @@ impl Generator<'_> {
             .copied()
             .collect();
         // The iterated angles' sines and cosines come from a `Turning` each, which rotates
-        // the last iterate's through Newton's small steps instead of calling `sin_cos` again.
+        // its last `sin_cos` through the small way Newton has moved the angle since instead
+        // of calling `sin_cos` again.
         let read = reachable(graph, &entries);
         let mut turnings = BTreeMap::new();
         let mut turns = Vec::new();
