@@ -142,9 +142,11 @@ const MAX_HALVINGS: u32 = 10;
 ///   (Kantorovich's `‖J⁻¹‖²·L·‖f‖ ≤ 1/4`, estimated from the condition `κ` and the
 ///   Jacobian's columns), so a loose tolerance cannot accept a point past a toggle where the
 ///   loops do not close;
-/// - stagnation where the Jacobian is ill-conditioned is [`Error::CannotAssemble`] at `input`
-///   (the iterates press against a toggle the loops cannot pass), elsewhere
-///   [`Error::NoConvergence`].
+/// - stagnation is [`Error::CannotAssemble`] at `input` where `assembles()` says the loops
+///   cannot close there (a closed form knows), [`Error::NoConvergence`] where it says they
+///   can; where it cannot say (`None`), [`Error::CannotAssemble`] if the Jacobian is
+///   ill-conditioned (the iterates press against a toggle the loops cannot pass), else
+///   [`Error::NoConvergence`]. It is called only then.
 ///
 /// With `keep_orientation`, the Jacobian's orientation (the sign of its determinant) must be
 /// the same at the solution as at the guess, else [`Error::OtherBranch`]: for a single loop
@@ -155,6 +157,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     guess: [T; N],
     options: &NewtonOptions<T>,
     keep_orientation: bool,
+    assembles: impl FnOnce() -> Option<bool>,
     mut linearise: impl FnMut(&[T; N]) -> Linearisation<T, N, P>,
 ) -> Result<Converged<T, N, P>, Error<T>> {
     if !options.tolerance.is_finite() || options.tolerance < T::zero() {
@@ -264,14 +267,20 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             }
             if halvings == MAX_HALVINGS {
                 // No step lowers the residual: a local minimum of |f| that is not a root.
-                // Near a singular Jacobian that is a toggle the loops cannot pass.
-                return Err(if kantorovich(&here, condition()) > quarter {
-                    Error::CannotAssemble { input }
-                } else {
-                    Error::NoConvergence {
-                        iterations,
-                        residual_norm,
+                // Where a closed form can say whether the loops close at this input, it
+                // decides; else, near a singular Jacobian, it is taken for a toggle the loops
+                // cannot pass (a guess far from every assembly can stall the same way).
+                let stalled = Error::NoConvergence {
+                    iterations,
+                    residual_norm,
+                };
+                return Err(match assembles() {
+                    Some(true) => stalled,
+                    Some(false) => Error::CannotAssemble { input },
+                    None if kantorovich(&here, condition()) > quarter => {
+                        Error::CannotAssemble { input }
                     }
+                    None => stalled,
                 });
             }
             halvings += 1;
@@ -752,7 +761,8 @@ mod tests {
                 // From near the open branch's solution to far from it.
                 for offset in [1e-9, 1e-4, 1e-2, 0.3, 2.0] {
                     let guess = [0.37 + offset, 1.26 - offset];
-                    let safeguarded = newton(theta2, guess, &options, true, four_bar(theta2));
+                    let safeguarded =
+                        newton(theta2, guess, &options, true, || None, four_bar(theta2));
                     let quick =
                         newton_common(guess, &options, true, four_bar(theta2), Some, || None);
                     if let Some(quick) = quick {

@@ -238,3 +238,32 @@ fn newton_keeps_the_guess_s_assembly_or_says_other_branch() {
     assert!(solved > 200, "{solved} solved");
     assert!(other_branch > 0, "no guess needed OtherBranch");
 }
+
+/// A guess far from every assembly can stall Newton at a local minimum of the residual.
+/// Where the loops can close, that is `NoConvergence` (or `OtherBranch`), never "outside the
+/// range of motion": the closed form decides, for a mechanism that has one.
+#[test]
+fn a_far_guess_never_makes_an_assemblable_input_cannot_assemble() {
+    let linkage = mechanisms::FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+    let options = NewtonOptions::default();
+    let mut stalled = 0;
+    for degree in (0..360).step_by(30) {
+        let theta2 = f64::from(degree).to_radians();
+        let open = linkage.assemble(theta2, mechgen::Branch::Open).unwrap();
+        for i in -15..=15 {
+            for j in -15..=15 {
+                let guess = FourBarUnknowns {
+                    theta3: open.theta3 + 0.2 * f64::from(i),
+                    theta4: open.theta4 + 0.2 * f64::from(j),
+                };
+                match linkage.position(theta2, &guess, &options) {
+                    Ok(_) | Err(Error::OtherBranch) => {}
+                    Err(Error::NoConvergence { .. }) => stalled += 1,
+                    Err(error) => panic!("{degree}°, guess {guess:?}: {error}"),
+                }
+            }
+        }
+    }
+    // Some guesses do stall (this is what the test is about): 0 would mean it tests nothing.
+    assert!(stalled > 0);
+}

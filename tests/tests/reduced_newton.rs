@@ -97,6 +97,7 @@ fn newton_on<T: Real, const N: usize>(
         guess,
         &NewtonOptions::default(),
         false,
+        || None,
         |x: &[T; N]| Linearisation {
             residual: residual(x),
             jacobian: jacobian(x),

@@ -77,6 +77,7 @@ impl Generator<'_> {
             #branch_check
             ::core::result::Result::Ok(#solved)
         };
+        let assembles = self.assembles();
         let safeguarded = quote! {
             #hoisted
             let #converged = ::mechgen::__private::newton(
@@ -84,6 +85,7 @@ impl Generator<'_> {
                 #guess.to_array(),
                 #options,
                 #keep_orientation,
+                #assembles,
                 #closure,
             )?;
             #finish
@@ -126,6 +128,27 @@ impl Generator<'_> {
                 #safeguarded
             }
         }
+    }
+
+    /// The closure that tells a stalled Newton whether the loop can close at the input in
+    /// the guess's assembly (the one Newton keeps to): for one loop in closed form, the
+    /// closed form on the guess's branch (Newton then says `NoConvergence`, not "outside the
+    /// range of motion", for a guess that is merely far); `None` (Newton judges by the
+    /// condition) otherwise. With several loops the guess's branches, read off a guess far
+    /// from any assembly, need not be the ones a caller means, so Newton keeps judging.
+    fn assembles(&self) -> TokenStream {
+        let steps = match self.equations.closed_form.as_deref() {
+            Some(steps) if self.model.loops.len() == 1 => steps,
+            _ => return quote!(|| ::core::option::Option::None),
+        };
+        let input = &self.model.input.name;
+        let guess = arg("guess");
+        let assembled = if steps.iter().any(|s| s.case.has_branches()) {
+            quote!(self.assemble(#input, self.branch_of(#input, #guess)))
+        } else {
+            quote!(self.assemble(#input))
+        };
+        quote!(|| ::core::option::Option::Some(#assembled.is_ok()))
     }
 
     /// Whether Newton keeps to the guess's branch through the Jacobian's orientation (one
@@ -257,6 +280,7 @@ impl Generator<'_> {
                     || self.#aside(#input, #guess, #options, #input_dot, #input_ddot),
                 )
         };
+        let assembles = self.assembles();
         let aside_body = quote! {
                 #hoisted
                 let #size = #size_value;
@@ -265,6 +289,7 @@ impl Generator<'_> {
                     #guess.to_array(),
                     #options,
                     #keep_orientation,
+                    #assembles,
                     #closure,
                 )?;
                 #rates_body

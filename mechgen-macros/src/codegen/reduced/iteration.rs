@@ -285,6 +285,7 @@ impl Generator<'_> {
                 [#(#guess.#iterated),*],
                 #options,
                 true,
+                || ::core::option::Option::None,
                 |#x: &[T; #n]| {
                     let [#(#iterated),*] = *#x;
                     #(#body)*
