@@ -400,17 +400,7 @@ impl Generator<'_> {
                 continue;
             };
             let stem = unknown.name.unraw().to_string();
-            let names = [Node::Sin(var), Node::Cos(var)].map(|node| {
-                let id = graph.lookup(node).filter(|id| read[id.index()])?;
-                let prefix = if matches!(node, Node::Sin(_)) {
-                    "sin"
-                } else {
-                    "cos"
-                };
-                let name = local(&format!("{prefix}_{stem}"));
-                turned.push((id, name.clone(), 1));
-                Some(name)
-            });
+            let names = trig_names(graph, var, &stem, &read, 1, &mut turned);
             if names.iter().all(Option::is_none) {
                 continue;
             }
@@ -424,17 +414,7 @@ impl Generator<'_> {
         if let Some(var) = graph.lookup(Node::Var(Var::Value(SymbolRef::Input))) {
             let input = &self.model.input.name;
             let stem = input.unraw().to_string();
-            let names = [Node::Sin(var), Node::Cos(var)].map(|node| {
-                let id = graph.lookup(node).filter(|id| read[id.index()])?;
-                let prefix = if matches!(node, Node::Sin(_)) {
-                    "sin"
-                } else {
-                    "cos"
-                };
-                let name = local(&format!("{prefix}_{stem}"));
-                presets.push((id, name.clone(), 0));
-                Some(name)
-            });
+            let names = trig_names(graph, var, &stem, &read, 0, &mut presets);
             if names.iter().any(Option::is_some) {
                 let [sin, cos] = names.map(|name| name.map_or(quote!(_), |name| quote!(#name)));
                 input_trig = quote!(let (#sin, #cos) = ::mechgen::__private::sin_cos(#input););
@@ -559,4 +539,22 @@ struct Linearised {
     named: Vec<(ExprId, Ident, usize)>,
     /// The variables they read: the parameters among them are bound.
     used: BTreeSet<Var>,
+}
+
+/// The locals `sin_{stem}` and `cos_{stem}` for the sine and cosine of `var` that the code
+/// reads (`None` for one it does not), each recorded in `named` with `stage`.
+fn trig_names(
+    graph: &crate::symbolic::Graph,
+    var: ExprId,
+    stem: &str,
+    read: &[bool],
+    stage: usize,
+    named: &mut Vec<(ExprId, Ident, usize)>,
+) -> [Option<Ident>; 2] {
+    [(Node::Sin(var), "sin"), (Node::Cos(var), "cos")].map(|(node, prefix)| {
+        let id = graph.lookup(node).filter(|id| read[id.index()])?;
+        let name = local(&format!("{prefix}_{stem}"));
+        named.push((id, name.clone(), stage));
+        Some(name)
+    })
 }

@@ -247,6 +247,15 @@ impl Generator<'_> {
             );
         }
         let checked_name = checked_kernel(name);
+        // What the scalar kernels, fast and checked, compute before their outputs.
+        let computed = quote! {
+            #input_trig
+            #(#constant_bindings)*
+            #parameter_bindings
+            #scaled_input
+            #scaled_rates
+            #(#body)*
+        };
         if mode == Mode::Checked {
             let docs = doc(&format!(
                 "[`Self::{}`] with each step that can fail checked where it happens: the fast \
@@ -262,12 +271,7 @@ impl Generator<'_> {
                     #input: T #branch_parameter,
                     #(#arguments)*
                 ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
-                    #input_trig
-                    #(#constant_bindings)*
-                    #parameter_bindings
-                    #scaled_input
-                    #scaled_rates
-                    #(#body)*
+                    #computed
                     let #checked_values = ::mechgen::__private::finite_all([#(#checked),*], "scene output")
                         .map_err(|error| ::mechgen::__private::blame(#inputs, error))?;
                     ::core::result::Result::Ok(#output_type { #(#fields),* })
@@ -303,12 +307,7 @@ impl Generator<'_> {
                 #(#arguments)*
             ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
                 #keep
-                #input_trig
-                #(#constant_bindings)*
-                #parameter_bindings
-                #scaled_input
-                #scaled_rates
-                #(#body)*
+                #computed
                 // Every step that can fail gave NaN or an infinity, which reaches an output:
                 // one test here stands for all of them, and the checked kernel says why.
                 let #checked_values = [#(#checked),*];
