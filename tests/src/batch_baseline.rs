@@ -86,14 +86,7 @@ pub fn four_bar_joints_with<T: Real>(
         #[inline(always)]
         || joints_lanes(lengths, theta2, out, sin_cos),
     );
-    if any_nan {
-        let index = out
-            .iter()
-            .position(|joints| joints.rocker_pin.x.is_nan())
-            .unwrap_or_default();
-        return Err(Unreachable { index });
-    }
-    Ok(())
+    unreachable_at(any_nan, out)
 }
 
 /// [`four_bar_joints`] as built, never through [`mechgen::simd::widest`]'s wider copy: the
@@ -113,14 +106,20 @@ pub fn four_bar_joints_portable<T: Real>(
     out: &mut [Joints<T>],
 ) -> Result<(), Unreachable> {
     assert_eq!(theta2.len(), out.len(), "one output per crank angle");
-    if joints_lanes(lengths, theta2, out, sin_cos) {
-        let index = out
-            .iter()
-            .position(|joints| joints.rocker_pin.x.is_nan())
-            .unwrap_or_default();
-        return Err(Unreachable { index });
+    let any_nan = joints_lanes(lengths, theta2, out, sin_cos);
+    unreachable_at(any_nan, out)
+}
+
+/// `Ok`, or where the loop found an angle that failed, the first (its rocker pin is NaN).
+fn unreachable_at<T: Real>(any_nan: bool, out: &[Joints<T>]) -> Result<(), Unreachable> {
+    if !any_nan {
+        return Ok(());
     }
-    Ok(())
+    let index = out
+        .iter()
+        .position(|joints| joints.rocker_pin.x.is_nan())
+        .unwrap_or_default();
+    Err(Unreachable { index })
 }
 
 /// The loop of [`four_bar_joints_with`]: whether any angle failed.

@@ -64,6 +64,15 @@ fn largest_distance(a: &[Joints<f64>], b: &[Joints<f64>]) -> f64 {
         .fold(0f64, f64::max)
 }
 
+/// The bits of both joints' coordinates, step by step, for comparing two paths exactly.
+fn pin_bits<J>(joints: &[J], pins: impl Fn(&J) -> [mechgen::Vec2<f64>; 2]) -> Vec<u64> {
+    joints
+        .iter()
+        .flat_map(|j| pins(j).into_iter().flat_map(|p| [p.x, p.y]))
+        .map(f64::to_bits)
+        .collect()
+}
+
 fn main() {
     let theta2: Vec<f64> = (0..360).map(|k| f64::from(k).to_radians()).collect();
     let theta2_f32: Vec<f32> = theta2.iter().map(|&t| t as f32).collect();
@@ -138,26 +147,15 @@ fn main() {
     });
 
     // The wider copies and the loops as built give the same bits.
-    let bits = |joints: &[Joints<f64>]| -> Vec<u64> {
-        joints
-            .iter()
-            .flat_map(|j| [j.crank_pin.x, j.crank_pin.y, j.rocker_pin.x, j.rocker_pin.y])
-            .map(f64::to_bits)
-            .collect()
-    };
+    let hand_pins = |j: &Joints<f64>| [j.crank_pin, j.rocker_pin];
     assert!(
-        bits(&out) == bits(&hand_baseline_out),
+        pin_bits(&out, hand_pins) == pin_bits(&hand_baseline_out, hand_pins),
         "the hand batch's paths differ"
     );
-    let generated_bits = |joints: &[mechanisms::FourBarJoints<f64>]| -> Vec<u64> {
-        joints
-            .iter()
-            .flat_map(|j| [j.crank_pin.x, j.crank_pin.y, j.rocker_pin.x, j.rocker_pin.y])
-            .map(f64::to_bits)
-            .collect()
-    };
+    let generated_pins = |j: &mechanisms::FourBarJoints<f64>| [j.crank_pin, j.rocker_pin];
     assert!(
-        generated_bits(&generated_out) == generated_bits(&generated_baseline_out),
+        pin_bits(&generated_out, generated_pins)
+            == pin_bits(&generated_baseline_out, generated_pins),
         "the generated batch's paths differ"
     );
 
