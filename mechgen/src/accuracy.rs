@@ -6,7 +6,7 @@
 //!
 //! | order | estimate | relative to |
 //! |---|---|---|
-//! | position | `16·ε·κ` | the mechanism's size |
+//! | position | `32·ε·κ` | the mechanism's size |
 //! | velocity | `ε·(64·κ + 4·κ²)·s` | the rates' size |
 //! | acceleration | `ε·(256·κ + κ³)·s²` | the accelerations' size |
 //!
@@ -15,10 +15,13 @@
 //! Jacobian it is solved with, and the acceleration's right-hand side carries the rates'
 //! error, so once more again. The terms linear in κ are the rounding of the right-hand sides
 //! themselves (sums of many products), which dominate away from singular positions. The
-//! factors are fitted, with a margin of two or more, to the worst errors against the
+//! rates' factors are fitted, with a margin of two or more, to the worst errors against the
 //! 60-digit references (`docs/ACCURACY.md`) and the multiple-precision oracle of the edge
-//! tests. Near a change point the κ³ of the acceleration is reached; near a toggle the true
-//! error grows only as κ², so there the estimate is pessimistic by up to κ.
+//! tests. The position's is derived: Newton accepts a residual up to `16·ε` of the loops'
+//! magnitudes, and the inverse of the column-scaled Jacobian has entries up to κ, so the
+//! errors of two unknowns can add (the edge run, `docs/EDGES.md`, finds positions up to 1.3
+//! times `16·ε·κ` off). Near a change point the κ³ of the acceleration is reached; near a
+//! toggle the true error grows only as κ², so there the estimate is pessimistic by up to κ.
 //!
 //! Here `s = max(1, ρ/16)`, with ρ the aspect: the sum of the lengths the mechanism's loops
 //! declare over the shortest column of an angle unknown. An angle whose vector shrinks (a slide
@@ -87,7 +90,7 @@ impl<T: Real> Accuracy<T> {
     ///
     /// ```
     /// let estimate = mechgen::Accuracy::<f64>::estimate(10.0, 2.0);
-    /// assert_eq!(estimate.position, 16.0 * f64::EPSILON * 10.0);
+    /// assert_eq!(estimate.position, 32.0 * f64::EPSILON * 10.0);
     /// assert_eq!(estimate.acceleration, f64::EPSILON * 10.0 * (256.0 + 100.0));
     /// // A vector shrunk below √ε of the size: its angle's rates are undetermined.
     /// assert!(mechgen::Accuracy::<f64>::estimate(1.0, 1e9).velocity.is_infinite());
@@ -96,7 +99,7 @@ impl<T: Real> Accuracy<T> {
     pub fn estimate(condition: T, aspect: T) -> Self {
         let kappa = condition.max(T::one());
         let e = T::epsilon();
-        let position = T::constant(16.0) * e * kappa;
+        let position = T::constant(32.0) * e * kappa;
         if aspect * e.sqrt() >= T::one() || aspect.is_nan() {
             return Accuracy {
                 position,

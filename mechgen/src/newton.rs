@@ -295,6 +295,21 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     }
 }
 
+/// Whether a default solve (zero tolerance) was accepted above the rounding floor
+/// `16 ε Σ|r|`, because no step lowered its residual further. Where the iteration evaluates
+/// loops in closed form inside each step, that evaluation rounds at the magnitudes of the
+/// points its closed forms start from, not at those of its own short links, and the position
+/// can be off by more than the accuracy contract states: generated code then polishes it by
+/// Newton on every unknown, whose evaluation rounds only at the loops' own magnitudes.
+#[inline]
+pub fn stagnated<T: Real, const N: usize, P>(
+    converged: &Converged<T, N, P>,
+    options: &NewtonOptions<T>,
+) -> bool {
+    options.tolerance == T::zero()
+        && converged.solved.residual_norm > T::constant(16.0) * T::epsilon() * converged.at.scale
+}
+
 /// [`newton`]'s common path, for generated code to inline: `then` of the solution where
 /// Newton takes full steps each of which lowers the residual, else `otherwise()` (which
 /// generated code makes an out-of-line call of [`newton`] from `guess` again, with an

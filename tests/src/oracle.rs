@@ -2094,7 +2094,7 @@ pub fn valid_dimensions(kind: Kind, dims: &[f64], eta: f64) -> Option<bool> {
 ///
 /// - every `Ok` is finite; its loops close to the rounding floor, `16·ε·Σ|r|` per loop; it is
 ///   on the requested branch (or on a branch the oracle cannot tell from it within the bound);
-///   its position is within `16·ε·κ` of the truth (each unknown weighted by its Jacobian
+///   its position is within `32·ε·κ` of the truth (each unknown weighted by its Jacobian
 ///   column, over the size), its rates within `16·ε·κ²·ρ` and its accelerations within
 ///   `16·ε·κ³·ρ²` (over the rates' size); a tracked point within the first-order propagation
 ///   of those bounds through its vectors;
@@ -2116,6 +2116,12 @@ pub mod judge {
 
     /// The contract's factor.
     pub const FACTOR: f64 = 16.0;
+
+    /// The contract's factor for a position (`mechgen::Accuracy::estimate`): twice
+    /// [`FACTOR`], since Newton accepts a residual up to `16·ε` of the loops' magnitudes and
+    /// the inverse of a column-scaled Jacobian has entries up to κ, so N unknowns' errors can
+    /// add.
+    pub const POSITION_FACTOR: f64 = 32.0;
 
     /// A broken promise: its class (what kind of failure) and what happened.
     #[derive(Clone, Debug)]
@@ -2635,7 +2641,7 @@ pub mod judge {
                 return true;
             }
             let (estimate, required) = match order {
-                mechgen::Order::Position => (FACTOR * e * kappa, e.sqrt()),
+                mechgen::Order::Position => (POSITION_FACTOR * e * kappa, e.sqrt()),
                 mechgen::Order::Velocity => (e * kappa * (64.0 + 4.0 * kappa) * shrunk, e.cbrt()),
                 mechgen::Order::Acceleration => (
                     e * kappa * (256.0 + kappa * kappa) * shrunk * shrunk,
@@ -2736,7 +2742,7 @@ pub mod judge {
                 return;
             };
             let kappa = self.kappa(reported_kappa);
-            let bound = FACTOR * self.eps * kappa;
+            let bound = POSITION_FACTOR * self.eps * kappa;
             let error = position_error(&self.model, truth, q);
             let state = State::from_f64(&self.model, self.input, q);
             let (branches, _) = branch_signs(&self.model, &state);
@@ -2763,7 +2769,7 @@ pub mod judge {
                 } else {
                     v.fail(
                         api,
-                        "position error beyond 16·ε·κ",
+                        "position error beyond 32·ε·κ",
                         format!(
                             "error {error:.2e} = {:.1} × bound (κ {kappa:.2e}, true κ {:.2e})",
                             error / bound,
@@ -2799,7 +2805,7 @@ pub mod judge {
                 return false;
             };
             let kappa = t.condition.max(reported_kappa).max(1.0);
-            position_error(&self.model, &t, q) <= FACTOR * self.eps * kappa
+            position_error(&self.model, &t, q) <= POSITION_FACTOR * self.eps * kappa
         }
 
         /// Judges rates and accelerations.
@@ -3049,13 +3055,13 @@ pub mod judge {
                             d = d.wrapped();
                         }
                         let error = d.abs().to_f64() * t.columns[*index] / scale;
-                        let bound = FACTOR
+                        let bound = if *level == 0 { POSITION_FACTOR } else { FACTOR }
                             * self.eps
                             * kappa.powi(*level as i32 + 1)
                             * rho.powi(*level as i32);
                         if error > bound {
                             let what = [
-                                "position error beyond 16·ε·κ",
+                                "position error beyond 32·ε·κ",
                                 "velocity error beyond 16·ε·κ²·ρ",
                                 "acceleration error beyond 16·ε·κ³·ρ²",
                             ][*level];

@@ -80,7 +80,7 @@ enum Bindings {
 }
 
 /// The generated functions' own argument and local names, besides derived ones.
-const ARGUMENT_NAMES: [&str; 20] = [
+const ARGUMENT_NAMES: [&str; 21] = [
     "converged",
     "scale",
     "solved_a",
@@ -101,6 +101,7 @@ const ARGUMENT_NAMES: [&str; 20] = [
     "rhs",
     "solution",
     "values",
+    "reduced",
 ];
 
 /// One of [`ARGUMENT_NAMES`], as a hygienic identifier.

@@ -51,6 +51,7 @@ impl Generator<'_> {
         let input = &model.input.name;
         let (guess, options, x, converged) =
             (arg("guess"), arg("options"), arg("x"), arg("converged"));
+        let (reduced, failure) = (arg("reduced"), arg("failure"));
         let unknown = |u: usize| &model.unknowns[u].name;
         let steps = &reduction.steps;
 
@@ -302,6 +303,17 @@ impl Generator<'_> {
                 // Only the guess can make the evaluation undefined (a closed form that does
                 // not close there): the iteration cannot start.
                 ::core::result::Result::Err(::mechgen::Error::NonFinite { .. }) => {
+                    let #reduced = ::core::option::Option::None;
+                    #fall_back
+                }
+                // The reduced evaluation rounds where its closed forms start, which can stall
+                // it short of a root that Newton on every unknown reaches from the same guess:
+                // that answers, or the reduced iteration's verdict stands.
+                ::core::result::Result::Err(
+                    #failure @ (::mechgen::Error::NoConvergence { .. }
+                    | ::mechgen::Error::CannotAssemble { .. }),
+                ) => {
+                    let #reduced = ::core::option::Option::Some(#failure);
                     #fall_back
                 }
                 other => other?,

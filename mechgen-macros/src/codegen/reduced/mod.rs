@@ -51,8 +51,11 @@ impl Generator<'_> {
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
         let fallback = self.fallback_name();
+        let reduced = arg("reduced");
         let fall_back = quote! {
-            return self.#fallback(#input, #guess, #options);
+            return self
+                .#fallback(#input, #guess, #options)
+                .map_err(|full| #reduced.unwrap_or(full));
         };
         let after = self.roots_after(reduction, &[]);
         let iteration = self.reduced_iteration(reduction, &fall_back, &after);
@@ -63,7 +66,7 @@ impl Generator<'_> {
             ..
         } = self.finish(reduction, &iteration, &[], false);
         let Iteration { check, solve, .. } = iteration;
-        let unknown_names = self.model.unknowns.iter().map(|u| &u.name);
+        let unknown_names: Vec<_> = self.model.unknowns.iter().map(|u| &u.name).collect();
         let (converged, factored) = (arg("converged"), arg("jacobian"));
         let after_failure = if reduction.after.is_empty() {
             ""
@@ -101,6 +104,9 @@ impl Generator<'_> {
                 #check
                 #solve
                 #solves
+                if ::mechgen::__private::stagnated(&#converged, #options) {
+                    return self.#fallback(#input, &#ty { #(#unknown_names),* }, #options);
+                }
                 #factor
                 ::core::result::Result::Ok(::mechgen::Solved {
                     value: #ty { #(#unknown_names),* },
@@ -124,8 +130,11 @@ impl Generator<'_> {
         let n = self.model.unknowns.len();
         let fallback = self.fallback_name();
         let motion = local("motion");
+        let reduced = arg("reduced");
         let fall_back = quote! {
-            let #solved = self.#fallback(#input, #guess, #options)?;
+            let #solved = self
+                .#fallback(#input, #guess, #options)
+                .map_err(|full| #reduced.unwrap_or(full))?;
             let #motion = self.motion_at(#input, &#solved.value, #input_dot, #input_ddot)?;
             return ::core::result::Result::Ok(#solved.map(|_| #motion));
         };
@@ -147,7 +156,7 @@ impl Generator<'_> {
         let Iteration { check, solve, .. } = iteration;
         let (velocity_rhs, acceleration_rhs) = extra.split_at(n);
         let rate_names = &self.unknown_dots;
-        let unknown_names = self.model.unknowns.iter().map(|u| &u.name);
+        let unknown_names: Vec<_> = self.model.unknowns.iter().map(|u| &u.name).collect();
         let (rates, accelerations) = (local("rates"), local("accelerations"));
         let (converged, factored) = (arg("converged"), arg("jacobian"));
         let graph = &self.equations.graph;
@@ -192,6 +201,11 @@ impl Generator<'_> {
         let body = quote! {
                 #solve
                 #solves
+                if ::mechgen::__private::stagnated(&#converged, #options) {
+                    let #solved = self.#fallback(#input, &#ty { #(#unknown_names),* }, #options)?;
+                    let #motion = self.motion_at(#input, &#solved.value, #input_dot, #input_ddot)?;
+                    return ::core::result::Result::Ok(#solved.map(|_| #motion));
+                }
                 #factor
                 ::mechgen::__private::rates_accuracy_at(
                     T::one() / #relative.abs(),
@@ -266,6 +280,13 @@ impl Generator<'_> {
              assembly is [`mechgen::Error::OtherBranch`], never a silent switch. Where a \
              closed form cannot close at the guess itself, there is nothing to iterate on and \
              it falls back to Newton on every unknown together.\n\n\
+             The closed forms inside each evaluation round at the magnitudes of the points \
+             they start from, which can exceed their own links' by far, so the reduced \
+             residual can stall above the floor or short of a root: a default solve that \
+             stops above the floor `16 ε Σ|r|` is polished by Newton on every unknown from \
+             its solution, and one that stalls (no convergence, or a toggle it cannot pass) \
+             is tried again by Newton on every unknown from `guess`, whose verdict stands \
+             only if it finds a solution.\n\n\
              The stopping rules are those of Newton on every unknown, applied to the residual \
              of {residual_loops} (the loops solved in closed form close to rounding): at most \
              the tolerance in every component, the rounding floor `16 ε Σ|r|` summed over \
