@@ -146,7 +146,9 @@ const MAX_HALVINGS: u32 = 10;
 ///   cannot close there (a closed form knows), [`Error::NoConvergence`] where it says they
 ///   can; where it cannot say (`None`), [`Error::CannotAssemble`] if the Jacobian is
 ///   ill-conditioned (the iterates press against a toggle the loops cannot pass), else
-///   [`Error::NoConvergence`]. It is called only then.
+///   [`Error::NoConvergence`]. Running out of iterations is [`Error::CannotAssemble`] where
+///   `assembles()` says the loops cannot close, else [`Error::NoConvergence`]. It is called
+///   only then.
 ///
 /// With `keep_orientation`, the Jacobian's orientation (the sign of its determinant) must be
 /// the same at the solution as at the guess, else [`Error::OtherBranch`]: for a single loop
@@ -233,9 +235,13 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             if residual_norm <= floor {
                 return accept(here, jacobian, x);
             }
-            return Err(Error::NoConvergence {
-                iterations,
-                residual_norm,
+            // Where a closed form says no assembly closes at this input, that is why.
+            return Err(match assembles() {
+                Some(false) => Error::CannotAssemble { input },
+                _ => Error::NoConvergence {
+                    iterations,
+                    residual_norm,
+                },
             });
         }
         let step = jacobian.solve(here.residual);

@@ -130,25 +130,74 @@ impl Generator<'_> {
         }
     }
 
-    /// The closure that tells a stalled Newton whether the loop can close at the input in
+    /// The closure that tells a stalled Newton whether the loops can close at the input in
     /// the guess's assembly (the one Newton keeps to): for one loop in closed form, the
     /// closed form on the guess's branch (Newton then says `NoConvergence`, not "outside the
-    /// range of motion", for a guess that is merely far); `None` (Newton judges by the
-    /// condition) otherwise. With several loops the guess's branches, read off a guess far
-    /// from any assembly, need not be the ones a caller means, so Newton keeps judging.
+    /// range of motion", for a guess that is merely far). With several loops in closed form
+    /// the guess's branches, read off a guess far from any assembly, need not be the ones a
+    /// caller means: `false` only where no assembly closes (every combination of branches
+    /// cannot assemble), and otherwise `None`, so that Newton judges by the condition.
+    /// `None` without closed forms.
     fn assembles(&self) -> TokenStream {
-        let steps = match self.equations.closed_form.as_deref() {
-            Some(steps) if self.model.loops.len() == 1 => steps,
-            _ => return quote!(|| ::core::option::Option::None),
+        let Some(steps) = self.equations.closed_form.as_deref() else {
+            return quote!(|| ::core::option::Option::None);
         };
         let input = &self.model.input.name;
         let guess = arg("guess");
-        let assembled = if steps.iter().any(|s| s.case.has_branches()) {
-            quote!(self.assemble(#input, self.branch_of(#input, #guess)))
-        } else {
-            quote!(self.assemble(#input))
+        let branching = steps.iter().filter(|s| s.case.has_branches()).count();
+        if self.model.loops.len() == 1 {
+            let assembled = if branching > 0 {
+                quote!(self.assemble(#input, self.branch_of(#input, #guess)))
+            } else {
+                quote!(self.assemble(#input))
+            };
+            return quote!(|| ::core::option::Option::Some(#assembled.is_ok()));
+        }
+        let (branches, combination) = (arg("branches"), arg("values"));
+        let (index, branch) = (local("index"), arg("branch"));
+        let (declare, choose, argument) = match branching {
+            0 => (TokenStream::new(), TokenStream::new(), TokenStream::new()),
+            1 => (
+                quote!(let mut #branches = ::mechgen::Branch::Open;),
+                quote! {
+                    #branches = if #combination & 1 == 1 {
+                        ::mechgen::Branch::Crossed
+                    } else {
+                        ::mechgen::Branch::Open
+                    };
+                },
+                quote!(, #branches),
+            ),
+            k => (
+                quote!(let mut #branches = [::mechgen::Branch::Open; #k];),
+                quote! {
+                    for (#index, #branch) in #branches.iter_mut().enumerate() {
+                        *#branch = if #combination >> #index & 1 == 1 {
+                            ::mechgen::Branch::Crossed
+                        } else {
+                            ::mechgen::Branch::Open
+                        };
+                    }
+                },
+                quote!(, #branches),
+            ),
         };
-        quote!(|| ::core::option::Option::Some(#assembled.is_ok()))
+        let combinations = 1u32 << branching;
+        quote! {
+            || {
+                #declare
+                for #combination in 0..#combinations {
+                    #choose
+                    if !::core::matches!(
+                        self.assemble(#input #argument),
+                        ::core::result::Result::Err(::mechgen::Error::CannotAssemble { .. })
+                    ) {
+                        return ::core::option::Option::None;
+                    }
+                }
+                ::core::option::Option::Some(false)
+            }
+        }
     }
 
     /// Whether Newton keeps to the guess's branch through the Jacobian's orientation (one
