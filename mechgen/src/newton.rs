@@ -246,8 +246,14 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         }
         let step = jacobian.solve(here.residual);
         if !all_finite(&step) {
-            return Err(Error::NonFinite {
-                quantity: "Newton step",
+            // From a finite residual and a Jacobian that factors, a step that overflows is
+            // the iterates running away; where a closed form says the loops cannot close at
+            // this input, that is why.
+            return Err(match assembles() {
+                Some(false) => Error::CannotAssemble { input },
+                _ => Error::NonFinite {
+                    quantity: "Newton step",
+                },
             });
         }
         // The full step, which the common path takes; else the largest of 1/2, 1/4, ...

@@ -200,6 +200,28 @@ fn huge_f32_slider_cranks_are_finite() {
     }
 }
 
+/// A slider-crank of 5e36 in f32 whose crank cannot reach the slide's line at the input:
+/// Newton's iterates ran away until a step overflowed, and it said `NonFinite` where the
+/// closed form knows the answer, `CannotAssemble`.
+#[test]
+fn newton_running_away_beyond_the_range_cannot_assemble() {
+    let linkage = SliderCrank::<f32>::new(5.316912e36, 1.4835638e36, 5.8348357e35).unwrap();
+    assert_eq!(
+        linkage.assemble(0.6833616, Branch::Open),
+        Err(Error::CannotAssemble { input: 0.6833616 })
+    );
+    let guess = mechanisms::SliderCrankUnknowns {
+        theta3: -0.01875002682209015,
+        d: 6.764956869683971e36,
+    };
+    assert_eq!(
+        linkage
+            .position(0.6833616, &guess, &NewtonOptions::default())
+            .map(|s| s.value),
+        Err(Error::CannotAssemble { input: 0.6833616 })
+    );
+}
+
 /// Lengths whose sum overflows: Newton returned its guess, untouched, as Ok.
 #[test]
 fn newton_says_when_its_numbers_overflow() {
