@@ -211,8 +211,8 @@ fn newton_running_away_beyond_the_range_cannot_assemble() {
         Err(Error::CannotAssemble { input: 0.6833616 })
     );
     let guess = mechanisms::SliderCrankUnknowns {
-        theta3: -0.01875002682209015,
-        d: 6.764956869683971e36,
+        theta3: -0.018_750_027,
+        d: 6.764_957e36,
     };
     assert_eq!(
         linkage
