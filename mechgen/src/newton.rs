@@ -14,8 +14,8 @@ use crate::{Accuracy, Error, Real};
 pub struct NewtonOptions<T> {
     /// Stop when every component of the loop residual is at most this, in the mechanism's
     /// length units (the seeds' worked examples use `1e-4` mm); a tolerance below the
-    /// rounding floor of the residual (`16 ε Σ|r|` over the loops' vectors) is raised to that
-    /// floor, so a tight tolerance never turns into a spurious failure. Zero, the default,
+    /// rounding floor of the residual (`16 ε Σ|r|` over each loop's own vectors, for that
+    /// loop's components) is raised to that floor, so a tight tolerance never turns into a spurious failure. Zero, the default,
     /// means "as accurate as the floating-point type allows": Newton stops at the floor only
     /// after a step that started within `√ε` of the root (relative), so a step that lands
     /// on the floor from farther is followed by one more, and a solve restarted from its own
@@ -99,6 +99,11 @@ pub struct Linearisation<T, const N: usize, P = ()> {
     /// `Σ|r|` over the loops' vector magnitudes: the size of the numbers whose rounding
     /// bounds how small the residual can get.
     pub scale: T,
+    /// Each residual component's weight: `scale` over its own loop's `Σ|r|` (1 for one
+    /// loop). Every test of the residual reads it weighted, so that each loop is closed to its
+    /// own rounding: a small loop beside a large one would otherwise pass at the large one's,
+    /// which can exceed the small one's size.
+    pub weights: [T; N],
     /// What else the generated code computed at the iterate (sines, cosines, products) and
     /// wants back at the solution, so the rates after Newton need not compute them again.
     pub payload: P,
@@ -128,7 +133,9 @@ const MAX_HALVINGS: u32 = 10;
 ///
 /// `linearise` evaluates the residual and Jacobian; each Jacobian is factored once
 /// ([`Factored`]: the explicit inverse of a 2×2, LU with partial pivoting otherwise), for
-/// the step and, at the solution, for the rates. The safeguards:
+/// the step and, at the solution, for the rates. Every test reads the residual weighted
+/// ([`Linearisation::weights`]), so each loop's components are held to the rounding floor
+/// `16 ε Σ|r|` of that loop's own vectors. The safeguards:
 /// - a step that does not reduce the largest residual component is halved, up to
 ///   10 times; if none does, the iteration has stagnated;
 /// - with the default zero tolerance, a point is accepted when its residual is at the
@@ -185,8 +192,10 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     // polishes the result rather than stopping short of what the float type allows.
     let mut previous_residual = T::infinity();
     loop {
-        let residual_norm = max_abs(&here.residual);
-        if !residual_norm.is_finite() || !here.scale.is_finite() {
+        // The residual as the tests read it: each loop's against its own rounding. Finite
+        // only if every component is (the weights are positive), and zero only if each is.
+        let weighted = weighted_norm(&here.residual, &here.weights);
+        if !weighted.is_finite() || !here.scale.is_finite() {
             return Err(Error::NonFinite {
                 quantity: "loop residual",
             });
@@ -206,7 +215,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 solved: Solved {
                     value: x,
                     iterations,
-                    residual_norm,
+                    residual_norm: max_abs(&here.residual),
                     condition: T::one() / relative_determinant.abs(),
                 },
                 at: here,
@@ -217,8 +226,9 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         // floor, a root is certain to be near); the default one when the residual is at the
         // floor and the steps have stopped shrinking it (or it is zero).
         let met = if options.tolerance > T::zero() {
-            residual_norm <= options.tolerance.max(floor)
-                && (residual_norm <= floor || kantorovich(&here, condition()) <= quarter)
+            weighted <= floor
+                || (max_abs(&here.residual) <= options.tolerance
+                    && kantorovich(&here, condition()) <= quarter)
         } else {
             // Near a singular position (κ beyond ε^(-1/4)) the position is known only to
             // about κ·ε whatever the residual, and a step from the floor there is no polish
@@ -226,13 +236,13 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             // meets this one: there the floor is the stop.
             let polished = previous_residual <= T::epsilon().sqrt() * here.scale
                 || condition() * T::epsilon().sqrt().sqrt() >= T::one();
-            residual_norm == T::zero() || (residual_norm <= floor && polished)
+            weighted == T::zero() || (weighted <= floor && polished)
         };
         if met {
             return accept(here, jacobian, x);
         }
         if iterations >= options.max_iterations {
-            if residual_norm <= floor {
+            if weighted <= floor {
                 return accept(here, jacobian, x);
             }
             // Where a closed form says no assembly closes at this input, that is why.
@@ -240,7 +250,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 Some(false) => Error::CannotAssemble { input },
                 _ => Error::NoConvergence {
                     iterations,
-                    residual_norm,
+                    residual_norm: max_abs(&here.residual),
                 },
             });
         }
@@ -270,8 +280,10 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         let mut fraction = T::one();
         let mut halvings = 0;
         // Not lower (a NaN residual is not lower either).
-        while max_abs(&there.residual).partial_cmp(&residual_norm) != Some(Ordering::Less) {
-            if residual_norm <= T::constant(STAGNATION_FLOOR) * floor {
+        while weighted_norm(&there.residual, &there.weights).partial_cmp(&weighted)
+            != Some(Ordering::Less)
+        {
+            if weighted <= T::constant(STAGNATION_FLOOR) * floor {
                 // Within a few units of the rounding floor no step lowers the residual: this is
                 // what rounding lets the loops close to (intermediate values of a coupled
                 // evaluation can exceed its vectors' magnitudes), so converged.
@@ -284,7 +296,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 // cannot pass (a guess far from every assembly can stall the same way).
                 let stalled = Error::NoConvergence {
                     iterations,
-                    residual_norm,
+                    residual_norm: max_abs(&here.residual),
                 };
                 return Err(match assembles() {
                     Some(true) => stalled,
@@ -300,7 +312,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             next = stepped(fraction);
             there = linearise(&next);
         }
-        previous_residual = residual_norm;
+        previous_residual = weighted;
         x = next;
         here = there;
         iterations += 1;
@@ -319,7 +331,8 @@ pub fn stagnated<T: Real, const N: usize, P>(
     options: &NewtonOptions<T>,
 ) -> bool {
     options.tolerance == T::zero()
-        && converged.solved.residual_norm > T::constant(16.0) * T::epsilon() * converged.at.scale
+        && weighted_norm(&converged.at.residual, &converged.at.weights)
+            > T::constant(16.0) * T::epsilon() * converged.at.scale
 }
 
 /// [`newton`]'s common path, for generated code to inline: `then` of the solution where
@@ -358,17 +371,29 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
         let mut previous_residual = T::infinity();
         loop {
             let here = linearise(&x);
-            // Every component lower than the residual before the step (which [`newton`] takes
-            // whole only then), so finite and not NaN; at the guess, below infinity. Then
-            // their largest is [`max_abs`]'s.
-            if !here.residual.iter().all(|r| r.abs() < previous_residual) || !here.scale.is_finite()
+            // Every weighted component lower than the weighted residual before the step
+            // (which [`newton`] takes whole only then), so finite and not NaN; at the guess,
+            // below infinity. Then their largest is [`weighted_norm`]'s, and the unweighted
+            // components, finite too, give [`max_abs`]'s where it is wanted.
+            if !here
+                .residual
+                .iter()
+                .zip(&here.weights)
+                .all(|(r, w)| r.abs() * *w < previous_residual)
+                || !here.scale.is_finite()
             {
                 break 'common;
             }
-            let residual_norm = here
+            let weighted = here
                 .residual
                 .iter()
-                .fold(T::zero(), |norm, r| norm.max(r.abs()));
+                .zip(&here.weights)
+                .fold(T::zero(), |norm, (r, w)| norm.max(r.abs() * *w));
+            let residual_norm = || {
+                here.residual
+                    .iter()
+                    .fold(T::zero(), |norm, r| norm.max(r.abs()))
+            };
             let Some(jacobian) = Factored::quick(here.jacobian) else {
                 break 'common;
             };
@@ -379,13 +404,12 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
             let condition = || T::one() / jacobian.relative().abs();
             let floor = rounding_floor * here.scale;
             let met = if tolerance > T::zero() {
-                // `tolerance.max(floor)`, both finite.
-                residual_norm <= if tolerance > floor { tolerance } else { floor }
-                    && (residual_norm <= floor
-                        || kantorovich_aside(here.residual, here.jacobian, condition()) <= quarter)
+                weighted <= floor
+                    || (residual_norm() <= tolerance
+                        && kantorovich_aside(here.residual, here.jacobian, condition()) <= quarter)
             } else {
-                residual_norm == T::zero()
-                    || (residual_norm <= floor
+                weighted == T::zero()
+                    || (weighted <= floor
                         && (previous_residual <= T::epsilon().sqrt() * here.scale
                             || condition() * T::epsilon().sqrt().sqrt() >= T::one()))
             };
@@ -394,6 +418,7 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
                     break 'common;
                 }
                 let jacobian = jacobian.finish();
+                let residual_norm = residual_norm();
                 return then(Converged {
                     solved: Solved {
                         value: x,
@@ -416,7 +441,7 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
             for (t, d) in x.iter_mut().zip(step) {
                 *t = *t - T::one() * d;
             }
-            previous_residual = residual_norm;
+            previous_residual = weighted;
             iterations += 1;
         }
     }
@@ -436,6 +461,7 @@ fn kantorovich_aside<T: Real, const N: usize>(
         residual,
         jacobian,
         scale: T::zero(),
+        weights: [T::one(); N],
         payload: (),
     };
     kantorovich(&at, condition)
@@ -475,6 +501,29 @@ fn kantorovich<T: Real, const N: usize, P>(at: &Linearisation<T, N, P>, conditio
 }
 
 /// The largest absolute component (NaN if any component is NaN).
+/// The largest `|r|·w`, NaN if any is.
+fn weighted_norm<T: Real, const N: usize>(residual: &[T; N], weights: &[T; N]) -> T {
+    residual.iter().zip(weights).fold(T::zero(), |acc, (r, w)| {
+        let v = r.abs() * *w;
+        if v.is_nan() || acc.is_nan() {
+            T::nan()
+        } else {
+            acc.max(v)
+        }
+    })
+}
+
+/// The weight of a loop whose own vectors' magnitudes sum to `own` in a mechanism whose
+/// loops' sum to `scale` (see [`Linearisation::weights`]); 1 where `own` is not positive.
+#[inline(always)]
+pub fn loop_weight<T: Real>(scale: T, own: T) -> T {
+    if own > T::zero() {
+        scale / own
+    } else {
+        T::one()
+    }
+}
+
 pub(crate) fn max_abs<T: Real>(values: &[T]) -> T {
     values.iter().fold(T::zero(), |acc, v| {
         if v.is_nan() || acc.is_nan() {
@@ -759,6 +808,7 @@ mod tests {
                 residual: [l2 * c2 + t0 - t2 - l1, l2 * s2 + t1 - t3],
                 jacobian: [[-t1, t3], [t0, -t2]],
                 scale: l1 + l2 + l3 + l4,
+                weights: [1.0; 2],
                 payload: [s3, c3, s4, c4],
             }
         }

@@ -102,6 +102,7 @@ fn newton_on<T: Real, const N: usize>(
             residual: residual(x),
             jacobian: jacobian(x),
             scale,
+            weights: [T::one(); N],
             payload: (),
         },
     )

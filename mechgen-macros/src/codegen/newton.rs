@@ -9,7 +9,7 @@ use quote::quote;
 use syn::ext::IdentExt;
 
 use super::docs::doc;
-use super::emit::{Block, local, reachable};
+use super::emit::{Block, Emitted, local, reachable};
 use super::{Bindings, Generator, arg, matrix};
 use crate::model::SymbolRef;
 use crate::symbolic::{ExprId, Node, Var};
@@ -512,10 +512,6 @@ impl Generator<'_> {
         let (residual, rest) = outputs.split_at(n);
         let (jacobian, magnitudes) = rest.split_at(n * n);
         let jacobian = matrix(jacobian, n);
-        let scale = magnitudes.iter().map(|m| {
-            let m = m.receiver();
-            quote!(#m.abs())
-        });
         let names = self.model.unknowns.iter().map(|u| &u.name);
         // The payload carries what is dear to compute again (the sines and cosines); the
         // rates redo the odd product rather than copy it out of every evaluation.
@@ -531,13 +527,17 @@ impl Generator<'_> {
             .map(|(_, name, _)| name)
             .collect();
         // The loops' scale depends on the dimensions alone, most often: then it is computed
-        // once, before the iteration.
+        // once, before the iteration, with the loops' weights.
         let fixed_scale = eq.magnitudes.iter().all(|&m| graph.is_fixed(m));
         let scale_name = local("scale");
-        let (scale_before, scale) = if fixed_scale {
-            (quote!(let #scale_name = #(#scale)+*;), quote!(#scale_name))
+        let every_loop: Vec<usize> = (0..self.model.loops.len()).collect();
+        let (scale_statements, weights) =
+            scale_and_weights(magnitudes, &eq.magnitude_loops, &every_loop, &scale_name);
+        let scale = quote!(#scale_name);
+        let (scale_before, weights_inside) = if fixed_scale {
+            (scale_statements, TokenStream::new())
         } else {
-            (TokenStream::new(), quote!(scale: #(#scale)+*))
+            (TokenStream::new(), scale_statements)
         };
         // An empty payload still needs its type.
         let payload = if payload.is_empty() {
@@ -562,10 +562,12 @@ impl Generator<'_> {
                         let [#(#names),*] = *#x;
                         #turns
                         #(#per_iterate)*
+                        #weights_inside
                         ::mechgen::__private::Linearisation {
                             residual: [#(#residual),*],
                             jacobian: #jacobian,
                             #scale,
+                            weights: #weights,
                             payload: #payload,
                         }
                     }
@@ -575,6 +577,49 @@ impl Generator<'_> {
             used,
         }
     }
+}
+
+/// The statements that bind `scale` (`mechgen::__private::Linearisation::scale`) and the
+/// weights (`Linearisation::weights`) of the residual rows of `row_loops`, two rows per loop,
+/// with the weights. Where the rows are one loop's, the scale is that loop's own magnitudes'
+/// sum and the weights are ones (the same floors, without a product per row); else the scale
+/// sums every magnitude (`magnitudes[i]`, in loop `loops_of[i]`) and each loop's rows weigh
+/// `loop_weight` of it and their own loop's sum.
+pub(super) fn scale_and_weights(
+    magnitudes: &[Emitted],
+    loops_of: &[usize],
+    row_loops: &[usize],
+    scale: &Ident,
+) -> (TokenStream, TokenStream) {
+    let sum = |loop_index: Option<usize>| {
+        let terms = magnitudes
+            .iter()
+            .zip(loops_of)
+            .filter(move |(_, l)| loop_index.is_none_or(|k| **l == k))
+            .map(|(m, _)| {
+                let m = m.receiver();
+                quote!(#m.abs())
+            });
+        quote!(#(#terms)+*)
+    };
+    let rows = 2 * row_loops.len();
+    if row_loops.iter().all(|&k| k == row_loops[0]) {
+        let own = sum(Some(row_loops[0]));
+        return (quote!(let #scale = #own;), quote!([T::one(); #rows]));
+    }
+    let total = sum(None);
+    let name = |k: usize| local(&format!("weight_{k}"));
+    let mut distinct = row_loops.to_vec();
+    distinct.dedup();
+    let statements = distinct.iter().map(|&k| {
+        let (weight, own) = (name(k), sum(Some(k)));
+        quote!(let #weight = ::mechgen::__private::loop_weight(#scale, #own);)
+    });
+    let weights = row_loops.iter().flat_map(|&k| [name(k), name(k)]);
+    (
+        quote!(let #scale = #total; #(#statements)*),
+        quote!([#(#weights),*]),
+    )
 }
 
 /// [`Generator::linearisation`]'s parts.

@@ -35,6 +35,9 @@ pub struct Equations {
     pub acceleration_rhs: Vec<ExprId>,
     /// The magnitude of every loop term, whose absolute sum scales the residual's rounding.
     pub magnitudes: Vec<ExprId>,
+    /// The loop each of `magnitudes` belongs to: a loop's own sum is the rounding its two
+    /// residual rows can close to.
+    pub magnitude_loops: Vec<usize>,
     pub points: Vec<PointExprs>,
     /// The loops in the order they solve in closed form, if every one does.
     pub closed_form: Option<Vec<super::closed_form::Step>>,
@@ -49,9 +52,11 @@ impl Equations {
     pub fn derive(model: &Model) -> Self {
         let mut graph = Graph::default();
         let mut magnitudes = Vec::new();
+        let mut magnitude_loops = Vec::new();
         let mut residual = Vec::new();
-        for loop_sum in &model.loops {
+        for (index, loop_sum) in model.loops.iter().enumerate() {
             let [x, y] = vector_sum(&mut graph, loop_sum, &mut magnitudes);
+            magnitude_loops.resize(magnitudes.len(), index);
             residual.extend([x, y]);
         }
 
@@ -171,6 +176,7 @@ impl Equations {
             velocity_rhs,
             acceleration_rhs,
             magnitudes,
+            magnitude_loops,
             points,
         }
     }

@@ -14,6 +14,7 @@ use syn::ext::IdentExt;
 use super::schur::schur_complement;
 use super::steps::trig_nodes;
 use crate::codegen::emit::{Block, Emitted, children, local, reachable};
+use crate::codegen::newton::scale_and_weights;
 use crate::codegen::{Bindings, Generator, arg};
 use crate::model::{Kind, SymbolRef};
 use crate::symbolic::{ExprId, Graph, Node, Reduction, Step, Var};
@@ -237,20 +238,19 @@ impl Generator<'_> {
             .for_each(|u| carry(unknown(u)));
         let payload_count = Literal::usize_unsuffixed(payload.len());
 
-        let scale = magnitude_values.iter().map(|m| {
-            let m = m.receiver();
-            quote!(#m.abs())
-        });
         // The magnitudes of fixed lengths are summed once, before the iteration.
         let fixed_scale = !magnitudes.iter().any(|&m| reads_unknowns(graph, m));
         let scale_local = arg("scale");
-        let (scale_before, scale_field) = if fixed_scale {
-            (
-                quote!(let #scale_local = #(#scale)+*;),
-                quote!(#scale_local),
-            )
+        let (scale_statements, weights) = scale_and_weights(
+            &magnitude_values,
+            &self.equations.magnitude_loops,
+            &reduction.residual_loops,
+            &scale_local,
+        );
+        let (scale_before, weights_inside) = if fixed_scale {
+            (scale_statements, TokenStream::new())
         } else {
-            (TokenStream::new(), quote!(scale: #(#scale)+*))
+            (TokenStream::new(), scale_statements)
         };
 
         let iterated: Vec<&Ident> = reduction.iterated.iter().map(|&u| unknown(u)).collect();
@@ -279,6 +279,7 @@ impl Generator<'_> {
                 residual: [T::nan(); #n],
                 jacobian: [[T::nan(); #n]; #n],
                 scale: T::nan(),
+                weights: [T::nan(); #n],
                 payload: [T::nan(); #payload_count],
             };
             let #converged = match ::mechgen::__private::newton(
@@ -292,10 +293,12 @@ impl Generator<'_> {
                     #(#body)*
                     #(let #entry_names = #entry_values;)*
                     #schur
+                    #weights_inside
                     ::mechgen::__private::Linearisation {
                         residual: [#(#residual),*],
                         jacobian: #jacobian,
-                        #scale_field,
+                        #scale_local,
+                        weights: #weights,
                         payload: [#(#payload),*],
                     }
                 },

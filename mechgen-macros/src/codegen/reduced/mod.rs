@@ -289,8 +289,9 @@ impl Generator<'_> {
              only if it finds a solution.\n\n\
              The stopping rules are those of Newton on every unknown, applied to the residual \
              of {residual_loops} (the loops solved in closed form close to rounding): at most \
-             the tolerance in every component, the rounding floor `16 ε Σ|r|` summed over \
-             every loop's vectors, and Kantorovich's certificate on this iteration's Jacobian. \
+             the tolerance in every component, each loop's components at the rounding floor \
+             `16 ε Σ|r|` of that loop's own vectors, and Kantorovich's certificate on this \
+             iteration's Jacobian. \
              The returned `iterations` and `residual_norm` are this iteration's; `condition` \
              is the loops' full Jacobian's at the solution, as the accuracy contract reads it.",
             describe(&reduction.steps),
