@@ -3389,12 +3389,13 @@ pub mod judge {
                 ]
                 .into_iter()
                 .any(|order| e.inaccuracy_allowed(order));
-            // Rates of lengths scaled near the float's largest overflow: `NonFinite` is then
-            // the answer (the truth is not representable), whatever the factor.
-            let rates_overflow = again.outcome == "NonFinite"
-                && e.size()
-                    * factor
-                    * (1.0 + case.omega.abs() + case.omega.powi(2) + case.alpha.abs())
+            // Rates of lengths (scaled or not) near the float's largest overflow: `NonFinite`
+            // is then the answer (the truth is not representable), whatever the factor.
+            // Near a toggle the rates grow with κ and the accelerations with κ³.
+            let kappa = e.truth.as_ref().map_or(1.0, |t| t.condition.max(1.0));
+            let largest = e.size() * factor.max(1.0) * kappa.powi(3);
+            let rates_overflow = (before == "NonFinite" || again.outcome == "NonFinite")
+                && largest * (1.0 + case.omega.abs() + case.omega.powi(2) + case.alpha.abs())
                     > T::max_value().to_f64().unwrap_or(f64::MAX) / 64.0;
             let excused = rates_overflow
                 || (!exact && (e.near_limit() || e.singular_allowed() || at_the_threshold));
@@ -3415,10 +3416,13 @@ pub mod judge {
             let (x, y) = (raw::<T, S>(case), raw::<T, S>(&scaled));
             if let (Some(x), Some(y)) = (x, y) {
                 let angles = &e.model.angles;
+                // A length (or its rate) that scales into the float's subnormal range keeps
+                // fewer bits than the float has: there it cannot be the same bits, scaled.
+                let smallest = T::min_positive_value().to_f64().unwrap_or(0.0);
                 let differs = x.iter().zip(&y).any(|((i, level, a), (_, _, b))| {
                     let length = *i < angles.len() && !angles[*i] && *level < 3;
                     if length {
-                        a * factor != *b
+                        a * factor != *b && (a * factor).abs().min(a.abs()) >= smallest
                     } else {
                         a.to_bits() != b.to_bits()
                     }
