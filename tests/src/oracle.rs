@@ -3187,6 +3187,15 @@ pub mod judge {
     }
 
     fn run<T: Real + FromStr + Into<f64>, S: Subject<T>>(case: &Case) -> Verdict {
+        run_from::<T, S>(case, None)
+    }
+
+    /// [`run`], Newton starting from `given` (the guess and whether it lies outside
+    /// Kantorovich's ball) instead of the case's own guess where it is given.
+    fn run_from<T: Real + FromStr + Into<f64>, S: Subject<T>>(
+        case: &Case,
+        given: Option<(Vec<f64>, bool)>,
+    ) -> Verdict {
         let mut verdict = Verdict::default();
         let dims: Vec<T> = case.dims.iter().map(|d| T::constant(*d)).collect();
         let coupler = case
@@ -3243,7 +3252,7 @@ pub mod judge {
                 }
             }
             Api::Position | Api::MotionNear => {
-                let Some((guess, outside)) = guess(case, &e, &p) else {
+                let Some((guess, outside)) = given.or_else(|| guess(case, &e, &p)) else {
                     verdict.outcome = "no guess".into();
                     return verdict;
                 };
@@ -3358,7 +3367,23 @@ pub mod judge {
                 .collect()
         });
         let exact = factor.log2().fract() == 0.0;
-        let again = run::<T, S>(&scaled);
+        // The same call scaled: Newton from the same guess, its lengths scaled (a guess made
+        // afresh for the scaled case would differ where it mixes angles and lengths).
+        let given = guess(case, e, &e.params).map(|(g, outside)| {
+            let g = g
+                .iter()
+                .zip(&e.model.angles)
+                .map(|(v, &angle)| {
+                    if angle {
+                        *v
+                    } else {
+                        case.float.round(v * factor)
+                    }
+                })
+                .collect();
+            (g, outside)
+        });
+        let again = run_from::<T, S>(&scaled, given);
         for finding in again.findings {
             verdict.findings.push(Finding {
                 class: format!(
