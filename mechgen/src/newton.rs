@@ -614,15 +614,21 @@ pub fn finite<T: Real, const N: usize>(
     }
 }
 
-/// A position with its velocity and acceleration, as the generated `motion` returns them.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Motion<U> {
+/// A position with its velocity and acceleration, as the generated `motion`, `motion_at` and
+/// `motion_near` return them, with the estimate of their errors.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Motion<U, T> {
     /// The unknowns' values.
     pub position: U,
     /// Their rates.
     pub velocity: U,
     /// Their accelerations.
     pub acceleration: U,
+    /// The estimated relative error of each ([`Accuracy::estimate`] at the position): within
+    /// what was required (else the call was [`Error::Inaccurate`](crate::Error::Inaccurate)),
+    /// and a bound on the true error, which the edge tests check against a multiple-precision
+    /// oracle.
+    pub accuracy: Accuracy<T>,
 }
 
 /// An unknown angle's sine and cosine along a Newton iteration: the first from `sin_cos`, the

@@ -3,7 +3,7 @@
 //! random mechanisms and inputs.
 
 use mechanisms::{FourBar, FourBarUnknowns, InvertedSliderCrank, SliderCrank};
-use mechgen::{Branch, Error, NewtonOptions};
+use mechgen::{Accuracy, Branch, Error, NewtonOptions};
 use mechgen_tests::reference::{self, Status};
 use proptest::prelude::*;
 
@@ -22,6 +22,115 @@ fn every_reference_case_keeps_the_contract() {
             )
         })
         .collect();
+    assert!(broken.is_empty(), "{}", broken.join("\n"));
+}
+
+/// `motion`'s answer for a case in the float type `T`: its position, rates and accelerations
+/// widened to f64, with the estimate it carries, or `None` where it says an error.
+fn motion_in<T: mechgen::Real>(case: &reference::Case) -> Option<([[f64; 2]; 3], Accuracy<f64>)> {
+    let p: Vec<T> = case.params.iter().map(|&v| T::constant(v)).collect();
+    let (input, omega, alpha) = (
+        T::constant(case.input),
+        T::constant(reference::OMEGA2),
+        T::constant(reference::ALPHA2),
+    );
+    let f = |v: T| v.to_f64().unwrap_or(f64::NAN);
+    let widen = |a: [T; 2]| a.map(f);
+    macro_rules! answer {
+        ($motion:expr) => {
+            $motion.ok().map(|m| {
+                (
+                    [
+                        widen(m.position.to_array()),
+                        widen(m.velocity.to_array()),
+                        widen(m.acceleration.to_array()),
+                    ],
+                    Accuracy {
+                        position: f(m.accuracy.position),
+                        velocity: f(m.accuracy.velocity),
+                        acceleration: f(m.accuracy.acceleration),
+                    },
+                )
+            })
+        };
+    }
+    match case.mechanism.as_str() {
+        "four_bar" => answer!(FourBar::new(p[0], p[1], p[2], p[3]).ok()?.motion(
+            input,
+            case.branch,
+            omega,
+            alpha
+        )),
+        "slider_crank" => answer!(SliderCrank::new(p[0], p[1], p[2]).ok()?.motion(
+            input,
+            case.branch,
+            omega,
+            alpha
+        )),
+        _ => answer!(
+            InvertedSliderCrank::new(p[0], p[1], p[2], p[3])
+                .ok()?
+                .motion(input, case.branch, omega, alpha)
+        ),
+    }
+}
+
+/// Every `Ok` of `motion` carries its own estimate (at the position it computed, not the
+/// reference's), and that estimate bounds the true error of the position, the rates and the
+/// accelerations against every reference, in f64 and f32.
+#[test]
+fn motion_carries_an_estimate_that_bounds_its_error() {
+    let mut checked = 0;
+    let mut broken = Vec::new();
+    for case in reference::cases() {
+        if case.status != Status::Ok {
+            continue;
+        }
+        let answer = if case.precision == "f32" {
+            motion_in::<f32>(&case)
+        } else {
+            motion_in::<f64>(&case)
+        };
+        let Some(([q, q_dot, q_ddot], carried)) = answer else {
+            continue;
+        };
+        checked += 1;
+        let angles = reference::angle_unknowns(&case);
+        let size = reference::size(&case);
+        let columns = case.columns;
+        let omega = reference::OMEGA2;
+        let errors = [
+            reference::error(reference::wrapped(q, case.q, angles), case.q, columns, size),
+            reference::error(
+                q_dot,
+                case.q_dot,
+                columns,
+                reference::rate_size(case.q_dot, columns, size, omega),
+            ),
+            reference::error(
+                q_ddot,
+                case.q_ddot,
+                columns,
+                reference::rate_size(
+                    case.q_ddot,
+                    columns,
+                    size,
+                    omega * omega + reference::ALPHA2,
+                ),
+            ),
+        ];
+        let estimates = [carried.position, carried.velocity, carried.acceleration];
+        for (order, (error, estimate)) in errors.iter().zip(estimates).enumerate() {
+            // A NaN error or estimate fails too.
+            if error.is_nan() || estimate.is_nan() || *error > estimate {
+                broken.push(format!(
+                    "{} {} {} δ={} order {order}: error {error:.2e} > carried estimate {estimate:.2e}",
+                    case.mechanism, case.case, case.precision, case.delta
+                ));
+            }
+        }
+    }
+    assert!(checked > 100, "only {checked} reference cases answered");
     assert!(broken.is_empty(), "{}", broken.join("\n"));
 }
 

@@ -212,6 +212,7 @@ impl Generator<'_> {
         let names = self.model.unknowns.iter().map(|u| &u.name);
         let branch_parameter = self.branch_parameter(steps);
         let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let accuracy = local("accuracy");
         let labels = [
             format!("input rate `{input_dot}`"),
             format!("input acceleration `{input_ddot}`"),
@@ -231,7 +232,7 @@ impl Generator<'_> {
                 #input: T #branch_parameter,
                 #input_dot: T,
                 #input_ddot: T,
-            ) -> ::core::result::Result<::mechgen::Motion<#unknowns>, ::mechgen::Error<T>> {
+            ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
                 ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
                 #bindings
@@ -241,6 +242,7 @@ impl Generator<'_> {
                     position: #ty { #(#names),* },
                     velocity: #ty::from_array(#rates),
                     acceleration: #ty::from_array(#accelerations),
+                    accuracy: #accuracy,
                 })
             }
         }

@@ -234,6 +234,7 @@ impl Generator<'_> {
         let (guess, options, x) = (arg("guess"), arg("options"), arg("x"));
         let (converged, jacobian) = (arg("converged"), arg("jacobian"));
         let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let accuracy = local("accuracy");
         let ty = &self.unknowns_type;
         let n = self.model.unknowns.len();
         let Linearised {
@@ -307,6 +308,7 @@ impl Generator<'_> {
                     position: #ty::from_array(value),
                     velocity: #ty::from_array(#rates),
                     acceleration: #ty::from_array(#accelerations),
+                    accuracy: #accuracy,
                 }))
         };
         // Newton's common path inline; anything else is the safeguarded solve's to decide,
@@ -321,7 +323,7 @@ impl Generator<'_> {
                     #keep_orientation,
                     #closure,
                     |#converged| -> ::core::result::Result<
-                        ::mechgen::Solved<::mechgen::Motion<#ty<T>>, T>,
+                        ::mechgen::Solved<::mechgen::Motion<#ty<T>, T>, T>,
                         ::mechgen::Error<T>,
                     > {
                         #rates_body
@@ -413,7 +415,7 @@ impl Generator<'_> {
                 #input_dot: T,
                 #input_ddot: T,
             ) -> ::core::result::Result<
-                ::mechgen::Solved<::mechgen::Motion<#unknowns>, T>,
+                ::mechgen::Solved<::mechgen::Motion<#unknowns, T>, T>,
                 ::mechgen::Error<T>,
             > {
                 #check

@@ -64,6 +64,7 @@ impl Generator<'_> {
         statements.resize(2, Vec::new());
         let rate_solves = self.rate_solves(&outputs, &statements[0], &statements[1]);
         let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let accuracy = local("accuracy");
         let labels = [
             format!("input rate `{input_dot}`"),
             format!("input acceleration `{input_ddot}`"),
@@ -83,7 +84,7 @@ impl Generator<'_> {
                 #position: &#unknowns,
                 #input_dot: T,
                 #input_ddot: T,
-            ) -> ::core::result::Result<::mechgen::Motion<#unknowns>, ::mechgen::Error<T>> {
+            ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
                 ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
                 ::mechgen::__private::finite(#position.to_array(), "position")?;
@@ -93,6 +94,7 @@ impl Generator<'_> {
                     position: *#position,
                     velocity: #ty::from_array(#rates),
                     acceleration: #ty::from_array(#accelerations),
+                    accuracy: #accuracy,
                 })
             }
         }
@@ -149,9 +151,12 @@ impl Generator<'_> {
             "Acceleration"
         };
         let solve = self.solves(jacobian, &[(rhs, solution.clone())], highest);
+        let accuracy = local("accuracy");
         quote! {
             #prologue
             #solve
+            // The estimate was checked; only `motion` and `motion_at` return it.
+            let _ = #accuracy;
             ::mechgen::__private::finite(#solution, #quantity).map(#ty::from_array)
         }
     }
@@ -187,10 +192,10 @@ impl Generator<'_> {
         quote!(#factors #check #solves)
     }
 
-    /// `rates_accuracy(condition, jacobian, size, angles, highest, required)?;` for the
-    /// Jacobian `matrix` (an expression of type `&[[T; N]; N]`) of condition `condition`,
-    /// against `required` (of type `&Accuracy<T>`), the sum of the lengths the loops declare
-    /// as the size.
+    /// `let accuracy = rates_accuracy(condition, jacobian, size, angles, highest, required)?;`
+    /// for the Jacobian `matrix` (an expression of type `&[[T; N]; N]`) of condition
+    /// `condition`, against `required` (of type `&Accuracy<T>`), the sum of the lengths the
+    /// loops declare as the size: the estimate a [`mechgen::Motion`] carries.
     pub(super) fn rates_check(
         &self,
         matrix: TokenStream,
@@ -216,8 +221,9 @@ impl Generator<'_> {
             .iter()
             .map(|unknown| unknown.kind == crate::model::Kind::Angle);
         let highest = Ident::new(highest, proc_macro2::Span::call_site());
+        let accuracy = local("accuracy");
         quote! {
-            ::mechgen::__private::rates_accuracy(
+            let #accuracy = ::mechgen::__private::rates_accuracy(
                 #condition,
                 #matrix,
                 #size,

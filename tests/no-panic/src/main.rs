@@ -120,7 +120,7 @@ macro_rules! check {
                 q: &U,
                 rate: T,
                 acceleration: T,
-            ) -> Result<Motion<U>, Error<T>> {
+            ) -> Result<Motion<U, T>, Error<T>> {
                 m.motion_at(input, q, rate, acceleration)
             }
 
@@ -179,7 +179,7 @@ macro_rules! check {
                 options: &NewtonOptions<T>,
                 rate: T,
                 acceleration: T,
-            ) -> Result<Solved<Motion<U>, T>, Error<T>> {
+            ) -> Result<Solved<Motion<U, T>, T>, Error<T>> {
                 m.motion_near(input, guess, options, rate, acceleration)
             }
 
@@ -204,7 +204,7 @@ macro_rules! check {
                     branch: $branches,
                     rate: T,
                     acceleration: T,
-                ) -> Result<Motion<U>, Error<T>> {
+                ) -> Result<Motion<U, T>, Error<T>> {
                     m.motion(input, branch, rate, acceleration)
                 }
             )?

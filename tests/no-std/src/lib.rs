@@ -129,7 +129,7 @@ pub mod kernels {
         theta2: T,
         omega2: T,
         alpha2: T,
-    ) -> Result<Motion<FourBarUnknowns<T>>, Error<T>> {
+    ) -> Result<Motion<FourBarUnknowns<T>, T>, Error<T>> {
         linkage.motion(theta2, Branch::Open, omega2, alpha2)
     }
 

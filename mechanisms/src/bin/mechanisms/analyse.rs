@@ -168,7 +168,7 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
         (pin.x - l1).hypot(pin.y)
     );
     row("", "open".into(), "crossed".into());
-    type M = mechgen::Motion<FourBarUnknowns<f64>>;
+    type M = mechgen::Motion<FourBarUnknowns<f64>, f64>;
     let rows: [Row<M>; 8] = [
         ("θ3 (°)", &|m| {
             format!("{:.4}", degrees(m.position.theta3))
@@ -287,7 +287,7 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
         args.at, args.rate, args.accel
     );
     row("", "open".into(), "crossed".into());
-    type M = mechgen::Motion<mechanisms::SliderCrankUnknowns<f64>>;
+    type M = mechgen::Motion<mechanisms::SliderCrankUnknowns<f64>, f64>;
     let rows: [Row<M>; 8] = [
         ("θ3 (°)", &|m| {
             format!("{:.4}", degrees(m.position.theta3))
@@ -332,7 +332,7 @@ fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String
         args.at, args.rate, args.accel
     );
     row("", "open".into(), "crossed".into());
-    type M = mechgen::Motion<mechanisms::InvertedSliderCrankUnknowns<f64>>;
+    type M = mechgen::Motion<mechanisms::InvertedSliderCrankUnknowns<f64>, f64>;
     let rows: [Row<M>; 7] = [
         ("θ4 (°)", &|m| {
             format!("{:.4}", degrees(m.position.theta4))

@@ -158,6 +158,7 @@ impl Generator<'_> {
         let rate_names = &self.unknown_dots;
         let unknown_names: Vec<_> = self.model.unknowns.iter().map(|u| &u.name).collect();
         let (rates, accelerations) = (local("rates"), local("accelerations"));
+        let accuracy = local("accuracy");
         let (converged, factored) = (arg("converged"), arg("jacobian"));
         let graph = &self.equations.graph;
         // Through the blocks where there is no loop solved after the iteration.
@@ -207,7 +208,7 @@ impl Generator<'_> {
                     return ::core::result::Result::Ok(#solved.map(|_| #motion));
                 }
                 #factor
-                ::mechgen::__private::rates_accuracy_at(
+                let #accuracy = ::mechgen::__private::rates_accuracy_at(
                     T::one() / #relative.abs(),
                     ::mechgen::Order::Acceleration,
                     &#options.accuracy,
@@ -222,6 +223,7 @@ impl Generator<'_> {
                         position: #ty { #(#unknown_names),* },
                         velocity: #ty::from_array(#rates),
                         acceleration: #ty::from_array(#accelerations),
+                        accuracy: #accuracy,
                     },
                     iterations: #converged.solved.iterations,
                     residual_norm: #converged.solved.residual_norm,
