@@ -433,10 +433,11 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
             if iterations >= options.max_iterations {
                 break 'common;
             }
+            // A step that is not finite is not tested here: it makes an iterate that is not
+            // finite, whose residual is not finite either (every unknown moves the loops),
+            // so the next evaluation leaves the solve to `otherwise`, as [`newton`]'s test
+            // of the step would.
             let step = jacobian.solve(here.residual);
-            if !all_finite(&step) {
-                break 'common;
-            }
             // [`newton`]'s full step, `x − 1·step`.
             for (t, d) in x.iter_mut().zip(step) {
                 *t = *t - T::one() * d;
