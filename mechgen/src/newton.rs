@@ -727,6 +727,62 @@ impl<T: Real, const K: usize> Turnings<T, K> {
     }
 }
 
+/// The sines and cosines of the unknown angles along [`newton_common`]'s iteration: fresh
+/// pairs at the guess, computed before it ([`Started::at`]), then those pairs turned as
+/// [`Turnings`] turns them, the same arithmetic from the same pairs, while every angle stays
+/// within 2⁻¹⁰ of its pair's; beyond, NaN, which leaves the solve to [`newton`] (whose
+/// turnings then compute pairs afresh). The iteration so makes no call, which would clobber
+/// every register it keeps.
+#[derive(Clone, Copy, Debug)]
+pub struct Started<T, const K: usize> {
+    /// The angles of the fresh pairs.
+    angle: [T; K],
+    sin: [T; K],
+    cos: [T; K],
+    /// Whether the pairs have been handed out yet (the first evaluation, at the guess, takes
+    /// them as they are).
+    turning: bool,
+}
+
+impl<T: Real, const K: usize> Started<T, K> {
+    /// The pairs at `angles`, fresh.
+    #[inline(always)]
+    pub fn at(angles: [T; K]) -> Self {
+        let (sin, cos) = fresh_sin_cos(angles);
+        Started {
+            angle: angles,
+            sin,
+            cos,
+            turning: false,
+        }
+    }
+
+    /// `(sin angles, cos angles)`: the fresh pairs the first time, turned after.
+    #[inline(always)]
+    pub fn sin_cos(&mut self, angles: [T; K]) -> ([T; K], [T; K]) {
+        if !self.turning {
+            self.turning = true;
+            return (self.sin, self.cos);
+        }
+        let mut steps = angles;
+        for (step, last) in steps.iter_mut().zip(self.angle) {
+            *step = *step - last;
+        }
+        if steps
+            .iter()
+            .all(|step| step.abs() <= T::constant(TURN_LIMIT))
+        {
+            let (mut sines, mut cosines) = (self.sin, self.cos);
+            for ((sin, cos), step) in sines.iter_mut().zip(&mut cosines).zip(steps) {
+                (*sin, *cos) = rotate(*sin, *cos, step);
+            }
+            (sines, cosines)
+        } else {
+            ([T::nan(); K], [T::nan(); K])
+        }
+    }
+}
+
 /// `(sin, cos)` of an angle rotated by `step`, `|step| ≤ 2⁻¹⁰`: [`Turning`]'s rotation.
 #[inline(always)]
 fn rotate<T: Real>(sin: T, cos: T, step: T) -> (T, T) {
