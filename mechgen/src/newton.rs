@@ -375,13 +375,15 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
             // (which [`newton`] takes whole only then), so finite and not NaN; at the guess,
             // below infinity. Then their largest is [`weighted_norm`]'s, and the unweighted
             // components, finite too, give [`max_abs`]'s where it is wanted.
-            if !here
+            // The tests together (`&`, not `&&`), for one branch.
+            let lower = here
                 .residual
                 .iter()
                 .zip(&here.weights)
-                .all(|(r, w)| r.abs() * *w < previous_residual)
-                || !here.scale.is_finite()
-            {
+                .fold(here.scale.is_finite(), |lower, (r, w)| {
+                    lower & (r.abs() * *w < previous_residual)
+                });
+            if !lower {
                 break 'common;
             }
             let weighted = here
