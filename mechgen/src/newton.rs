@@ -359,8 +359,10 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
 ) -> R {
     let tolerance = options.tolerance;
     'common: {
-        // Finite and not negative (false for NaN).
-        if !(tolerance >= T::zero() && tolerance <= T::max_value() && all_finite(&guess)) {
+        // Finite and not negative (false for NaN). A guess that is not finite is not tested
+        // here: its residual is not finite either (every unknown moves the loops), so the
+        // first evaluation leaves the solve to `otherwise`, as [`newton`]'s test would.
+        if !(tolerance >= T::zero() && tolerance <= T::max_value()) {
             break 'common;
         }
         let rounding_floor = T::constant(16.0) * T::epsilon();
