@@ -343,9 +343,11 @@ pub fn stagnated<T: Real, const N: usize, P>(
 /// square root and division to the solution) and the same tests in the same arithmetic, so
 /// that what it hands `then` is what [`newton`] returns, bit for bit. It leaves the solve to
 /// `otherwise` wherever [`newton`] would do something else or its verdict is not certain
-/// here: an argument or a value that is not finite, a Jacobian near singular or in need of
-/// scaling, a step that does not lower the residual (which [`newton`] halves, or takes as
-/// stagnation), the iteration cap, the other branch. (The solution goes to `then` rather
+/// here: an argument or a value that is not finite (generated code's evaluation, whose sines
+/// and cosines are [`Started`]'s, gives NaN where an angle has moved beyond a turn from the
+/// guess), a Jacobian near singular or in need of scaling, a step that does not lower the
+/// residual (which [`newton`] halves, or takes as stagnation), the iteration cap, the other
+/// branch. (The solution goes to `then` rather
 /// than out in an `Option`, whose tag would share a byte with the factors' and keep them in
 /// memory.)
 #[inline(always)]
@@ -749,10 +751,20 @@ pub struct Started<T, const K: usize> {
 }
 
 impl<T: Real, const K: usize> Started<T, K> {
-    /// The pairs at `angles`, fresh.
+    /// The pairs at `angles`, fresh: as the safeguarded iteration's evaluation computes them
+    /// (one angle's by [`Turning`], the platform's `sin_cos`; several by [`Turnings`]), so
+    /// that either path makes the same iterates.
     #[inline(always)]
     pub fn at(angles: [T; K]) -> Self {
-        let (sin, cos) = fresh_sin_cos(angles);
+        let (sin, cos) = if K == 1 {
+            let (mut sin, mut cos) = (angles, angles);
+            for ((s, c), a) in sin.iter_mut().zip(&mut cos).zip(angles) {
+                (*s, *c) = a.sin_cos();
+            }
+            (sin, cos)
+        } else {
+            fresh_sin_cos(angles)
+        };
         Started {
             angle: angles,
             sin,
@@ -875,6 +887,28 @@ mod tests {
         }
     }
 
+    /// [`four_bar`] as generated code evaluates it on Newton's common path: the sines and
+    /// cosines at `guess` computed first, then only turned.
+    fn four_bar_started(
+        theta2: f64,
+        guess: [f64; 2],
+    ) -> impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, [f64; 4]> {
+        let [l1, l2, l3, l4] = [180.0, 80.0, 200.0, 150.0];
+        let (s2, c2) = theta2.sin_cos();
+        let mut started = Started::<f64, 2>::at(guess);
+        move |x: &[f64; 2]| {
+            let ([s3, s4], [c3, c4]) = started.sin_cos(*x);
+            let (t0, t1, t2, t3) = (l3 * c3, l3 * s3, l4 * c4, l4 * s4);
+            Linearisation {
+                residual: [l2 * c2 + t0 - t2 - l1, l2 * s2 + t1 - t3],
+                jacobian: [[-t1, t3], [t0, -t2]],
+                scale: l1 + l2 + l3 + l4,
+                weights: [1.0; 2],
+                payload: [s3, c3, s4, c4],
+            }
+        }
+    }
+
     fn bits(converged: &Converged<f64, 2, [f64; 4]>) -> [u64; 6] {
         let [a, b] = converged.solved.value;
         let [c, d] = converged.jacobian.solve([1.0, -2.0]);
@@ -892,17 +926,34 @@ mod tests {
     #[test]
     fn the_common_path_returns_what_newton_returns_bit_for_bit() {
         let mut common = 0;
+        // The open branch around the turn, by continuation.
+        let mut solutions = [[0.37, 1.26]; 360];
+        let mut solution = solutions[0];
+        for (k, slot) in solutions.iter_mut().enumerate() {
+            let theta2 = (k as f64).to_radians();
+            let options = NewtonOptions::default();
+            let solved = newton(theta2, solution, &options, true, || None, four_bar(theta2));
+            solution = solved.expect("the open branch").solved.value;
+            *slot = solution;
+        }
         for tolerance in [0.0, 1e-12, 1e-4] {
             let options = NewtonOptions::new(tolerance, 50);
-            for k in 0..360 {
-                let theta2 = f64::from(k).to_radians();
-                // From near the open branch's solution to far from it.
-                for offset in [1e-9, 1e-4, 1e-2, 0.3, 2.0] {
-                    let guess = [0.37 + offset, 1.26 - offset];
+            for (k, solution) in solutions.iter().enumerate() {
+                let theta2 = (k as f64).to_radians();
+                // From near the solution (a turn of the sines and cosines reaches every
+                // iterate) to far from it (the common path leaves it to `newton`).
+                for offset in [1e-9, 1e-6, 1e-4, 5e-4, 1e-2, 0.3, 2.0] {
+                    let guess = [solution[0] + offset, solution[1] - offset];
                     let safeguarded =
                         newton(theta2, guess, &options, true, || None, four_bar(theta2));
-                    let quick =
-                        newton_common(guess, &options, true, four_bar(theta2), Some, || None);
+                    let quick = newton_common(
+                        guess,
+                        &options,
+                        true,
+                        four_bar_started(theta2, guess),
+                        Some,
+                        || None,
+                    );
                     if let Some(quick) = quick {
                         common += 1;
                         let safeguarded = safeguarded.expect("the common path solved it");
@@ -916,8 +967,8 @@ mod tests {
                 }
             }
         }
-        // Most solves take the common path.
-        assert!(common > 3 * 360 * 3, "{common}");
+        // The solves from near the solution take the common path.
+        assert!(common >= 3 * 360 * 4, "{common}");
     }
 
     #[test]
@@ -962,6 +1013,19 @@ mod tests {
                 assert!((c - cosines[k]).abs() <= 2.0 * f64::EPSILON);
             }
         }
+        // The common path's: the fresh pairs as they are, then turned the same way (one
+        // angle's, as a `Turning` turns it), and NaN beyond a turn.
+        let mut started = Started::<f64, 2>::at([0.3, -2.0]);
+        let mut one = Started::<f64, 1>::at([0.3]);
+        let (mut turnings, mut turning) = (Turnings::<f64, 2>::new(), Turning::<f64>::new());
+        for angles in [[0.3, -2.0], [0.3001, -2.0002], [0.30010001, -2.00020001]] {
+            let (sines, cosines) = turnings.sin_cos(angles);
+            assert_eq!(started.sin_cos(angles), (sines, cosines));
+            let (s, c) = turning.sin_cos(angles[0]);
+            assert_eq!(one.sin_cos([angles[0]]), ([s], [c]));
+        }
+        let (sines, cosines) = started.sin_cos([1.0, -2.0]);
+        assert!(sines.iter().chain(&cosines).all(|v| v.is_nan()));
         let (sines, _) = Turnings::<f64, 2>::new().sin_cos([2e6, f64::NAN]);
         assert_eq!(sines[0], 2e6f64.sin());
         assert!(sines[1].is_nan());

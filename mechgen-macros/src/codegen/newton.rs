@@ -479,19 +479,27 @@ impl Generator<'_> {
         // before its iteration, and only turns them inside it (`Started`: an angle that
         // moves too far for a turn gives NaN, which leaves the solve to the safeguarded
         // Newton), so that its iteration makes no call.
-        let at_guess = |name: &Ident| {
-            let index = self.model.unknowns.iter().position(|u| u.name == *name);
-            let index = Literal::usize_unsuffixed(index.unwrap_or_default());
-            quote!(#guess.to_array()[#index])
-        };
+        // The guess's angles, bound by their names (the closure's own bindings shadow them).
+        let turned_names: Vec<&Ident> = angles.iter().map(|(_, name, _, _)| *name).collect();
+        let guess_pattern = self.model.unknowns.iter().map(|u| {
+            if turned_names.contains(&&u.name) {
+                let name = &u.name;
+                quote!(#name)
+            } else {
+                quote!(_)
+            }
+        });
+        let at_guess = quote!(let [#(#guess_pattern),*] = #guess.to_array(););
         let (turnings, turns, common_turnings, common_turns) = match angles.as_slice() {
             [(stem, name, sin, cos)] => {
                 let turning = local(&format!("turning_{stem}"));
-                let start = at_guess(name);
                 (
                     quote!(let mut #turning = ::mechgen::__private::Turning::new();),
                     quote!(let (#sin, #cos) = #turning.sin_cos(#name);),
-                    quote!(let mut #turning = ::mechgen::__private::Started::at([#start]);),
+                    quote! {
+                        #at_guess
+                        let mut #turning = ::mechgen::__private::Started::at([#name]);
+                    },
                     quote!(let ([#sin], [#cos]) = #turning.sin_cos([#name]);),
                 )
             }
@@ -503,15 +511,17 @@ impl Generator<'_> {
             ),
             _ => {
                 let turnings = local("turnings");
-                let names: Vec<&Ident> = angles.iter().map(|(_, name, _, _)| *name).collect();
-                let starts = names.iter().map(|name| at_guess(name));
+                let names = &turned_names;
                 let sines = angles.iter().map(|(_, _, sin, _)| sin);
                 let cosines = angles.iter().map(|(_, _, _, cos)| cos);
                 let pattern = quote!(([#(#sines),*], [#(#cosines),*]));
                 (
                     quote!(let mut #turnings = ::mechgen::__private::Turnings::new();),
                     quote!(let #pattern = #turnings.sin_cos([#(#names),*]);),
-                    quote!(let mut #turnings = ::mechgen::__private::Started::at([#(#starts),*]);),
+                    quote! {
+                        #at_guess
+                        let mut #turnings = ::mechgen::__private::Started::at([#(#names),*]);
+                    },
                     quote!(let #pattern = #turnings.sin_cos([#(#names),*]);),
                 )
             }
