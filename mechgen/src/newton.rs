@@ -183,6 +183,10 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     let quarter = T::constant(0.25);
     let mut x = guess;
     let mut here = linearise(&x);
+    // The residual as the tests read it: each loop's against its own rounding. Finite only
+    // if every component is (the weights are positive), and zero only if each is. Carried
+    // from the step's test to the next iteration, which reads the same evaluation.
+    let mut weighted = weighted_norm(&here.residual, &here.weights);
     let mut iterations = 0;
     let mut orientation = None;
     // The residual before the last step. Newton squares the relative error at each step, so
@@ -192,9 +196,6 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     // polishes the result rather than stopping short of what the float type allows.
     let mut previous_residual = T::infinity();
     loop {
-        // The residual as the tests read it: each loop's against its own rounding. Finite
-        // only if every component is (the weights are positive), and zero only if each is.
-        let weighted = weighted_norm(&here.residual, &here.weights);
         if !weighted.is_finite() || !here.scale.is_finite() {
             return Err(Error::NonFinite {
                 quantity: "loop residual",
@@ -277,12 +278,11 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         };
         let mut next = stepped(T::one());
         let mut there = linearise(&next);
+        let mut there_weighted = weighted_norm(&there.residual, &there.weights);
         let mut fraction = T::one();
         let mut halvings = 0;
         // Not lower (a NaN residual is not lower either).
-        while weighted_norm(&there.residual, &there.weights).partial_cmp(&weighted)
-            != Some(Ordering::Less)
-        {
+        while there_weighted.partial_cmp(&weighted) != Some(Ordering::Less) {
             if weighted <= T::constant(STAGNATION_FLOOR) * floor {
                 // Within a few units of the rounding floor no step lowers the residual: this is
                 // what rounding lets the loops close to (intermediate values of a coupled
@@ -311,10 +311,12 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             fraction = fraction * T::constant(0.5);
             next = stepped(fraction);
             there = linearise(&next);
+            there_weighted = weighted_norm(&there.residual, &there.weights);
         }
         previous_residual = weighted;
         x = next;
         here = there;
+        weighted = there_weighted;
         iterations += 1;
     }
 }
