@@ -512,14 +512,16 @@ fn kantorovich<T: Real, const N: usize, P>(at: &Linearisation<T, N, P>, conditio
 /// The largest absolute component (NaN if any component is NaN).
 /// The largest `|r|·w`, NaN if any is.
 fn weighted_norm<T: Real, const N: usize>(residual: &[T; N], weights: &[T; N]) -> T {
-    residual.iter().zip(weights).fold(T::zero(), |acc, (r, w)| {
-        let v = r.abs() * *w;
-        if v.is_nan() || acc.is_nan() {
-            T::nan()
-        } else {
-            acc.max(v)
-        }
-    })
+    // The largest by `max` (which passes over NaN), and NaN by the sum, without a branch per
+    // component: a sum of values that are not negative is NaN only if one of them is.
+    let (largest, sum) = residual
+        .iter()
+        .zip(weights)
+        .fold((T::zero(), T::zero()), |(largest, sum), (r, w)| {
+            let v = r.abs() * *w;
+            (largest.max(v), sum + v)
+        });
+    if sum.is_nan() { T::nan() } else { largest }
 }
 
 /// The weight of a loop whose own vectors' magnitudes sum to `own` in a mechanism whose
