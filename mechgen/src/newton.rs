@@ -514,13 +514,14 @@ fn kantorovich<T: Real, const N: usize, P>(at: &Linearisation<T, N, P>, conditio
 fn weighted_norm<T: Real, const N: usize>(residual: &[T; N], weights: &[T; N]) -> T {
     // The largest by `max` (which passes over NaN), and NaN by the sum, without a branch per
     // component: a sum of values that are not negative is NaN only if one of them is.
-    let (largest, sum) = residual
-        .iter()
-        .zip(weights)
-        .fold((T::zero(), T::zero()), |(largest, sum), (r, w)| {
-            let v = r.abs() * *w;
-            (largest.max(v), sum + v)
-        });
+    let (largest, sum) =
+        residual
+            .iter()
+            .zip(weights)
+            .fold((T::zero(), T::zero()), |(largest, sum), (r, w)| {
+                let v = r.abs() * *w;
+                (largest.max(v), sum + v)
+            });
     if sum.is_nan() { T::nan() } else { largest }
 }
 
