@@ -305,15 +305,15 @@ impl<T: Real, const N: usize> Factored<T, N> {
         let (i, j) = (0, N - 1);
         let (a00, a01, a10, a11) = (a[i][i], a[i][j], a[j][i], a[j][j]);
         let column_product = (a00 * a00 + a10 * a10) * (a01 * a01 + a11 * a11);
-        // `unscaled_columns2`'s test: the squares neither overflow nor underflow (nor are NaN).
-        if !(column_product >= T::min_positive_value() && column_product <= T::max_value()) {
-            return None;
-        }
         let determinant = a00 * a11 - a01 * a10;
-        // |det|/√product > 2√ε, so `check_determinant`'s rounded ratio exceeds √ε (false for
-        // NaN; an overflowing square is a determinant far from singular).
+        // `unscaled_columns2`'s test: the squares neither overflow nor underflow (nor are NaN);
+        // and |det|/√product > 2√ε, so `check_determinant`'s rounded ratio exceeds √ε (false
+        // for NaN; an overflowing square is a determinant far from singular). The three
+        // together (`&`, not `&&`), for one branch.
         let four_epsilon = T::constant(4.0) * T::epsilon();
-        let regular = determinant * determinant > four_epsilon * column_product;
+        let regular = (column_product >= T::min_positive_value())
+            & (column_product <= T::max_value())
+            & (determinant * determinant > four_epsilon * column_product);
         if !regular {
             return None;
         }

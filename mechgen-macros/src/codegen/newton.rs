@@ -40,8 +40,11 @@ impl Generator<'_> {
             ""
         };
         let Linearised {
-            hoisted, closure, ..
-        } = self.linearisation(&x);
+            hoisted,
+            closure,
+            common_closure,
+            ..
+        } = self.linearisation(&x, &guess);
         let (doc, signature) = if public {
             let doc = doc(&format!(
                 "Solves the loops for the unknowns at `{input}` by a safeguarded Newton-Raphson \
@@ -116,7 +119,7 @@ impl Generator<'_> {
                     #guess.to_array(),
                     #options,
                     #keep_orientation,
-                    #closure,
+                    #common_closure,
                     |#converged| -> #result { #finish },
                     || self.#aside(#input, #guess, #options),
                 )
@@ -240,9 +243,10 @@ impl Generator<'_> {
         let Linearised {
             hoisted,
             closure,
+            common_closure,
             named,
             used: bound,
-        } = self.linearisation(&x);
+        } = self.linearisation(&x, &guess);
         let (keep_orientation, branch_check) =
             self.branch_keeping(quote!(&#ty::from_array(#converged.solved.value)));
 
@@ -321,7 +325,7 @@ impl Generator<'_> {
                     #guess.to_array(),
                     #options,
                     #keep_orientation,
-                    #closure,
+                    #common_closure,
                     |#converged| -> ::core::result::Result<
                         ::mechgen::Solved<::mechgen::Motion<#ty<T>, T>, T>,
                         ::mechgen::Error<T>,
@@ -428,7 +432,7 @@ impl Generator<'_> {
     /// that depends only on the parameters and input computed once, before the closure. The
     /// closure hands back, as its payload, every value it named (sines, cosines, shared
     /// products), for the rates at the solution.
-    fn linearisation(&self, x: &Ident) -> Linearised {
+    fn linearisation(&self, x: &Ident, guess: &Ident) -> Linearised {
         let n = self.model.unknowns.len();
         let eq = self.equations;
         let entries: Vec<ExprId> = eq
@@ -473,23 +477,54 @@ impl Generator<'_> {
         }
         // Several angles share one `Turnings`, whose fresh sines and cosines come from one
         // pass of vector arithmetic; a lone angle has its `Turning`.
-        let (turnings, turns) = match angles.as_slice() {
+        // The common path's evaluation (`newton_common`) computes the pairs at the guess,
+        // before its iteration, and only turns them inside it (`Started`: an angle that
+        // moves too far for a turn gives NaN, which leaves the solve to the safeguarded
+        // Newton), so that its iteration makes no call.
+        // The guess's angles, bound by their names (the closure's own bindings shadow them).
+        let turned_names: Vec<&Ident> = angles.iter().map(|(_, name, _, _)| *name).collect();
+        let guess_pattern = self.model.unknowns.iter().map(|u| {
+            if turned_names.contains(&&u.name) {
+                let name = &u.name;
+                quote!(#name)
+            } else {
+                quote!(_)
+            }
+        });
+        let at_guess = quote!(let [#(#guess_pattern),*] = #guess.to_array(););
+        let (turnings, turns, common_turnings, common_turns) = match angles.as_slice() {
             [(stem, name, sin, cos)] => {
                 let turning = local(&format!("turning_{stem}"));
                 (
                     quote!(let mut #turning = ::mechgen::__private::Turning::new();),
                     quote!(let (#sin, #cos) = #turning.sin_cos(#name);),
+                    quote! {
+                        #at_guess
+                        let mut #turning = ::mechgen::__private::Started::at([#name]);
+                    },
+                    quote!(let ([#sin], [#cos]) = #turning.sin_cos([#name]);),
                 )
             }
-            _ if angles.is_empty() => (TokenStream::new(), TokenStream::new()),
+            _ if angles.is_empty() => (
+                TokenStream::new(),
+                TokenStream::new(),
+                TokenStream::new(),
+                TokenStream::new(),
+            ),
             _ => {
                 let turnings = local("turnings");
-                let names = angles.iter().map(|(_, name, _, _)| name);
+                let names = &turned_names;
                 let sines = angles.iter().map(|(_, _, sin, _)| sin);
                 let cosines = angles.iter().map(|(_, _, _, cos)| cos);
+                let pattern = quote!(([#(#sines),*], [#(#cosines),*]));
                 (
                     quote!(let mut #turnings = ::mechgen::__private::Turnings::new();),
-                    quote!(let ([#(#sines),*], [#(#cosines),*]) = #turnings.sin_cos([#(#names),*]);),
+                    quote!(let #pattern = #turnings.sin_cos([#(#names),*]);),
+                    quote! {
+                        #at_guess
+                        let mut #turnings = ::mechgen::__private::Started::at([#(#names),*]);
+                    },
+                    quote!(let #pattern = #turnings.sin_cos([#(#names),*]);),
                 )
             }
         };
@@ -514,7 +549,7 @@ impl Generator<'_> {
         let (residual, rest) = outputs.split_at(n);
         let (jacobian, magnitudes) = rest.split_at(n * n);
         let jacobian = matrix(jacobian, n);
-        let names = self.model.unknowns.iter().map(|u| &u.name);
+        let names: Vec<&Ident> = self.model.unknowns.iter().map(|u| &u.name).collect();
         // The payload carries what is dear to compute again (the sines and cosines); the
         // rates redo the odd product rather than copy it out of every evaluation.
         let named: Vec<(ExprId, Ident, usize)> = named
@@ -548,16 +583,8 @@ impl Generator<'_> {
             quote!([#(#payload),*])
         };
         let count = Literal::usize_unsuffixed(n);
-        Linearised {
-            hoisted: quote! {
-                #bindings
-                #input_trig
-                #(#hoisted)*
-                #scale_before
-            },
-            // With its own turnings, so that it can be emitted more than once (for the common
-            // path and the fallback of `fast_newton`); it copies the values it reads.
-            closure: quote! {
+        let evaluation = |turnings: &TokenStream, turns: &TokenStream| {
+            quote! {
                 {
                     #turnings
                     move |#x: &[T; #count]| {
@@ -574,7 +601,19 @@ impl Generator<'_> {
                         }
                     }
                 }
+            }
+        };
+        Linearised {
+            hoisted: quote! {
+                #bindings
+                #input_trig
+                #(#hoisted)*
+                #scale_before
             },
+            // With its own turnings, so that it can be emitted more than once (for the common
+            // path and the fallback of `fast_newton`); it copies the values it reads.
+            closure: evaluation(&turnings, &turns),
+            common_closure: evaluation(&common_turnings, &common_turns),
             named,
             used,
         }
@@ -631,6 +670,9 @@ struct Linearised {
     /// The evaluation at an iterate: a block that makes the closure, with the state its
     /// turnings keep.
     closure: TokenStream,
+    /// The same for `newton_common`: its turnings start at the guess, and give NaN rather
+    /// than call `sin_cos` again.
+    common_closure: TokenStream,
     /// Every value the two name, with its stage: 0 hoisted, 1 in the closure's payload.
     named: Vec<(ExprId, Ident, usize)>,
     /// The variables they read: the parameters among them are bound.
