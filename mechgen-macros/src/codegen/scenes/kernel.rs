@@ -130,9 +130,9 @@ impl Generator<'_> {
         }
         let values: Vec<Emitted> = emitted.collect();
 
-        // The constants and parameters the kernel reads, from `self`.
+        // The constants and parameters the kernel reads, from `self`, each with its local.
         let read = read_presets(graph, &roots, &presets);
-        let constant_bindings = constants
+        let mut bindings: Vec<(Ident, TokenStream)> = constants
             .ids
             .iter()
             .zip(&constant_names)
@@ -140,17 +140,22 @@ impl Generator<'_> {
             .filter(|(_, (id, _))| read.contains(id))
             .map(|(k, (_, name))| {
                 let k = Literal::usize_unsuffixed(k);
-                quote!(let #name = self.constants[#k];)
-            });
-        let unscale = local("unscale");
-        let parameter_bindings = self.parameter_bindings(&block.used, quote!(self.scaled));
+                (name.clone(), quote!(let #name = self.constants[#k];))
+            })
+            .collect();
+        bindings.extend(block.used.iter().filter_map(|&var| match var {
+            Var::Value(SymbolRef::Param(i)) => {
+                let name = &self.model.params[i].name;
+                Some((name.clone(), quote!(let #name = self.scaled.#name;)))
+            }
+            _ => None,
+        }));
         // The outputs in lengths are back in the mechanism's units through `1/scale`, which
         // mostly sits in a constant; the kernel reads it where one does not hold it.
-        let parameter_bindings = if block.used.contains(&Var::Unscale) {
-            quote!(#parameter_bindings let #unscale = self.unscale;)
-        } else {
-            parameter_bindings
-        };
+        if block.used.contains(&Var::Unscale) {
+            let unscale = local("unscale");
+            bindings.push((unscale.clone(), quote!(let #unscale = self.unscale;)));
+        }
         // A length input, its rate and acceleration, in the scaled units.
         let scaled_inputs = |names: &[&Ident]| {
             if self.model.input.kind != Kind::Length {
@@ -238,7 +243,7 @@ impl Generator<'_> {
                 &arguments,
                 BatchParts {
                     input_trig,
-                    bindings: quote!(#(#constant_bindings)* #parameter_bindings),
+                    bindings: bindings.into_iter().map(|(_, binding)| binding).collect(),
                     // In the loop, so the redo of a failed lane passes the rates as given.
                     scaled_input: quote!(#scaled_input #scaled_rates),
                     body,
@@ -248,10 +253,9 @@ impl Generator<'_> {
         }
         let checked_name = checked_kernel(name);
         // What the scalar kernels, fast and checked, compute before their outputs.
+        let body = read_late(bindings, body, &checked);
         let computed = quote! {
             #input_trig
-            #(#constant_bindings)*
-            #parameter_bindings
             #scaled_input
             #scaled_rates
             #(#body)*
@@ -339,6 +343,44 @@ impl Generator<'_> {
         }
         pass
     }
+}
+
+/// `body` with each of `bindings` (a local read from `self`) just before the first
+/// statement that reads it, or at the end if only the outputs (`tail`) do. A call out of
+/// line (an angle's arc sine) may write memory as far as the compiler knows, so a value read
+/// before it and used after it is kept on the stack across it; read after it, it is read
+/// once, where it is used.
+fn read_late(
+    bindings: Vec<(Ident, TokenStream)>,
+    body: Vec<TokenStream>,
+    tail: &[TokenStream],
+) -> Vec<TokenStream> {
+    let mut at: Vec<Vec<TokenStream>> = vec![Vec::new(); body.len() + 1];
+    for (name, binding) in bindings {
+        let first = body
+            .iter()
+            .position(|statement| mentions(statement, &name))
+            .unwrap_or(body.len());
+        debug_assert!(first < body.len() || tail.iter().any(|value| mentions(value, &name)));
+        at[first].push(binding);
+    }
+    let mut out = Vec::new();
+    let mut at = at.into_iter();
+    for statement in body {
+        out.extend(at.next().into_iter().flatten());
+        out.push(statement);
+    }
+    out.extend(at.flatten());
+    out
+}
+
+/// Whether `tokens` name the local `name` anywhere.
+fn mentions(tokens: &TokenStream, name: &Ident) -> bool {
+    tokens.clone().into_iter().any(|tree| match tree {
+        proc_macro2::TokenTree::Ident(ident) => ident == *name,
+        proc_macro2::TokenTree::Group(group) => mentions(&group.stream(), name),
+        _ => false,
+    })
 }
 
 /// The checked kernel of scene `name`.
