@@ -18,7 +18,7 @@ use crate::codegen::emit::{Context, Emitted, children, emit, local};
 use crate::codegen::{Generator, arg};
 use crate::model::{Kind, SymbolRef};
 use crate::scene::{Order, Quantity, Scene};
-use crate::symbolic::{ExprId, Graph, Node, Straight, Var};
+use crate::symbolic::{AuxKind, ExprId, Graph, Node, Straight, Var};
 
 impl Generator<'_> {
     /// One scene's kernel, in `mode`: the auxiliary values it needs, each after the
@@ -118,16 +118,30 @@ impl Generator<'_> {
             rates_threshold,
             rates_order,
         };
-        // Statements of stage k, then auxiliary value k.
+        // Statements of stage k, then auxiliary value k; an angle that only an output reads
+        // comes last (see `outputs_only`).
+        let late = if lanes {
+            BTreeSet::new()
+        } else {
+            outputs_only(graph, straight, &needed, &arguments, &outputs)
+        };
         let mut body = Vec::new();
+        let mut angles = Vec::new();
         let mut branches =
             self.branch_choices(self.equations.closed_form.as_deref().unwrap_or_default());
         for (k, stage_statements) in statements.iter().enumerate() {
             body.extend(stage_statements.iter().cloned());
             if needed.contains(&k) {
-                body.push(self.aux_definition(k, straight, &mut emitted, &mut branches, &kind));
+                let definition =
+                    self.aux_definition(k, straight, &mut emitted, &mut branches, &kind);
+                if late.contains(&k) {
+                    angles.push(definition);
+                } else {
+                    body.push(definition);
+                }
             }
         }
+        body.extend(angles);
         let values: Vec<Emitted> = emitted.collect();
 
         // The constants and parameters the kernel reads, from `self`, each with its local.
@@ -381,6 +395,47 @@ fn mentions(tokens: &TokenStream, name: &Ident) -> bool {
         proc_macro2::TokenTree::Group(group) => mentions(&group.stream(), name),
         _ => false,
     })
+}
+
+/// The angle among the `needed` auxiliary values, if it is the only one and nothing but an
+/// output reads it: a kernel computes it last, after all its arithmetic. An angle is an arc
+/// sine or cosine, a call out of line, across which every value still to be used is kept on
+/// the stack; at the end, only the outputs are. Two angles at the end would keep the
+/// second's arguments as well across the first call, and two calls in the middle cost less
+/// (the four-bar's angles: 3 instructions per call).
+fn outputs_only(
+    graph: &Graph,
+    straight: &Straight,
+    needed: &BTreeSet<usize>,
+    arguments: &[ExprId],
+    outputs: &[ExprId],
+) -> BTreeSet<usize> {
+    let aux = |id: ExprId| match graph.node(id) {
+        Node::Var(Var::Aux(k)) => Some(k as usize),
+        _ => None,
+    };
+    let mut read = BTreeSet::new();
+    let mut seen = vec![false; graph.len()];
+    let mut stack: Vec<ExprId> = arguments.iter().chain(outputs).copied().collect();
+    read.extend(arguments.iter().filter_map(|&id| aux(id)));
+    while let Some(id) = stack.pop() {
+        if std::mem::replace(&mut seen[id.index()], true) {
+            continue;
+        }
+        for child in children(graph.node(id)) {
+            read.extend(aux(child));
+            stack.push(child);
+        }
+    }
+    let angles: Vec<usize> = needed
+        .iter()
+        .copied()
+        .filter(|&k| matches!(straight.aux[k], AuxKind::Angle { .. }))
+        .collect();
+    match angles[..] {
+        [k] if !read.contains(&k) => BTreeSet::from([k]),
+        _ => BTreeSet::new(),
+    }
 }
 
 /// The checked kernel of scene `name`.
