@@ -296,6 +296,16 @@ impl Generator<'_> {
                 }
             };
         }
+        // An output that another one computes with is non-finite only if that one is too.
+        let covered = covered_outputs(graph, straight, &outputs);
+        let tested = if covered.is_empty() {
+            quote!(&#checked_values)
+        } else {
+            let tested = (0..outputs.len())
+                .filter(|k| !covered.contains(k))
+                .map(Literal::usize_unsuffixed);
+            quote!(&[#(#checked_values[#tested]),*])
+        };
         // The arguments as given, for the checked kernel: a length input is rescaled below.
         let passed = self.checked_arguments(scene);
         let (given, keep) = if self.model.input.kind == Kind::Length {
@@ -329,7 +339,7 @@ impl Generator<'_> {
                 // Every step that can fail gave NaN or an infinity, which reaches an output:
                 // one test here stands for all of them, and the checked kernel says why.
                 let #checked_values = [#(#checked),*];
-                if ::mechgen::__private::outputs_finite(&#checked_values) {
+                if ::mechgen::__private::outputs_finite(#tested) {
                     ::core::result::Result::Ok(#output_type { #(#fields),* })
                 } else {
                     self.#checked_name(#(#given),*)
@@ -436,6 +446,50 @@ fn outputs_only(
         [k] if !read.contains(&k) => BTreeSet::from([k]),
         _ => BTreeSet::new(),
     }
+}
+
+/// The outputs (by index) that the fast kernel's finiteness test may leave out: each is a
+/// term or factor, through sums, products, negations, square roots and named values, of
+/// another output that it tests. An infinity or NaN there makes that output an infinity or
+/// NaN too (`0·∞` is NaN; only a reciprocal or a choice would stop it, and neither is
+/// followed), so testing that one tests both.
+fn covered_outputs(graph: &Graph, straight: &Straight, outputs: &[ExprId]) -> BTreeSet<usize> {
+    let reach = |root: ExprId| {
+        let mut seen = BTreeSet::new();
+        let mut stack = vec![root];
+        while let Some(id) = stack.pop() {
+            let node = graph.node(id);
+            let next: Vec<ExprId> = match node {
+                Node::Add(..) | Node::Mul(..) | Node::Neg(_) | Node::Sqrt(_) => {
+                    children(node).collect()
+                }
+                Node::Var(Var::Aux(k)) => match straight.aux[k as usize] {
+                    AuxKind::Bind(x) => vec![x],
+                    _ => Vec::new(),
+                },
+                _ => Vec::new(),
+            };
+            for child in next {
+                if seen.insert(child) {
+                    stack.push(child);
+                }
+            }
+        }
+        seen
+    };
+    let reaches: Vec<BTreeSet<ExprId>> = outputs.iter().map(|&id| reach(id)).collect();
+    let mut covered = BTreeSet::new();
+    for (k, &output) in outputs.iter().enumerate() {
+        let by_another = (0..outputs.len()).any(|other| {
+            other != k
+                && !covered.contains(&other)
+                && (reaches[other].contains(&output) || (outputs[other] == output && other < k))
+        });
+        if by_another {
+            covered.insert(k);
+        }
+    }
+    covered
 }
 
 /// The checked kernel of scene `name`.
