@@ -44,8 +44,15 @@ pub fn all_finite<T: Real, const N: usize>(
 /// from finite values says no, wrongly but safely: the checked kernel then decides.
 #[inline(always)]
 pub fn outputs_finite<T: Real, const N: usize>(values: &[T; N]) -> bool {
-    let sum = values.iter().copied().reduce(|sum, value| sum + value);
-    sum.is_none_or(|sum| sum * T::zero() == T::zero())
+    // Two running sums, of the even-placed and the odd-placed values: a point's x and y sit
+    // side by side in one register, so the sums are one vector sum and one final addition,
+    // where a single running sum takes each value apart. `-0` is the sum of none (adding
+    // it is no instruction).
+    let mut sums = [-T::zero(); 2];
+    for (k, value) in values.iter().enumerate() {
+        sums[k % 2] = sums[k % 2] + *value;
+    }
+    (sums[0] + sums[1]) * T::zero() == T::zero()
 }
 
 /// `sign·√(plus − minus)`: a loop's branch-dependent root. A radicand below zero by no more

@@ -6,9 +6,10 @@
 //! The closed forms ([`FourBarNorton`], [`FourBarCouplerPoint`], [`SliderCrankClosed`],
 //! [`InvertedSliderCrankClosed`]) and the hand Newton ([`FourBarNewton`]) are what the most
 //! careful engineer would write for one mechanism in `f64`: a struct built once per mechanism
-//! holding every constant that depends only on the dimensions, and an `#[inline]` per-call
-//! method that calls one `sin_cos` (of the input), at most one `sqrt`, one inverse
-//! trigonometric call (`atan2` or `asin`) per angle returned and none otherwise, and one
+//! holding every constant that depends only on the dimensions, and a per-call method
+//! (`#[inline(always)]` for the closed forms, so that it is compiled whole into its caller as
+//! the generated scene kernels are, and measured at its best) that calls one `sin_cos` (of
+//! the input), at most one `sqrt`, one inverse trigonometric call (`atan2` or `asin`) per angle returned and none otherwise, and one
 //! division (the hand Newton: one `sin_cos` per unknown at its guess, turns of the link
 //! vectors after that, and one division per evaluation). They check nothing: outside the range of motion, or at a toggle, they return NaN or infinities. The
 //! num-dual and nalgebra baselines are what else a user would reach for.
@@ -139,7 +140,7 @@ impl FourBarNorton {
 
     /// `[[θ3, θ4], [ω3, ω4], [α3, α4]]` at the crank angle `theta2`, for the crank turning at
     /// `w2` and accelerating at `a2`, on the open branch.
-    #[inline]
+    #[inline(always)]
     pub fn motion(&self, theta2: f64, w2: f64, a2: f64) -> State {
         let (s2, c2) = theta2.sin_cos();
         let crank = [self.l2 * c2, self.l2 * s2];
@@ -265,7 +266,7 @@ impl FourBarCouplerPoint {
     }
 
     /// P at the crank angle `theta2`.
-    #[inline]
+    #[inline(always)]
     pub fn position(&self, theta2: f64) -> [f64; 2] {
         let (s2, c2) = theta2.sin_cos();
         let (crank, u, u_squared, [r3, h]) = self.chord(s2, c2);
@@ -281,7 +282,7 @@ impl FourBarCouplerPoint {
 
     /// `[P, v_P, a_P]` at the crank angle `theta2`, for the crank turning at `w2` and
     /// accelerating at `a2`.
-    #[inline]
+    #[inline(always)]
     pub fn motion(&self, theta2: f64, w2: f64, a2: f64) -> [[f64; 2]; 3] {
         let (s2, c2) = theta2.sin_cos();
         let (crank, u, u_squared, [r3, h]) = self.chord(s2, c2);
@@ -493,7 +494,7 @@ impl SliderCrankClosed {
 
     /// `[[θ3, d], [ω3, ḋ], [α3, d̈]]` at the crank angle `theta2`, for the crank turning at
     /// `w2` and accelerating at `a2`.
-    #[inline]
+    #[inline(always)]
     pub fn motion(&self, theta2: f64, w2: f64, a2: f64) -> State {
         let (s2, c2) = theta2.sin_cos();
         let (ax, ay) = (self.l2 * c2, self.l2 * s2);
@@ -575,7 +576,7 @@ impl InvertedSliderCrankClosed {
 
     /// `[[θ4, b], [ω4, ḃ], [α4, b̈]]` at the crank angle `theta2`, for the crank turning at
     /// `w2` and accelerating at `a2`.
-    #[inline]
+    #[inline(always)]
     pub fn motion(&self, theta2: f64, w2: f64, a2: f64) -> State {
         let (s2, c2) = theta2.sin_cos();
         let crank = [self.l2 * c2, self.l2 * s2];

@@ -18,7 +18,7 @@ use crate::codegen::emit::{Context, Emitted, children, emit, local};
 use crate::codegen::{Generator, arg};
 use crate::model::{Kind, SymbolRef};
 use crate::scene::{Order, Quantity, Scene};
-use crate::symbolic::{ExprId, Graph, Node, Straight, Var};
+use crate::symbolic::{AuxKind, ExprId, Graph, Node, Straight, Var};
 
 impl Generator<'_> {
     /// One scene's kernel, in `mode`: the auxiliary values it needs, each after the
@@ -118,21 +118,35 @@ impl Generator<'_> {
             rates_threshold,
             rates_order,
         };
-        // Statements of stage k, then auxiliary value k.
+        // Statements of stage k, then auxiliary value k; an angle that only an output reads
+        // comes last (see `outputs_only`).
+        let late = if lanes {
+            BTreeSet::new()
+        } else {
+            outputs_only(graph, straight, &needed, &arguments, &outputs)
+        };
         let mut body = Vec::new();
+        let mut angles = Vec::new();
         let mut branches =
             self.branch_choices(self.equations.closed_form.as_deref().unwrap_or_default());
         for (k, stage_statements) in statements.iter().enumerate() {
             body.extend(stage_statements.iter().cloned());
             if needed.contains(&k) {
-                body.push(self.aux_definition(k, straight, &mut emitted, &mut branches, &kind));
+                let definition =
+                    self.aux_definition(k, straight, &mut emitted, &mut branches, &kind);
+                if late.contains(&k) {
+                    angles.push(definition);
+                } else {
+                    body.push(definition);
+                }
             }
         }
+        body.extend(angles);
         let values: Vec<Emitted> = emitted.collect();
 
-        // The constants and parameters the kernel reads, from `self`.
+        // The constants and parameters the kernel reads, from `self`, each with its local.
         let read = read_presets(graph, &roots, &presets);
-        let constant_bindings = constants
+        let mut bindings: Vec<(Ident, TokenStream)> = constants
             .ids
             .iter()
             .zip(&constant_names)
@@ -140,17 +154,22 @@ impl Generator<'_> {
             .filter(|(_, (id, _))| read.contains(id))
             .map(|(k, (_, name))| {
                 let k = Literal::usize_unsuffixed(k);
-                quote!(let #name = self.constants[#k];)
-            });
-        let unscale = local("unscale");
-        let parameter_bindings = self.parameter_bindings(&block.used, quote!(self.scaled));
+                (name.clone(), quote!(let #name = self.constants[#k];))
+            })
+            .collect();
+        bindings.extend(block.used.iter().filter_map(|&var| match var {
+            Var::Value(SymbolRef::Param(i)) => {
+                let name = &self.model.params[i].name;
+                Some((name.clone(), quote!(let #name = self.scaled.#name;)))
+            }
+            _ => None,
+        }));
         // The outputs in lengths are back in the mechanism's units through `1/scale`, which
         // mostly sits in a constant; the kernel reads it where one does not hold it.
-        let parameter_bindings = if block.used.contains(&Var::Unscale) {
-            quote!(#parameter_bindings let #unscale = self.unscale;)
-        } else {
-            parameter_bindings
-        };
+        if block.used.contains(&Var::Unscale) {
+            let unscale = local("unscale");
+            bindings.push((unscale.clone(), quote!(let #unscale = self.unscale;)));
+        }
         // A length input, its rate and acceleration, in the scaled units.
         let scaled_inputs = |names: &[&Ident]| {
             if self.model.input.kind != Kind::Length {
@@ -238,7 +257,7 @@ impl Generator<'_> {
                 &arguments,
                 BatchParts {
                     input_trig,
-                    bindings: quote!(#(#constant_bindings)* #parameter_bindings),
+                    bindings: bindings.into_iter().map(|(_, binding)| binding).collect(),
                     // In the loop, so the redo of a failed lane passes the rates as given.
                     scaled_input: quote!(#scaled_input #scaled_rates),
                     body,
@@ -248,10 +267,9 @@ impl Generator<'_> {
         }
         let checked_name = checked_kernel(name);
         // What the scalar kernels, fast and checked, compute before their outputs.
+        let body = read_late(bindings, body, &checked);
         let computed = quote! {
             #input_trig
-            #(#constant_bindings)*
-            #parameter_bindings
             #scaled_input
             #scaled_rates
             #(#body)*
@@ -278,6 +296,16 @@ impl Generator<'_> {
                 }
             };
         }
+        // An output that another one computes with is non-finite only if that one is too.
+        let covered = covered_outputs(graph, straight, &outputs);
+        let tested = if covered.is_empty() {
+            quote!(&#checked_values)
+        } else {
+            let tested = (0..outputs.len())
+                .filter(|k| !covered.contains(k))
+                .map(Literal::usize_unsuffixed);
+            quote!(&[#(#checked_values[#tested]),*])
+        };
         // The arguments as given, for the checked kernel: a length input is rescaled below.
         let passed = self.checked_arguments(scene);
         let (given, keep) = if self.model.input.kind == Kind::Length {
@@ -311,7 +339,7 @@ impl Generator<'_> {
                 // Every step that can fail gave NaN or an infinity, which reaches an output:
                 // one test here stands for all of them, and the checked kernel says why.
                 let #checked_values = [#(#checked),*];
-                if ::mechgen::__private::outputs_finite(&#checked_values) {
+                if ::mechgen::__private::outputs_finite(#tested) {
                     ::core::result::Result::Ok(#output_type { #(#fields),* })
                 } else {
                     self.#checked_name(#(#given),*)
@@ -339,6 +367,129 @@ impl Generator<'_> {
         }
         pass
     }
+}
+
+/// `body` with each of `bindings` (a local read from `self`) just before the first
+/// statement that reads it, or at the end if only the outputs (`tail`) do. A call out of
+/// line (an angle's arc sine) may write memory as far as the compiler knows, so a value read
+/// before it and used after it is kept on the stack across it; read after it, it is read
+/// once, where it is used.
+fn read_late(
+    bindings: Vec<(Ident, TokenStream)>,
+    body: Vec<TokenStream>,
+    tail: &[TokenStream],
+) -> Vec<TokenStream> {
+    let mut at: Vec<Vec<TokenStream>> = vec![Vec::new(); body.len() + 1];
+    for (name, binding) in bindings {
+        let first = body
+            .iter()
+            .position(|statement| mentions(statement, &name))
+            .unwrap_or(body.len());
+        debug_assert!(first < body.len() || tail.iter().any(|value| mentions(value, &name)));
+        at[first].push(binding);
+    }
+    let mut out = Vec::new();
+    let mut at = at.into_iter();
+    for statement in body {
+        out.extend(at.next().into_iter().flatten());
+        out.push(statement);
+    }
+    out.extend(at.flatten());
+    out
+}
+
+/// Whether `tokens` name the local `name` anywhere.
+fn mentions(tokens: &TokenStream, name: &Ident) -> bool {
+    tokens.clone().into_iter().any(|tree| match tree {
+        proc_macro2::TokenTree::Ident(ident) => ident == *name,
+        proc_macro2::TokenTree::Group(group) => mentions(&group.stream(), name),
+        _ => false,
+    })
+}
+
+/// The angle among the `needed` auxiliary values, if it is the only one and nothing but an
+/// output reads it: a kernel computes it last, after all its arithmetic. An angle is an arc
+/// sine or cosine, a call out of line, across which every value still to be used is kept on
+/// the stack; at the end, only the outputs are. Two angles at the end would keep the
+/// second's arguments as well across the first call, and two calls in the middle cost less
+/// (the four-bar's angles: 3 instructions per call).
+fn outputs_only(
+    graph: &Graph,
+    straight: &Straight,
+    needed: &BTreeSet<usize>,
+    arguments: &[ExprId],
+    outputs: &[ExprId],
+) -> BTreeSet<usize> {
+    let aux = |id: ExprId| match graph.node(id) {
+        Node::Var(Var::Aux(k)) => Some(k as usize),
+        _ => None,
+    };
+    let mut read = BTreeSet::new();
+    let mut seen = vec![false; graph.len()];
+    let mut stack: Vec<ExprId> = arguments.iter().chain(outputs).copied().collect();
+    read.extend(arguments.iter().filter_map(|&id| aux(id)));
+    while let Some(id) = stack.pop() {
+        if std::mem::replace(&mut seen[id.index()], true) {
+            continue;
+        }
+        for child in children(graph.node(id)) {
+            read.extend(aux(child));
+            stack.push(child);
+        }
+    }
+    let angles: Vec<usize> = needed
+        .iter()
+        .copied()
+        .filter(|&k| matches!(straight.aux[k], AuxKind::Angle { .. }))
+        .collect();
+    match angles[..] {
+        [k] if !read.contains(&k) => BTreeSet::from([k]),
+        _ => BTreeSet::new(),
+    }
+}
+
+/// The outputs (by index) that the fast kernel's finiteness test may leave out: each is a
+/// term or factor, through sums, products, negations, square roots and named values, of
+/// another output that it tests. An infinity or NaN there makes that output an infinity or
+/// NaN too (`0·∞` is NaN; only a reciprocal or a choice would stop it, and neither is
+/// followed), so testing that one tests both.
+fn covered_outputs(graph: &Graph, straight: &Straight, outputs: &[ExprId]) -> BTreeSet<usize> {
+    let reach = |root: ExprId| {
+        let mut seen = BTreeSet::new();
+        let mut stack = vec![root];
+        while let Some(id) = stack.pop() {
+            let node = graph.node(id);
+            let next: Vec<ExprId> = match node {
+                Node::Add(..) | Node::Mul(..) | Node::Neg(_) | Node::Sqrt(_) => {
+                    children(node).collect()
+                }
+                Node::Var(Var::Aux(k)) => match straight.aux[k as usize] {
+                    AuxKind::Bind(x) => vec![x],
+                    _ => Vec::new(),
+                },
+                _ => Vec::new(),
+            };
+            for child in next {
+                if seen.insert(child) {
+                    stack.push(child);
+                }
+            }
+        }
+        seen
+    };
+    let reaches: Vec<BTreeSet<ExprId>> = outputs.iter().map(|&id| reach(id)).collect();
+    let mut covered = BTreeSet::new();
+    for (k, &output) in outputs.iter().enumerate() {
+        let by_another = (0..outputs.len()).any(|other| {
+            other != k
+                && !covered.contains(&other)
+                && (reaches[other].contains(&output) || (outputs[other] == output && other < k))
+        });
+        if by_another {
+            covered.insert(k);
+        }
+    }
+    covered
 }
 
 /// The checked kernel of scene `name`.

@@ -43,15 +43,13 @@ impl Graph {
             let (fixed, moving): (Vec<ExprId>, Vec<ExprId>) =
                 factors.iter().partition(|&&f| self.fixed[f.index()]);
             let moving = self.paired(moving);
-            let [fixed, moving] = [fixed, moving].map(|group| {
-                group
-                    .into_iter()
-                    .reduce(|product, factor| self.intern(Node::Mul(product, factor)))
-            });
-            match (fixed, moving) {
-                (Some(fixed), Some(moving)) => self.intern(Node::Mul(fixed, moving)),
-                (Some(only), None) | (None, Some(only)) => only,
-                (None, None) => self.constant(1.0),
+            let fixed = fixed
+                .into_iter()
+                .reduce(|product, factor| self.intern(Node::Mul(product, factor)));
+            match fixed {
+                Some(fixed) if !moving.is_empty() => self.reusing(fixed, moving),
+                Some(only) => only,
+                None => self.product(moving).unwrap_or_else(|| self.constant(1.0)),
             }
         } else {
             let mut product = factors[0];
@@ -73,6 +71,38 @@ impl Graph {
                 self.intern(Node::Mul(factor, product))
             }
         }
+    }
+
+    /// `fixed·(moving factors)`, but where `fixed` times one of the moving factors is a node
+    /// already (a crank's `l2·cos θ2`, say), that node times the other factors: a kernel
+    /// that computes the pair anyway pays one product less, where the grouped form would
+    /// multiply by `fixed` again.
+    fn reusing(&mut self, fixed: ExprId, mut moving: Vec<ExprId>) -> ExprId {
+        let existing = (moving.len() > 1)
+            .then(|| {
+                moving
+                    .iter()
+                    .position(|&factor| self.lookup(Node::Mul(fixed, factor)).is_some())
+            })
+            .flatten();
+        let fixed = match existing {
+            Some(at) => {
+                let factor = moving.remove(at);
+                self.intern(Node::Mul(fixed, factor))
+            }
+            None => fixed,
+        };
+        match self.product(moving) {
+            Some(moving) => self.intern(Node::Mul(fixed, moving)),
+            None => fixed,
+        }
+    }
+
+    /// `factors` multiplied left to right, if there are any.
+    fn product(&mut self, factors: Vec<ExprId>) -> Option<ExprId> {
+        factors
+            .into_iter()
+            .reduce(|product, factor| self.intern(Node::Mul(product, factor)))
     }
 
     /// The non-constant factors of a product (pushed to `factors`) and the product of its
