@@ -723,20 +723,8 @@ impl<T: Real, const K: usize> Turnings<T, K> {
     #[inline(always)]
     pub fn sin_cos(&mut self, angles: [T; K]) -> ([T; K], [T; K]) {
         // As `Turning::sin_cos`, lane by lane.
-        let mut steps = angles;
-        for (step, last) in steps.iter_mut().zip(self.angle) {
-            *step = *step - last;
-        }
-        // Not all small (a NaN step is not small either).
-        if steps
-            .iter()
-            .all(|step| step.abs() <= T::constant(TURN_LIMIT))
-        {
-            let (mut sines, mut cosines) = (self.sin, self.cos);
-            for ((sin, cos), step) in sines.iter_mut().zip(&mut cosines).zip(steps) {
-                (*sin, *cos) = rotate(*sin, *cos, step);
-            }
-            return (sines, cosines);
+        if let Some(turned) = turned(self.angle, self.sin, self.cos, angles) {
+            return turned;
         }
         (self.sin, self.cos) = fresh_sin_cos(angles);
         self.angle = angles;
@@ -791,23 +779,34 @@ impl<T: Real, const K: usize> Started<T, K> {
             self.turning = true;
             return (self.sin, self.cos);
         }
-        let mut steps = angles;
-        for (step, last) in steps.iter_mut().zip(self.angle) {
-            *step = *step - last;
-        }
-        if steps
-            .iter()
-            .all(|step| step.abs() <= T::constant(TURN_LIMIT))
-        {
-            let (mut sines, mut cosines) = (self.sin, self.cos);
-            for ((sin, cos), step) in sines.iter_mut().zip(&mut cosines).zip(steps) {
-                (*sin, *cos) = rotate(*sin, *cos, step);
-            }
-            (sines, cosines)
-        } else {
-            ([T::nan(); K], [T::nan(); K])
-        }
+        turned(self.angle, self.sin, self.cos, angles).unwrap_or(([T::nan(); K], [T::nan(); K]))
     }
+}
+
+/// The pairs `(sin, cos)` of `from` turned to `angles`, or `None` if some angle is more than
+/// 2⁻¹⁰ from its pair's (a NaN step is not small either).
+#[inline(always)]
+fn turned<T: Real, const K: usize>(
+    from: [T; K],
+    sin: [T; K],
+    cos: [T; K],
+    angles: [T; K],
+) -> Option<([T; K], [T; K])> {
+    let mut steps = angles;
+    for (step, last) in steps.iter_mut().zip(from) {
+        *step = *step - last;
+    }
+    if !steps
+        .iter()
+        .all(|step| step.abs() <= T::constant(TURN_LIMIT))
+    {
+        return None;
+    }
+    let (mut sines, mut cosines) = (sin, cos);
+    for ((sin, cos), step) in sines.iter_mut().zip(&mut cosines).zip(steps) {
+        (*sin, *cos) = rotate(*sin, *cos, step);
+    }
+    Some((sines, cosines))
 }
 
 /// `(sin, cos)` of an angle rotated by `step`, `|step| ≤ 2⁻¹⁰`: [`Turning`]'s rotation.
