@@ -74,7 +74,11 @@ fn bad_input_is_a_clear_message_and_a_failure() {
         ],
         "cannot be assembled at 150°: the crank reaches |θ2| from 0.00° to 100.81°",
     );
-    fails_with_code(&["analyse", "hexapod", "1", "2"], 2, "invalid value 'hexapod'");
+    fails_with_code(
+        &["analyse", "hexapod", "1", "2"],
+        2,
+        "invalid value 'hexapod'",
+    );
     fails_with(
         &["analyse", "four-bar", "180", "80"],
         "four-bar takes 4 dimensions",
@@ -92,8 +96,7 @@ struct Scratch(std::path::PathBuf);
 
 impl Scratch {
     fn new(name: &str) -> Self {
-        let path =
-            std::env::temp_dir().join(format!("mechanisms-{name}-{}", std::process::id()));
+        let path = std::env::temp_dir().join(format!("mechanisms-{name}-{}", std::process::id()));
         std::fs::remove_dir_all(&path).ok();
         Scratch(path)
     }
@@ -136,11 +139,21 @@ fn a_sweep_too_long_is_refused_naming_max_samples_before_it_starts() {
     let args = with(&["sweep"], &EXAMPLE_1);
     let args = with(
         &strings(&args),
-        &["--step", "0.01", "--max-samples", "36001", "--out-dir", scratch.path()],
+        &[
+            "--step",
+            "0.01",
+            "--max-samples",
+            "36001",
+            "--out-dir",
+            scratch.path(),
+        ],
     );
     assert!(stdout_of(&strings(&args)).contains("36001 samples"));
     fails_with(
-        &strings(&with(&strings(&args[..args.len() - 4]), &["--max-samples", "36000"])),
+        &strings(&with(
+            &strings(&args[..args.len() - 4]),
+            &["--max-samples", "36000"],
+        )),
         "more than --max-samples 36000",
     );
 }
@@ -160,7 +173,10 @@ fn analyse_prints_only_values_the_library_vouched_for() {
     ]);
     assert!(report.contains("undetermined"), "{report}");
     assert!(!report.contains("12.5"), "{report}");
-    assert!(!report.contains("NaN") && !report.contains("inf"), "{report}");
+    assert!(
+        !report.contains("NaN") && !report.contains("inf"),
+        "{report}"
+    );
     // A parallelogram at its flat position: the positions, and `singular` for the rates.
     let report = stdout_of(&["analyse", "four-bar", "100", "50", "100", "50", "--at", "0"]);
     assert!(report.contains("singular"), "{report}");
@@ -184,7 +200,10 @@ fn huge_dimensions_are_named_rightly_and_never_contradict_themselves() {
     assert!(report.contains("the crank turns fully"), "{report}");
     assert!(!report.contains("cannot be assembled"), "{report}");
     assert!(report.contains("not finite"), "{report}");
-    for (k, name) in ["ground", "crank", "coupler", "rocker"].into_iter().enumerate() {
+    for (k, name) in ["ground", "crank", "coupler", "rocker"]
+        .into_iter()
+        .enumerate()
+    {
         let mut args = vec!["analyse", "four-bar", "180", "80", "200", "150"];
         args[2 + k] = "1e308";
         fails_with(&args, &format!("{name} = 1e308 must be shorter"));
@@ -195,7 +214,10 @@ fn huge_dimensions_are_named_rightly_and_never_contradict_themselves() {
 fn negative_and_non_finite_numbers_are_values_not_flags() {
     let trace = |guess: &str| {
         let args = with(&["analyse"], &EXAMPLE_1);
-        stdout_of(&strings(&with(&strings(&args), &["--trace", "--guess", guess])))
+        stdout_of(&strings(&with(
+            &strings(&args),
+            &["--trace", "--guess", guess],
+        )))
     };
     assert!(trace("15,80").contains("72.137650"));
     assert!(trace("-15,80").contains("Newton-Raphson from θ3 = -15°"));
@@ -225,7 +247,9 @@ fn flags_that_do_not_apply_are_errors() {
         "--trace applies to the four-bar only, not the slider-crank",
     );
     fails_with(
-        &["analyse", "four-bar", "180", "80", "200", "150", "--guess", "15,80"],
+        &[
+            "analyse", "four-bar", "180", "80", "200", "150", "--guess", "15,80",
+        ],
         "--guess is Newton's start for --trace",
     );
     fails_with(
@@ -250,18 +274,30 @@ fn flags_that_do_not_apply_are_errors() {
 #[test]
 fn numbers_print_tidily() {
     let args = with(&["analyse"], &EXAMPLE_1);
-    let report = stdout_of(&strings(&with(&strings(&args), &["--at", "29.999999999999996"])));
+    let report = stdout_of(&strings(&with(
+        &strings(&args),
+        &["--at", "29.999999999999996"],
+    )));
     assert!(report.contains("θ2 = 30°"), "{report}");
-    assert!(!report.contains("360.0000") && !report.contains("-0.0000"), "{report}");
+    assert!(
+        !report.contains("360.0000") && !report.contains("-0.0000"),
+        "{report}"
+    );
     let scratch = Scratch::new("tidy");
     let args = with(&["sweep"], &EXAMPLE_1);
     let summary = stdout_of(&strings(&with(
         &strings(&args),
         &["--step", "0.1", "--out-dir", scratch.path()],
     )));
-    assert!(summary.contains("3601 samples from 0° to 360°"), "{summary}");
+    assert!(
+        summary.contains("3601 samples from 0° to 360°"),
+        "{summary}"
+    );
     let table = std::fs::read_to_string(scratch.0.join("sweep.csv")).unwrap();
-    assert!(table.lines().any(|line| line.starts_with("0.3,1,")), "{table:.400}");
+    assert!(
+        table.lines().any(|line| line.starts_with("0.3,1,")),
+        "{table:.400}"
+    );
 }
 
 #[test]
@@ -272,7 +308,14 @@ fn a_sweep_writes_its_table_to_standard_output_for_a_dash_and_files_into_out_dir
     let output = program()
         .args(strings(&with(
             &strings(&args),
-            &["--step", "90", "--csv", "-", "--out-dir", out_dir.to_str().unwrap()],
+            &[
+                "--step",
+                "90",
+                "--csv",
+                "-",
+                "--out-dir",
+                out_dir.to_str().unwrap(),
+            ],
         )))
         .output()
         .unwrap();
@@ -289,7 +332,10 @@ fn a_sweep_writes_its_table_to_standard_output_for_a_dash_and_files_into_out_dir
 /// The rows of a sweep's table: (input, segment).
 fn sweep_rows(dimensions: &[&str], scratch: &Scratch) -> (String, Vec<(f64, u32)>) {
     let args = with(&["sweep"], dimensions);
-    let summary = stdout_of(&strings(&with(&strings(&args), &["--out-dir", scratch.path()])));
+    let summary = stdout_of(&strings(&with(
+        &strings(&args),
+        &["--out-dir", scratch.path()],
+    )));
     let table = std::fs::read_to_string(scratch.0.join("sweep.csv")).unwrap();
     let rows = table
         .lines()
@@ -319,10 +365,16 @@ fn a_crank_that_cannot_turn_fully_is_swept_over_its_reachable_pieces() {
     let scratch = Scratch::new("triple-rocker");
     let (summary, rows) = sweep_rows(&["four-bar", "100", "120", "90", "80"], &scratch);
     assert!(summary.contains("1 piece"), "{summary}");
-    assert!(summary.contains("piece 1: -100.81° to 100.81°"), "{summary}");
+    assert!(
+        summary.contains("piece 1: -100.81° to 100.81°"),
+        "{summary}"
+    );
     assert!(!summary.contains("not computed"), "{summary}");
     assert_eq!(rows.len(), 201);
-    assert!(rows.iter().all(|&(input, segment)| input.abs() < 100.81 && segment == 1));
+    assert!(
+        rows.iter()
+            .all(|&(input, segment)| input.abs() < 100.81 && segment == 1)
+    );
     // A rocker-crank: two mirror-image pieces between its toggles, each drawn on its own.
     let scratch = Scratch::new("rocker-crank");
     let (summary, rows) = sweep_rows(&["four-bar", "180", "150", "200", "80"], &scratch);

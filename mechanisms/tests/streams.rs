@@ -17,7 +17,9 @@ fn scratch(name: &str) -> std::path::PathBuf {
 fn a_closed_pipe_ends_the_program_quietly_with_success() {
     let out_dir = scratch("pipe");
     let mut child = program()
-        .args(["sweep", "four-bar", "180", "80", "200", "150", "--step", "0.001"])
+        .args([
+            "sweep", "four-bar", "180", "80", "200", "150", "--step", "0.001",
+        ])
         .args(["--csv", "-", "--out-dir", out_dir.to_str().unwrap()])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
@@ -31,7 +33,12 @@ fn a_closed_pipe_ends_the_program_quietly_with_success() {
     assert!(first.starts_with("input_deg,segment,"));
     let status = child.wait().unwrap();
     let mut stderr = String::new();
-    child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut stderr)
+        .unwrap();
     std::fs::remove_dir_all(&out_dir).ok();
     assert_eq!(status.code(), Some(0), "{stderr}");
     assert_eq!(stderr, "");
@@ -74,14 +81,22 @@ fn peak_resident_kb(args: &[&str]) -> u64 {
         }
     }
     let mut stderr = String::new();
-    child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut stderr)
+        .unwrap();
     assert!(child.wait().unwrap().success(), "{stderr}");
     assert!(bytes > 100_000_000, "the table was written: {bytes} bytes");
     assert!(stderr.contains("1000000 samples"), "{stderr}");
     if time.exists() {
         stderr
             .lines()
-            .find_map(|line| line.trim().strip_prefix("Maximum resident set size (kbytes):"))
+            .find_map(|line| {
+                line.trim()
+                    .strip_prefix("Maximum resident set size (kbytes):")
+            })
             .expect("time -v reports the peak")
             .trim()
             .parse()

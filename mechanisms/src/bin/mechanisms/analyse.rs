@@ -94,11 +94,7 @@ fn check(args: &Args) -> Result<(), String> {
         if guess.len() != 2 || !guess.iter().all(|g| g.is_finite()) {
             return Err(format!(
                 "--guess takes two finite angles in degrees, theta3,theta4 (as 15,80), got {}",
-                guess
-                    .iter()
-                    .map(|&g| tidy(g))
-                    .collect::<Vec<_>>()
-                    .join(",")
+                guess.iter().map(|&g| tidy(g)).collect::<Vec<_>>().join(",")
             ));
         }
     }
@@ -109,7 +105,9 @@ pub fn run(args: &Args) -> Result<(), String> {
     check(args)?;
     let d = &args.dimensions;
     match args.mechanism {
-        Mechanism::FourBar => four_bar(args, FourBar::new(d[0], d[1], d[2], d[3]).map_err(refused)?),
+        Mechanism::FourBar => {
+            four_bar(args, FourBar::new(d[0], d[1], d[2], d[3]).map_err(refused)?)
+        }
         Mechanism::SliderCrank => {
             slider_crank(args, SliderCrank::new(d[0], d[1], d[2]).map_err(refused)?)
         }
@@ -259,11 +257,14 @@ fn advantage(ma: Result<MechanicalAdvantage<f64>, Error<f64>>) -> String {
 }
 
 /// An error when no branch assembles: nothing at all could be computed.
-fn nothing<U>(open: &Solved<U>, crossed: &Solved<U>, cannot: impl Fn() -> String) -> Result<(), String> {
+fn nothing<U>(
+    open: &Solved<U>,
+    crossed: &Solved<U>,
+    cannot: impl Fn() -> String,
+) -> Result<(), String> {
     match (&open.position, &crossed.position) {
-        (Err(Error::CannotAssemble { .. }), Err(_)) | (Err(_), Err(Error::CannotAssemble { .. })) => {
-            Err(cannot())
-        }
+        (Err(Error::CannotAssemble { .. }), Err(_))
+        | (Err(_), Err(Error::CannotAssemble { .. })) => Err(cannot()),
         (Err(e), Err(_)) => Err(format!("{e}")),
         _ => Ok(()),
     }
@@ -366,8 +367,12 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
         }),
         ("ω3 (rad/s)", Needs::Velocity, &|_, v| value(v.theta3)),
         ("ω4 (rad/s)", Needs::Velocity, &|_, v| value(v.theta4)),
-        ("α3 (rad/s²)", Needs::Acceleration, &|_, a| value(a.theta3)),
-        ("α4 (rad/s²)", Needs::Acceleration, &|_, a| value(a.theta4)),
+        ("α3 (rad/s²)", Needs::Acceleration, &|_, a| {
+            value(a.theta3)
+        }),
+        ("α4 (rad/s²)", Needs::Acceleration, &|_, a| {
+            value(a.theta4)
+        }),
         ("mechanical advantage T4/T2", Needs::Velocity, &|q, _| {
             advantage(linkage.mechanical_advantage(theta2, q))
         }),
@@ -404,7 +409,11 @@ fn trace(args: &Args, linkage: &FourBar<f64>, theta2: f64) {
     );
     say!(
         "  {:>4} {:>14} {:>14} {:>14} {:>14}",
-        "step", "θ3 (°)", "θ4 (°)", "f1 (mm)", "f2 (mm)"
+        "step",
+        "θ3 (°)",
+        "θ4 (°)",
+        "f1 (mm)",
+        "f2 (mm)"
     );
     let mut q = FourBarUnknowns {
         theta3: guess3.to_radians(),
@@ -488,7 +497,9 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
         }),
         ("ω3 (rad/s)", Needs::Velocity, &|_, v| value(v.theta3)),
         ("ḋ (mm/s)", Needs::Velocity, &|_, v| value(v.d)),
-        ("α3 (rad/s²)", Needs::Acceleration, &|_, a| value(a.theta3)),
+        ("α3 (rad/s²)", Needs::Acceleration, &|_, a| {
+            value(a.theta3)
+        }),
         ("d̈ (mm/s²)", Needs::Acceleration, &|_, a| value(a.d)),
         ("mech. advantage F/T (1/mm)", Needs::Velocity, &|q, _| {
             advantage(linkage.mechanical_advantage(theta2, q))
@@ -534,7 +545,9 @@ fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String
         ("b (mm)", Needs::Position, &|q, _| value(q.b)),
         ("ω4 (rad/s)", Needs::Velocity, &|_, v| value(v.theta4)),
         ("ḃ (mm/s)", Needs::Velocity, &|_, v| value(v.b)),
-        ("α4 (rad/s²)", Needs::Acceleration, &|_, a| value(a.theta4)),
+        ("α4 (rad/s²)", Needs::Acceleration, &|_, a| {
+            value(a.theta4)
+        }),
         ("b̈ (mm/s²)", Needs::Acceleration, &|_, a| value(a.b)),
         ("mechanical advantage T4/T2", Needs::Velocity, &|q, _| {
             advantage(linkage.mechanical_advantage(theta2, q))
@@ -576,11 +589,13 @@ fn jansen(args: &Args) -> Result<(), String> {
     say!("  foot position      ({:.4}, {:.4}) mm", p.foot.x, p.foot.y);
     say!(
         "  foot velocity      ({:.4}, {:.4}) mm/s",
-        v.foot.x, v.foot.y
+        v.foot.x,
+        v.foot.y
     );
     say!(
         "  foot acceleration  ({:.4}, {:.4}) mm/s²",
-        a.foot.x, a.foot.y
+        a.foot.x,
+        a.foot.y
     );
     Ok(())
 }

@@ -2,13 +2,17 @@
 
 use std::fmt::Write;
 
+/// A run of a series: the piece (segment) it belongs to, and its points.
+pub type Run = (usize, Vec<(f64, f64)>);
+
 /// One chart: a title, a y-axis label, its series `(name, runs)` with each run
 /// `(segment, points)` drawn as a polyline of its own, and an optional shaded band
 /// `(low, high)` (the transmission angle's 40° to 140°).
+
 pub struct Chart {
     pub title: String,
     pub y_label: String,
-    pub series: Vec<(String, Vec<(usize, Vec<(f64, f64)>)>)>,
+    pub series: Vec<(String, Vec<Run>)>,
     pub band: Option<(f64, f64)>,
 }
 

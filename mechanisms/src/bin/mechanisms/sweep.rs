@@ -416,14 +416,8 @@ fn jansen(args: &Args) -> Result<Sweep<'_>, String> {
             let m = leg.motion(t, JansenLeg::<f64>::DRAWN, rate, accel)?;
             let p = leg.points(t, &m.position)?;
             let v = leg.point_velocities(t, &m.position, rate, &m.velocity)?;
-            let a = leg.point_accelerations(
-                t,
-                &m.position,
-                rate,
-                &m.velocity,
-                accel,
-                &m.acceleration,
-            )?;
+            let a =
+                leg.point_accelerations(t, &m.position, rate, &m.velocity, accel, &m.acceleration)?;
             Ok(Sample {
                 values: vec![p.foot.x, p.foot.y, v.foot.x, v.foot.y, a.foot.x, a.foot.y],
                 joints: vec![
@@ -452,7 +446,7 @@ struct Drawings {
     frame_stride: u64,
     /// Per column, its runs of points `(segment, points)`: a new run at each piece and after
     /// each sample that could not be computed, so no line is drawn across either.
-    series: Vec<Vec<(usize, Vec<(f64, f64)>)>>,
+    series: Vec<Vec<svg::Run>>,
     frames: Vec<Vec<(f64, f64)>>,
     frame_segments: Vec<usize>,
     broken: bool,
@@ -496,13 +490,14 @@ impl Drawings {
 struct Failures {
     singular: u64,
     inaccurate: u64,
+    overflow: u64,
     other: u64,
     first: Vec<(f64, String)>,
 }
 
 impl Failures {
     fn count(&self) -> u64 {
-        self.singular + self.inaccurate + self.other
+        self.singular + self.inaccurate + self.overflow + self.other
     }
 
     fn add(&mut self, input: f64, error: &Error<f64>) {
@@ -514,6 +509,10 @@ impl Failures {
             Error::Inaccurate { estimate, .. } => {
                 self.inaccurate += 1;
                 format!("inaccurate, estimated error {estimate:.1e}")
+            }
+            Error::NonFinite { quantity } => {
+                self.overflow += 1;
+                format!("{quantity} not finite (overflow)")
             }
             other => {
                 self.other += 1;
@@ -533,6 +532,7 @@ impl Failures {
         let kinds: Vec<String> = [
             (self.singular, "singular"),
             (self.inaccurate, "inaccurate"),
+            (self.overflow, "not finite"),
             (self.other, "other"),
         ]
         .into_iter()
@@ -625,10 +625,7 @@ fn charts(sweep: &Sweep, drawings: &Drawings) -> String {
 fn check(args: &Args) -> Result<(), String> {
     args.mechanism.check(&args.dimensions)?;
     if let Some(p) = &args.coupler_point {
-        if !matches!(
-            args.mechanism,
-            Mechanism::FourBar | Mechanism::SliderCrank
-        ) {
+        if !matches!(args.mechanism, Mechanism::FourBar | Mechanism::SliderCrank) {
             return Err(format!(
                 "--coupler-point applies to the four-bar and the slider-crank, not the {}",
                 args.mechanism.name()
@@ -753,12 +750,11 @@ pub fn run(args: &Args) -> Result<(), String> {
                 output::fixed(piece.to, 2)
             )
         };
-        let mut line = format!(
-            "  piece {segment}: {ends}; {} samples from {}° to {}°",
-            count - failures.count(),
-            tidy(low),
-            tidy(high)
-        );
+        let mut line = format!("  piece {segment}: {ends}; ");
+        match count - failures.count() {
+            0 => line.push_str("no samples"),
+            n => write!(line, "{n} samples from {}° to {}°", tidy(low), tidy(high)).unwrap(),
+        }
         if let Some(words) = failures.words() {
             write!(line, "; {words}").unwrap();
         }
@@ -817,10 +813,7 @@ pub fn run(args: &Args) -> Result<(), String> {
 
 /// Shows the progress bar once a sweep has taken a second, on a terminal only.
 fn progress(bar: &ProgressBar, started: Instant, done: u64) {
-    if bar.is_hidden()
-        && started.elapsed() > Duration::from_secs(1)
-        && io::stderr().is_terminal()
-    {
+    if bar.is_hidden() && started.elapsed() > Duration::from_secs(1) && io::stderr().is_terminal() {
         bar.set_draw_target(ProgressDrawTarget::stderr());
     }
     bar.set_position(done);
