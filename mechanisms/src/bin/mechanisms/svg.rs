@@ -8,7 +8,6 @@ pub type Run = (usize, Vec<(f64, f64)>);
 /// One chart: a title, a y-axis label, its series `(name, runs)` with each run
 /// `(segment, points)` drawn as a polyline of its own, and an optional shaded band
 /// `(low, high)` (the transmission angle's 40° to 140°).
-
 pub struct Chart {
     pub title: String,
     pub y_label: String,
