@@ -79,7 +79,8 @@ impl<T: fmt::Display> fmt::Display for Error<T> {
                 required,
             } => write!(
                 f,
-                "the {} would be off by up to {estimate} relative (more than the {required}                  required): the mechanism is too near a toggle or change point",
+                "the {} would be off by up to {estimate} relative (more than the {required} \
+                 required): the mechanism is too near a toggle or change point",
                 match order {
                     crate::Order::Position => "position",
                     crate::Order::Velocity => "velocity",

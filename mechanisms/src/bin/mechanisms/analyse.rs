@@ -1,11 +1,17 @@
 //! `mechanisms analyse`: one input, both branches, every analysis the mechanism has.
 
+use std::collections::BTreeSet;
+
 use clap::Parser;
-use mechanisms::{FourBar, FourBarUnknowns, InvertedSliderCrank, JansenLeg, SliderCrank};
+use mechanisms::{
+    DimensionError, FourBar, FourBarUnknowns, InvertedSliderCrank, JansenLeg, SliderCrank,
+};
 use mechgen::grashof::{Class, Inversion, Special};
-use mechgen::{Branch, Error, MechanicalAdvantage};
+use mechgen::{Accuracy, Branch, Error, MechanicalAdvantage};
 
 use crate::Mechanism;
+use crate::output::{self, fixed, say, tidy};
+use crate::sweep::finite;
 
 #[derive(Parser)]
 pub struct Args {
@@ -16,20 +22,21 @@ pub struct Args {
     #[arg(allow_negative_numbers = true)]
     pub dimensions: Vec<f64>,
     /// The input angle, degrees.
-    #[arg(long, default_value_t = 60.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 60.0, allow_hyphen_values = true)]
     pub at: f64,
     /// The input's rate, rad/s.
-    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub rate: f64,
     /// The input's acceleration, rad/s².
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub accel: f64,
     /// Also solve by Newton-Raphson from `--guess` and print every iterate (four-bar).
     #[arg(long)]
     pub trace: bool,
-    /// Newton's starting angles θ3,θ4 in degrees, for `--trace`.
-    #[arg(long, value_delimiter = ',', default_values_t = [15.0, 80.0], allow_negative_numbers = true)]
-    pub guess: Vec<f64>,
+    /// Newton's starting angles θ3,θ4 in degrees, joined by a comma, for `--trace`
+    /// [default: 15,80].
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub guess: Option<Vec<f64>>,
 }
 
 impl Args {
@@ -42,52 +49,224 @@ impl Args {
             rate: 10.0,
             accel: 0.0,
             trace: false,
-            guess: vec![15.0, 80.0],
+            guess: None,
+        }
+    }
+
+    /// Newton's starting angles θ3, θ4 in degrees.
+    fn guess(&self) -> [f64; 2] {
+        match self.guess.as_deref() {
+            Some(&[theta3, theta4]) => [theta3, theta4],
+            _ => [15.0, 80.0],
         }
     }
 }
 
-pub fn run(args: &Args) -> Result<(), String> {
-    args.mechanism.check(&args.dimensions)?;
-    if args.guess.len() != 2 {
-        return Err("--guess takes two angles: theta3,theta4".into());
+/// A dimension the library refused, with its value written tidily (`1e308`, not 309 digits).
+pub fn refused(error: DimensionError<f64>) -> String {
+    format!(
+        "{} = {} must be {}",
+        error.name,
+        tidy(error.value),
+        error.requirement
+    )
+}
+
+fn check(args: &Args) -> Result<(), String> {
+    // Before the count of dimensions, which `--guess 15 80` makes one too many.
+    if args.guess.as_ref().is_some_and(|g| g.len() == 1) {
+        return Err("--guess takes two angles joined by a comma, as --guess 15,80".into());
     }
+    args.mechanism.check(&args.dimensions)?;
+    finite("--at", args.at, "degrees")?;
+    finite("--rate", args.rate, "rad/s")?;
+    finite("--accel", args.accel, "rad/s²")?;
+    if args.trace && args.mechanism != Mechanism::FourBar {
+        return Err(format!(
+            "--trace applies to the four-bar only, not the {}",
+            args.mechanism.name()
+        ));
+    }
+    if let Some(guess) = &args.guess {
+        if !args.trace {
+            return Err("--guess is Newton's start for --trace, which was not given".into());
+        }
+        if guess.len() != 2 || !guess.iter().all(|g| g.is_finite()) {
+            return Err(format!(
+                "--guess takes two finite angles in degrees, theta3,theta4 (as 15,80), got {}",
+                guess.iter().map(|&g| tidy(g)).collect::<Vec<_>>().join(",")
+            ));
+        }
+    }
+    Ok(())
+}
+
+pub fn run(args: &Args) -> Result<(), String> {
+    check(args)?;
     let d = &args.dimensions;
     match args.mechanism {
-        Mechanism::FourBar => four_bar(
-            args,
-            FourBar::new(d[0], d[1], d[2], d[3]).map_err(|e| e.to_string())?,
-        ),
-        Mechanism::SliderCrank => slider_crank(
-            args,
-            SliderCrank::new(d[0], d[1], d[2]).map_err(|e| e.to_string())?,
-        ),
+        Mechanism::FourBar => {
+            four_bar(args, FourBar::new(d[0], d[1], d[2], d[3]).map_err(refused)?)
+        }
+        Mechanism::SliderCrank => {
+            slider_crank(args, SliderCrank::new(d[0], d[1], d[2]).map_err(refused)?)
+        }
         Mechanism::InvertedSliderCrank => inverted(
             args,
-            InvertedSliderCrank::new(d[0], d[1], d[2], d[3].to_radians())
-                .map_err(|e| e.to_string())?,
+            InvertedSliderCrank::new(d[0], d[1], d[2], d[3].to_radians()).map_err(refused)?,
         ),
         Mechanism::Jansen => jansen(args),
     }
 }
 
-/// An angle for display: degrees in [0, 360).
-pub fn degrees(radians: f64) -> f64 {
-    radians.to_degrees().rem_euclid(360.0)
+/// What could be computed on one branch, order by order, or why not: a later order fails
+/// where an earlier one did.
+struct Solved<U> {
+    position: Result<U, Error<f64>>,
+    velocity: Result<U, Error<f64>>,
+    acceleration: Result<U, Error<f64>>,
 }
 
-/// A report row: its label and how to compute it from a branch's motion.
-type Row<'a, M> = (&'a str, &'a dyn Fn(&M) -> String);
+impl<U> Solved<U> {
+    fn new(
+        position: Result<U, Error<f64>>,
+        velocity: impl Fn(&U) -> Result<U, Error<f64>>,
+        acceleration: impl Fn(&U, &U) -> Result<U, Error<f64>>,
+    ) -> Self {
+        let velocity = position.as_ref().map_err(|e| *e).and_then(&velocity);
+        let acceleration = match (&position, &velocity) {
+            (Ok(q), Ok(v)) => acceleration(q, v),
+            (Err(e), _) | (_, Err(e)) => Err(*e),
+        };
+        Solved {
+            position,
+            velocity,
+            acceleration,
+        }
+    }
+}
+
+/// Which of a branch's results a row is computed from.
+#[derive(Clone, Copy)]
+enum Needs {
+    Position,
+    Velocity,
+    Acceleration,
+}
+
+/// A report row: its label, what it needs, and its text from the position and the rate or
+/// acceleration it needs (the position again for a position row).
+type Row<'a, U> = (&'a str, Needs, &'a dyn Fn(&U, &U) -> String);
+
+/// A value to 4 places; a very large one in exponent form.
+fn value(v: f64) -> String {
+    if !v.is_finite() {
+        "not finite".into()
+    } else if v.abs() >= 1e9 {
+        format!("{v:.4e}")
+    } else {
+        fixed(v, 4)
+    }
+}
+
+/// An angle in degrees, in [0, 360), to 4 places.
+fn angle(radians: f64) -> String {
+    output::degrees(radians, 4)
+}
+
+/// Why a result is missing, in a table cell, and the reasons met, for the notes below.
+fn reason(error: &Error<f64>, met: &mut BTreeSet<&'static str>) -> String {
+    let (cell, note) = match error {
+        Error::Singular { .. } => ("singular".to_string(), "singular"),
+        Error::Inaccurate { estimate, .. } if estimate.is_finite() => {
+            (format!("inaccurate {estimate:.0e}"), "inaccurate")
+        }
+        Error::Inaccurate { .. } => ("undetermined".to_string(), "undetermined"),
+        Error::CannotAssemble { .. } => ("cannot assemble".to_string(), "cannot assemble"),
+        Error::NonFinite { .. } => ("not finite".to_string(), "not finite"),
+        _ => ("failed".to_string(), "failed"),
+    };
+    met.insert(note);
+    cell
+}
+
+/// The notes that explain the reasons in the table's cells.
+fn notes(met: &BTreeSet<&'static str>) {
+    let required = Accuracy::<f64>::required();
+    for note in met {
+        match *note {
+            "singular" => say!(
+                "  singular: the loop Jacobian is singular here (a toggle or change point): \
+                 the rates are not determined by the input"
+            ),
+            "inaccurate" => say!(
+                "  inaccurate e: the estimated relative error e is more than the {:.0e} \
+                 (velocity) or {:.0e} (acceleration) required, this near a toggle or change point",
+                required.velocity,
+                required.acceleration
+            ),
+            "undetermined" => say!(
+                "  undetermined: a link of zero length here, whose direction and rates are \
+                 not determined"
+            ),
+            "cannot assemble" => {
+                say!("  cannot assemble: the links do not close on that branch at this input")
+            }
+            "not finite" => say!(
+                "  not finite: the value overflows (dimensions, rate or acceleration too large)"
+            ),
+            _ => say!("  failed: see `analyse` at a nearby input"),
+        }
+    }
+}
+
+/// The table, open and crossed side by side, each cell a value the library computed within
+/// its accuracy estimate or the reason it could not.
+fn table<U>(rows: &[Row<U>], open: &Solved<U>, crossed: &Solved<U>) {
+    row("", "open".into(), "crossed".into());
+    let mut met = BTreeSet::new();
+    for &(label, needs, text) in rows {
+        let mut cell = |solved: &Solved<U>| {
+            let other = match needs {
+                Needs::Position => &solved.position,
+                Needs::Velocity => &solved.velocity,
+                Needs::Acceleration => &solved.acceleration,
+            };
+            match (&solved.position, other) {
+                (Ok(q), Ok(x)) => text(q, x),
+                (Err(e), _) | (_, Err(e)) => reason(e, &mut met),
+            }
+        };
+        let (o, c) = (cell(open), cell(crossed));
+        row(label, o, c);
+    }
+    notes(&met);
+}
 
 fn row(label: &str, open: String, crossed: String) {
-    println!("  {label:<26} {open:>14} {crossed:>14}");
+    say!("  {label:<26} {open:>14} {crossed:>14}");
 }
 
 fn advantage(ma: Result<MechanicalAdvantage<f64>, Error<f64>>) -> String {
     match ma {
-        Ok(MechanicalAdvantage::Finite(v)) => format!("{v:.4}"),
+        Ok(MechanicalAdvantage::Finite(v)) => value(v),
         Ok(MechanicalAdvantage::Unbounded) => "unbounded".into(),
-        Err(_) => "at a toggle".into(),
+        Err(Error::Singular { .. }) => "at a toggle".into(),
+        Err(_) => "undetermined".into(),
+    }
+}
+
+/// An error when no branch assembles: nothing at all could be computed.
+fn nothing<U>(
+    open: &Solved<U>,
+    crossed: &Solved<U>,
+    cannot: impl Fn() -> String,
+) -> Result<(), String> {
+    match (&open.position, &crossed.position) {
+        (Err(Error::CannotAssemble { .. }), Err(_))
+        | (Err(_), Err(Error::CannotAssemble { .. })) => Err(cannot()),
+        (Err(e), Err(_)) => Err(format!("{e}")),
+        _ => Ok(()),
     }
 }
 
@@ -99,7 +278,11 @@ pub fn four_bar_range(linkage: &FourBar<f64>) -> String {
     }
     let from = limits.folded.map_or(0.0, f64::to_degrees);
     let to = limits.extended.map_or(180.0, f64::to_degrees);
-    format!("the crank reaches |θ2| from {from:.2}° to {to:.2}° (toggles at the ends)")
+    format!(
+        "the crank reaches |θ2| from {}° to {}° (toggles at the ends)",
+        fixed(from, 2),
+        fixed(to, 2)
+    )
 }
 
 fn grashof_words(linkage: &FourBar<f64>) -> String {
@@ -130,14 +313,31 @@ fn grashof_words(linkage: &FourBar<f64>) -> String {
 }
 
 fn cannot(what: &str, input_deg: f64, reach: String) -> String {
-    format!("the {what} cannot be assembled at {input_deg}°: {reach}")
+    format!(
+        "the {what} cannot be assembled at {}°: {reach}",
+        tidy(input_deg)
+    )
 }
 
 fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
     let [l1, l2, l3, l4] = linkage.lengths();
     let theta2 = args.at.to_radians();
-    println!("Four-bar: ground {l1} mm, crank {l2} mm, coupler {l3} mm, rocker {l4} mm");
-    println!(
+    let solve = |branch| {
+        Solved::new(
+            linkage.assemble(theta2, branch),
+            |q| linkage.velocity(theta2, q, args.rate),
+            |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
+        )
+    };
+    let (open, crossed) = (solve(Branch::Open), solve(Branch::Crossed));
+    say!(
+        "Four-bar: ground {} mm, crank {} mm, coupler {} mm, rocker {} mm",
+        tidy(l1),
+        tidy(l2),
+        tidy(l3),
+        tidy(l4)
+    );
+    say!(
         "Grashof: {}; {}",
         grashof_words(&linkage),
         four_bar_range(&linkage)
@@ -145,60 +345,41 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
     let limits = linkage.limit_angles();
     for (name, limit) in [("folded", limits.folded), ("extended", limits.extended)] {
         if let Some(limit) = limit {
-            println!("Limit angle ({name}): θ2 = ±{:.4}°", limit.to_degrees());
+            say!("Limit angle ({name}): θ2 = ±{:.4}°", limit.to_degrees());
         }
     }
-    let solve = |branch| linkage.motion(theta2, branch, args.rate, args.accel);
-    let (open, crossed) = match (solve(Branch::Open), solve(Branch::Crossed)) {
-        (Ok(o), Ok(c)) => (o, c),
-        (Err(Error::CannotAssemble { .. }), _) | (_, Err(Error::CannotAssemble { .. })) => {
-            return Err(cannot("four-bar", args.at, four_bar_range(&linkage)));
-        }
-        (Err(e), _) | (_, Err(e)) => return Err(format!("at {}°: {e}", args.at)),
-    };
-    let pin = linkage
-        .points(theta2, &open.position)
-        .map_err(|e| e.to_string())?
-        .crank_pin;
-    println!(
-        "Input: θ2 = {}°, ω2 = {} rad/s, α2 = {} rad/s²; Z = |A O4| = {:.4} mm",
-        args.at,
-        args.rate,
-        args.accel,
-        (pin.x - l1).hypot(pin.y)
+    nothing(&open, &crossed, || {
+        cannot("four-bar", args.at, four_bar_range(&linkage))
+    })?;
+    let (sine, cosine) = theta2.sin_cos();
+    say!(
+        "Input: θ2 = {}°, ω2 = {} rad/s, α2 = {} rad/s²; Z = |A O4| = {} mm",
+        tidy(args.at),
+        tidy(args.rate),
+        tidy(args.accel),
+        value((l2 * cosine - l1).hypot(l2 * sine))
     );
-    row("", "open".into(), "crossed".into());
-    type M = mechgen::Motion<FourBarUnknowns<f64>, f64>;
-    let rows: [Row<M>; 8] = [
-        ("θ3 (°)", &|m| {
-            format!("{:.4}", degrees(m.position.theta3))
+    let rows: [Row<FourBarUnknowns<f64>>; 8] = [
+        ("θ3 (°)", Needs::Position, &|q, _| angle(q.theta3)),
+        ("θ4 (°)", Needs::Position, &|q, _| angle(q.theta4)),
+        ("transmission angle γ (°)", Needs::Position, &|q, _| {
+            value(linkage.transmission_angle(q).to_degrees())
         }),
-        ("θ4 (°)", &|m| {
-            format!("{:.4}", degrees(m.position.theta4))
+        ("ω3 (rad/s)", Needs::Velocity, &|_, v| value(v.theta3)),
+        ("ω4 (rad/s)", Needs::Velocity, &|_, v| value(v.theta4)),
+        ("α3 (rad/s²)", Needs::Acceleration, &|_, a| {
+            value(a.theta3)
         }),
-        ("transmission angle γ (°)", &|m| {
-            format!(
-                "{:.4}",
-                linkage.transmission_angle(&m.position).to_degrees()
-            )
+        ("α4 (rad/s²)", Needs::Acceleration, &|_, a| {
+            value(a.theta4)
         }),
-        ("ω3 (rad/s)", &|m| format!("{:.4}", m.velocity.theta3)),
-        ("ω4 (rad/s)", &|m| format!("{:.4}", m.velocity.theta4)),
-        ("α3 (rad/s²)", &|m| {
-            format!("{:.4}", m.acceleration.theta3)
-        }),
-        ("α4 (rad/s²)", &|m| {
-            format!("{:.4}", m.acceleration.theta4)
-        }),
-        ("mechanical advantage T4/T2", &|m| {
-            advantage(linkage.mechanical_advantage(theta2, &m.position))
+        ("mechanical advantage T4/T2", Needs::Velocity, &|q, _| {
+            advantage(linkage.mechanical_advantage(theta2, q))
         }),
     ];
-    for (label, f) in rows {
-        row(label, f(&open), f(&crossed));
-    }
+    table(&rows, &open, &crossed);
     let extremes = linkage.transmission_extremes();
-    println!(
+    say!(
         "Transmission angle over the motion: {:.2}° at θ2 = {:.2}° to {:.2}° at θ2 = {:.2}°; {}",
         extremes.min.to_degrees(),
         extremes.min_at.to_degrees(),
@@ -217,28 +398,39 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
 }
 
 /// Newton-Raphson step by step with the generated residual and Jacobian, as the notes'
-/// Example 2 tabulates it.
+/// Example 2 tabulates it. It stops, saying why, at a singular Jacobian or an iterate that is
+/// no longer finite.
 fn trace(args: &Args, linkage: &FourBar<f64>, theta2: f64) {
-    println!(
+    let [guess3, guess4] = args.guess();
+    say!(
         "Newton-Raphson from θ3 = {}°, θ4 = {}°:",
-        args.guess[0], args.guess[1]
+        tidy(guess3),
+        tidy(guess4)
     );
-    println!(
+    say!(
         "  {:>4} {:>14} {:>14} {:>14} {:>14}",
-        "step", "θ3 (°)", "θ4 (°)", "f1 (mm)", "f2 (mm)"
+        "step",
+        "θ3 (°)",
+        "θ4 (°)",
+        "f1 (mm)",
+        "f2 (mm)"
     );
     let mut q = FourBarUnknowns {
-        theta3: args.guess[0].to_radians(),
-        theta4: args.guess[1].to_radians(),
+        theta3: guess3.to_radians(),
+        theta4: guess4.to_radians(),
     };
     for step in 0..=20 {
         let f = linkage.residual(theta2, &q);
-        println!(
-            "  {step:>4} {:>14.6} {:>14.6} {:>14.6} {:>14.6}",
-            q.theta3.to_degrees(),
-            q.theta4.to_degrees(),
-            f[0],
-            f[1]
+        if !(f.iter().all(|r| r.is_finite()) && q.theta3.is_finite() && q.theta4.is_finite()) {
+            say!("  the iterate is no longer finite: stopped");
+            break;
+        }
+        say!(
+            "  {step:>4} {:>14} {:>14} {:>14} {:>14}",
+            fixed(q.theta3.to_degrees(), 6),
+            fixed(q.theta4.to_degrees(), 6),
+            fixed(f[0], 6),
+            fixed(f[1], 6)
         );
         if f[0].abs().max(f[1].abs()) < 1e-10 * linkage.lengths().iter().sum::<f64>() {
             break;
@@ -246,7 +438,7 @@ fn trace(args: &Args, linkage: &FourBar<f64>, theta2: f64) {
         let j = linkage.jacobian(theta2, &q);
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         if det == 0.0 {
-            println!("  singular Jacobian: stopped");
+            say!("  singular Jacobian: stopped");
             break;
         }
         q.theta3 -= (f[0] * j[1][1] - j[0][1] * f[1]) / det;
@@ -257,100 +449,111 @@ fn trace(args: &Args, linkage: &FourBar<f64>, theta2: f64) {
 fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
     let [l2, l3, c] = linkage.dimensions();
     let theta2 = args.at.to_radians();
-    println!("Slider-crank: crank {l2} mm, rod {l3} mm, offset {c} mm");
+    let solve = |branch| {
+        Solved::new(
+            linkage.assemble(theta2, branch),
+            |q| linkage.velocity(theta2, q, args.rate),
+            |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
+        )
+    };
+    let (open, crossed) = (solve(Branch::Open), solve(Branch::Crossed));
+    say!(
+        "Slider-crank: crank {} mm, rod {} mm, offset {} mm",
+        tidy(l2),
+        tidy(l3),
+        tidy(c)
+    );
     match (linkage.stroke(), linkage.time_ratio()) {
         (Some(stroke), Some(ratio)) => {
-            println!("The crank turns fully; stroke {stroke:.4} mm, time ratio {ratio:.4}")
+            say!("The crank turns fully; stroke {stroke:.4} mm, time ratio {ratio:.4}")
         }
-        (Some(stroke), None) => println!(
+        (Some(stroke), None) => say!(
             "The crank turns fully, through a change point where the rod stands perpendicular \
              to the slide (l3 − l2 = |c|); stroke {stroke:.4} mm, no inner dead centre"
         ),
-        (None, _) => println!("The crank cannot turn fully (l3 − l2 < |c|)"),
-    }
-    let solve = |branch| linkage.motion(theta2, branch, args.rate, args.accel);
-    let (open, crossed) = match (solve(Branch::Open), solve(Branch::Crossed)) {
-        (Ok(o), Ok(c)) => (o, c),
-        (Err(e), _) | (_, Err(e)) => {
-            return Err(match e {
-                Error::CannotAssemble { .. } => cannot(
-                    "slider-crank",
-                    args.at,
-                    "the rod does not reach the slider's line there (|c − l2 sin θ2| > l3)".into(),
-                ),
-                other => format!("at {}°: {other}", args.at),
-            });
+        (None, _) if linkage.crank_turns_fully() => {
+            say!("The crank turns fully; its stroke is too long to compute")
         }
-    };
-    println!(
+        (None, _) => say!("The crank cannot turn fully (l3 − l2 < |c|)"),
+    }
+    nothing(&open, &crossed, || {
+        cannot(
+            "slider-crank",
+            args.at,
+            "the rod does not reach the slider's line there (|c − l2 sin θ2| > l3)".into(),
+        )
+    })?;
+    say!(
         "Input: θ2 = {}°, ω2 = {} rad/s, α2 = {} rad/s²",
-        args.at, args.rate, args.accel
+        tidy(args.at),
+        tidy(args.rate),
+        tidy(args.accel)
     );
-    row("", "open".into(), "crossed".into());
-    type M = mechgen::Motion<mechanisms::SliderCrankUnknowns<f64>, f64>;
-    let rows: [Row<M>; 8] = [
-        ("θ3 (°)", &|m| {
-            format!("{:.4}", degrees(m.position.theta3))
+    let rows: [Row<mechanisms::SliderCrankUnknowns<f64>>; 8] = [
+        ("θ3 (°)", Needs::Position, &|q, _| angle(q.theta3)),
+        ("d (mm)", Needs::Position, &|q, _| value(q.d)),
+        ("transmission angle μ (°)", Needs::Position, &|q, _| {
+            value(linkage.transmission_angle(q).to_degrees())
         }),
-        ("d (mm)", &|m| format!("{:.4}", m.position.d)),
-        ("transmission angle μ (°)", &|m| {
-            format!(
-                "{:.4}",
-                linkage.transmission_angle(&m.position).to_degrees()
-            )
+        ("ω3 (rad/s)", Needs::Velocity, &|_, v| value(v.theta3)),
+        ("ḋ (mm/s)", Needs::Velocity, &|_, v| value(v.d)),
+        ("α3 (rad/s²)", Needs::Acceleration, &|_, a| {
+            value(a.theta3)
         }),
-        ("ω3 (rad/s)", &|m| format!("{:.4}", m.velocity.theta3)),
-        ("ḋ (mm/s)", &|m| format!("{:.4}", m.velocity.d)),
-        ("α3 (rad/s²)", &|m| {
-            format!("{:.4}", m.acceleration.theta3)
-        }),
-        ("d̈ (mm/s²)", &|m| format!("{:.4}", m.acceleration.d)),
-        ("mech. advantage F/T (1/mm)", &|m| {
-            advantage(linkage.mechanical_advantage(theta2, &m.position))
+        ("d̈ (mm/s²)", Needs::Acceleration, &|_, a| value(a.d)),
+        ("mech. advantage F/T (1/mm)", Needs::Velocity, &|q, _| {
+            advantage(linkage.mechanical_advantage(theta2, q))
         }),
     ];
-    for (label, f) in rows {
-        row(label, f(&open), f(&crossed));
-    }
+    table(&rows, &open, &crossed);
     Ok(())
 }
 
 fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String> {
     let [l1, l2, c, gamma] = linkage.dimensions();
     let theta2 = args.at.to_radians();
-    println!(
-        "Inverted slider-crank: ground {l1} mm, crank {l2} mm, offset {c} mm, angle {}°",
-        gamma.to_degrees()
-    );
-    let solve = |branch| linkage.motion(theta2, branch, args.rate, args.accel);
-    let (open, crossed) = match (solve(Branch::Open), solve(Branch::Crossed)) {
-        (Ok(o), Ok(c)) => (o, c),
-        (Err(e), _) | (_, Err(e)) => return Err(format!("at {}°: {e}", args.at)),
+    let solve = |branch| {
+        Solved::new(
+            linkage.assemble(theta2, branch),
+            |q| linkage.velocity(theta2, q, args.rate),
+            |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
+        )
     };
-    println!(
-        "Input: θ2 = {}°, ω2 = {} rad/s, α2 = {} rad/s²",
-        args.at, args.rate, args.accel
+    let (open, crossed) = (solve(Branch::Open), solve(Branch::Crossed));
+    say!(
+        "Inverted slider-crank: ground {} mm, crank {} mm, offset {} mm, angle {}°",
+        tidy(l1),
+        tidy(l2),
+        tidy(c),
+        tidy(gamma.to_degrees())
     );
-    row("", "open".into(), "crossed".into());
-    type M = mechgen::Motion<mechanisms::InvertedSliderCrankUnknowns<f64>, f64>;
-    let rows: [Row<M>; 7] = [
-        ("θ4 (°)", &|m| {
-            format!("{:.4}", degrees(m.position.theta4))
+    nothing(&open, &crossed, || {
+        cannot(
+            "inverted slider-crank",
+            args.at,
+            "the slide does not pass through the crank pin there".into(),
+        )
+    })?;
+    say!(
+        "Input: θ2 = {}°, ω2 = {} rad/s, α2 = {} rad/s²",
+        tidy(args.at),
+        tidy(args.rate),
+        tidy(args.accel)
+    );
+    let rows: [Row<mechanisms::InvertedSliderCrankUnknowns<f64>>; 7] = [
+        ("θ4 (°)", Needs::Position, &|q, _| angle(q.theta4)),
+        ("b (mm)", Needs::Position, &|q, _| value(q.b)),
+        ("ω4 (rad/s)", Needs::Velocity, &|_, v| value(v.theta4)),
+        ("ḃ (mm/s)", Needs::Velocity, &|_, v| value(v.b)),
+        ("α4 (rad/s²)", Needs::Acceleration, &|_, a| {
+            value(a.theta4)
         }),
-        ("b (mm)", &|m| format!("{:.4}", m.position.b)),
-        ("ω4 (rad/s)", &|m| format!("{:.4}", m.velocity.theta4)),
-        ("ḃ (mm/s)", &|m| format!("{:.4}", m.velocity.b)),
-        ("α4 (rad/s²)", &|m| {
-            format!("{:.4}", m.acceleration.theta4)
-        }),
-        ("b̈ (mm/s²)", &|m| format!("{:.4}", m.acceleration.b)),
-        ("mechanical advantage T4/T2", &|m| {
-            advantage(linkage.mechanical_advantage(theta2, &m.position))
+        ("b̈ (mm/s²)", Needs::Acceleration, &|_, a| value(a.b)),
+        ("mechanical advantage T4/T2", Needs::Velocity, &|q, _| {
+            advantage(linkage.mechanical_advantage(theta2, q))
         }),
     ];
-    for (label, f) in rows {
-        row(label, f(&open), f(&crossed));
-    }
+    table(&rows, &open, &crossed);
     Ok(())
 }
 
@@ -374,21 +577,25 @@ fn jansen(args: &Args) -> Result<(), String> {
             &m.acceleration,
         )
         .map_err(|e| e.to_string())?;
-    println!(
+    say!(
         "Jansen's leg (a 38, b 41.5, c 39.3, d 40.1, e 55.8, f 39.4, g 36.7, h 65.7, i 49, j 50, k 61.9, l 7.8, m 15 mm), as drawn"
     );
-    println!(
+    say!(
         "Input: crank at {}°, {} rad/s, {} rad/s²",
-        args.at, args.rate, args.accel
+        tidy(args.at),
+        tidy(args.rate),
+        tidy(args.accel)
     );
-    println!("  foot position      ({:.4}, {:.4}) mm", p.foot.x, p.foot.y);
-    println!(
+    say!("  foot position      ({:.4}, {:.4}) mm", p.foot.x, p.foot.y);
+    say!(
         "  foot velocity      ({:.4}, {:.4}) mm/s",
-        v.foot.x, v.foot.y
+        v.foot.x,
+        v.foot.y
     );
-    println!(
+    say!(
         "  foot acceleration  ({:.4}, {:.4}) mm/s²",
-        a.foot.x, a.foot.y
+        a.foot.x,
+        a.foot.y
     );
     Ok(())
 }

@@ -5,6 +5,7 @@
 //! `cargo run --release -p mechanisms -- --help` lists the commands.
 
 mod analyse;
+mod output;
 mod seeds;
 mod svg;
 mod sweep;
@@ -55,6 +56,12 @@ impl Mechanism {
         }
     }
 
+    /// Its name on the command line.
+    pub fn name(self) -> String {
+        self.to_possible_value()
+            .map_or_else(String::new, |v| v.get_name().to_string())
+    }
+
     /// Checks the count of dimensions given.
     pub fn check(self, given: &[f64]) -> Result<(), String> {
         let names = self.dimensions();
@@ -63,8 +70,7 @@ impl Mechanism {
         } else {
             Err(format!(
                 "{} takes {} dimensions ({}), {} given",
-                self.to_possible_value()
-                    .map_or_else(String::new, |v| v.get_name().to_string()),
+                self.name(),
                 names.len(),
                 if names.is_empty() {
                     "none".to_string()

@@ -2,12 +2,16 @@
 
 use std::fmt::Write;
 
-/// One chart: a title, a y-axis label, its series `(name, points)` and an optional shaded
-/// band `(low, high)` (the transmission angle's 40° to 140°).
+/// A run of a series: the piece (segment) it belongs to, and its points.
+pub type Run = (usize, Vec<(f64, f64)>);
+
+/// One chart: a title, a y-axis label, its series `(name, runs)` with each run
+/// `(segment, points)` drawn as a polyline of its own, and an optional shaded band
+/// `(low, high)` (the transmission angle's 40° to 140°).
 pub struct Chart {
     pub title: String,
     pub y_label: String,
-    pub series: Vec<(String, Vec<(f64, f64)>)>,
+    pub series: Vec<(String, Vec<Run>)>,
     pub band: Option<(f64, f64)>,
 }
 
@@ -41,7 +45,10 @@ pub fn charts(x_label: &str, charts: &[Chart]) -> String {
     );
     for (k, chart) in charts.iter().enumerate() {
         let top = HEIGHT * k as f64;
-        let points = chart.series.iter().flat_map(|(_, p)| p.iter());
+        let points = chart
+            .series
+            .iter()
+            .flat_map(|(_, runs)| runs.iter().flat_map(|(_, p)| p.iter()));
         let (x0, x1) = range(points.clone().map(|p| p.0));
         let (y0, y1) = range(
             points
@@ -89,13 +96,15 @@ pub fn charts(x_label: &str, charts: &[Chart]) -> String {
         )
         .unwrap();
         writeln!(svg, "<text x=\"14\" y=\"{:.1}\" transform=\"rotate(-90 14 {:.1})\" text-anchor=\"middle\">{}</text>", top + HEIGHT / 2.0, top + HEIGHT / 2.0, escape(&chart.y_label)).unwrap();
-        for (s, (name, points)) in chart.series.iter().enumerate() {
+        for (s, (name, runs)) in chart.series.iter().enumerate() {
             let colour = COLOURS[s % COLOURS.len()];
-            let path: Vec<String> = points
-                .iter()
-                .map(|(x, y)| format!("{:.2},{:.2}", px(*x), py(*y)))
-                .collect();
-            writeln!(svg, "<polyline class=\"series\" data-name=\"{}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\" points=\"{}\"/>", escape(name), path.join(" ")).unwrap();
+            for (segment, points) in runs {
+                let path: Vec<String> = points
+                    .iter()
+                    .map(|(x, y)| format!("{:.2},{:.2}", px(*x), py(*y)))
+                    .collect();
+                writeln!(svg, "<polyline class=\"series\" data-name=\"{}\" data-segment=\"{segment}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\" points=\"{}\"/>", escape(name), path.join(" ")).unwrap();
+            }
             writeln!(
                 svg,
                 "<text x=\"{}\" y=\"{:.1}\" fill=\"{colour}\">{}</text>",
@@ -112,11 +121,13 @@ pub fn charts(x_label: &str, charts: &[Chart]) -> String {
 }
 
 /// An animated drawing of a linkage: each link is a line whose ends move through `frames`
-/// (one `(x, y)` per joint and frame), and the traced point's whole curve is drawn.
+/// (one `(x, y)` per joint and frame), and the traced point's whole curve is drawn, one
+/// polyline per reachable piece (`segments`, one per frame).
 pub fn animation(
     title: &str,
     links: &[(usize, usize)],
     frames: &[Vec<(f64, f64)>],
+    segments: &[usize],
     traced: usize,
     seconds: f64,
 ) -> String {
@@ -133,11 +144,20 @@ pub fn animation(
         WIDTH / 2.0,
         escape(title)
     );
-    let curve: Vec<String> = frames
-        .iter()
-        .map(|f| format!("{:.2},{:.2}", px(f[traced].0), py(f[traced].1)))
-        .collect();
-    writeln!(svg, "<polyline class=\"coupler-curve\" fill=\"none\" stroke=\"#d1242f\" stroke-dasharray=\"4 3\" points=\"{}\"/>", curve.join(" ")).unwrap();
+    let mut start = 0;
+    while start < frames.len() {
+        let end = start
+            + segments[start..]
+                .iter()
+                .take_while(|&&s| s == segments[start])
+                .count();
+        let curve: Vec<String> = frames[start..end]
+            .iter()
+            .map(|f| format!("{:.2},{:.2}", px(f[traced].0), py(f[traced].1)))
+            .collect();
+        writeln!(svg, "<polyline class=\"coupler-curve\" data-segment=\"{}\" fill=\"none\" stroke=\"#d1242f\" stroke-dasharray=\"4 3\" points=\"{}\"/>", segments[start], curve.join(" ")).unwrap();
+        start = end;
+    }
     let values = |joint: usize, axis: usize| -> String {
         frames
             .iter()

@@ -1,16 +1,21 @@
-//! `mechanisms sweep`: a full turn (or the reachable range) on one branch, written as CSV, as
-//! SVG charts and as an animated SVG of the linkage.
+//! `mechanisms sweep`: the input's reachable ranges on one branch, streamed sample by sample
+//! to a CSV table (a file, or standard output for `-`), with SVG charts and an animated SVG of
+//! the linkage drawn from a thinned copy, so a sweep takes the same memory however long.
 
 use std::fmt::Write as _;
-use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::fs::File;
+use std::io::{self, BufWriter, IsTerminal, Write};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 
 use clap::{Parser, ValueEnum};
+use indicatif::{ProgressBar, ProgressDrawTarget};
 use mechanisms::{FourBar, InvertedSliderCrank, JansenLeg, SliderCrank};
-use mechgen::{Branch, Vec2};
+use mechgen::{Branch, Error, Vec2};
 
 use crate::Mechanism;
 use crate::analyse::four_bar_range;
+use crate::output::{self, say, tidy};
 use crate::svg::{self, Chart};
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -27,42 +32,47 @@ pub struct Args {
     /// Its dimensions in mm (an angle in degrees).
     #[arg(allow_negative_numbers = true)]
     pub dimensions: Vec<f64>,
-    /// The assembly branch to follow (Jansen's leg is always as drawn).
-    #[arg(long, value_enum, default_value_t = BranchName::Open)]
-    pub branch: BranchName,
+    /// The assembly branch to follow [default: open] (not for Jansen's leg, always as drawn).
+    #[arg(long, value_enum)]
+    pub branch: Option<BranchName>,
     /// The input's step, degrees.
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub step: f64,
+    /// The most samples a sweep may take: a smaller step is refused before it starts.
+    #[arg(long, default_value_t = 10_000_000)]
+    pub max_samples: u64,
     /// The input's rate, rad/s.
-    #[arg(long, default_value_t = 10.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub rate: f64,
     /// The input's acceleration, rad/s².
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub accel: f64,
     /// A coupler point to track and trace: distance from the crank pin (mm), angle from the
-    /// coupler (°). Four-bar and slider-crank.
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    /// coupler (°), as `100,30`. Four-bar and slider-crank.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub coupler_point: Option<Vec<f64>>,
-    /// Where to write the table.
+    /// The directory the files are written to, created if missing.
+    #[arg(long, default_value = ".")]
+    pub out_dir: PathBuf,
+    /// Where to write the table, in --out-dir; `-` for standard output.
     #[arg(long, default_value = "sweep.csv")]
     pub csv: PathBuf,
-    /// Where to write the charts.
+    /// Where to write the charts, in --out-dir; `-` for standard output.
     #[arg(long, default_value = "sweep.svg")]
     pub svg: PathBuf,
-    /// Where to write the animation.
+    /// Where to write the animation, in --out-dir; `-` for standard output.
     #[arg(long, default_value = "animation.svg")]
     pub animation: PathBuf,
 }
 
-/// One sample: the input (°), named values, and joint positions for the drawing.
+/// One sample: named values, and joint positions for the drawing.
 struct Sample {
-    input: f64,
     values: Vec<f64>,
     joints: Vec<(f64, f64)>,
 }
 
-/// What a mechanism's sweep produces before it is written out.
-struct Sweep {
+/// What a mechanism's sweep is made of, before any sample is computed.
+struct Sweep<'a> {
     title: String,
     /// Column names, grouped: angles or lengths, rates, accelerations, then extras.
     columns: Vec<String>,
@@ -70,43 +80,56 @@ struct Sweep {
     band_column: Option<usize>,
     links: Vec<(usize, usize)>,
     traced: usize,
-    samples: Vec<Sample>,
+    /// The input's reachable ranges, in order.
+    pieces: Vec<Piece>,
+    /// The sample at an input in degrees.
+    sample: Box<dyn Fn(f64) -> Result<Sample, Error<f64>> + 'a>,
+}
+
+/// A reachable range of the input, degrees. A full turn is sampled from its start, ends
+/// included; a range that ends at toggles (where the rates are unbounded and the branches
+/// meet) is sampled every step from its middle, a regular point, out toward both ends,
+/// strictly inside them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Piece {
+    from: f64,
+    to: f64,
+    full_turn: bool,
+}
+
+impl Piece {
+    fn full_turn() -> Self {
+        Piece {
+            from: 0.0,
+            to: 360.0,
+            full_turn: true,
+        }
+    }
+
+    fn between(from: f64, to: f64) -> Self {
+        Piece {
+            from,
+            to,
+            full_turn: false,
+        }
+    }
+
+    /// The first input and the number of samples, as a float so a tiny step cannot overflow
+    /// the count before it is checked.
+    fn grid(&self, step: f64) -> (f64, f64) {
+        if self.full_turn {
+            (self.from, ((self.to - self.from) / step).floor() + 1.0)
+        } else {
+            let middle = 0.5 * (self.from + self.to);
+            let beside = ((0.5 * (self.to - self.from)) / step).ceil() - 1.0;
+            let beside = beside.max(0.0);
+            (middle - beside * step, 2.0 * beside + 1.0)
+        }
+    }
 }
 
 fn point(v: Vec2<f64>) -> (f64, f64) {
     (v.x, v.y)
-}
-
-/// The inputs to visit: every `step` degrees over `[from, to]`.
-fn inputs(from: f64, to: f64, step: f64) -> Vec<f64> {
-    let count = ((to - from) / step).floor() as usize;
-    (0..=count).map(|k| from + step * k as f64).collect()
-}
-
-/// Shows progress on a terminal for long sweeps.
-fn progress(done: usize, total: usize) {
-    if total >= 2000 && std::io::stderr().is_terminal() && done % (total / 20).max(1) == 0 {
-        eprint!("\rsweeping: {:>3}%", done * 100 / total);
-        if done + 1 >= total {
-            eprintln!();
-        }
-    }
-}
-
-/// Visits the inputs (°) in order, showing progress, and keeps what `sample` makes of each:
-/// `Ok(None)` skips an input the mechanism cannot reach, an error ends the sweep.
-fn sample_inputs(
-    angles: &[f64],
-    mut sample: impl FnMut(f64, f64) -> Result<Option<Sample>, String>,
-) -> Result<Vec<Sample>, String> {
-    let mut samples = Vec::with_capacity(angles.len());
-    for (k, &input) in angles.iter().enumerate() {
-        progress(k, angles.len());
-        if let Some(found) = sample(input, input.to_radians())? {
-            samples.push(found);
-        }
-    }
-    Ok(samples)
 }
 
 fn names(columns: &[&str]) -> Vec<String> {
@@ -114,13 +137,70 @@ fn names(columns: &[&str]) -> Vec<String> {
 }
 
 fn branch(args: &Args) -> Branch {
-    match args.branch {
+    match args.branch.unwrap_or(BranchName::Open) {
         BranchName::Open => Branch::Open,
         BranchName::Crossed => Branch::Crossed,
     }
 }
 
-fn four_bar(args: &Args) -> Result<Sweep, String> {
+/// A four-bar crank's reachable ranges from its closed-form limit angles: `|θ2|` between the
+/// folded limit (or 0) and the extended limit (or 180°), so one range through 0° or 180°, or
+/// two mirror-image ranges.
+fn four_bar_pieces(linkage: &FourBar<f64>) -> Vec<Piece> {
+    let limits = linkage.limit_angles();
+    let pieces = match (
+        limits.folded.map(f64::to_degrees),
+        limits.extended.map(f64::to_degrees),
+    ) {
+        (None, None) => vec![Piece::full_turn()],
+        (Some(f), None) => vec![Piece::between(f, 360.0 - f)],
+        (None, Some(e)) => vec![Piece::between(-e, e)],
+        (Some(f), Some(e)) => vec![Piece::between(f, e), Piece::between(360.0 - e, 360.0 - f)],
+    };
+    pieces.into_iter().filter(|p| p.from < p.to).collect()
+}
+
+/// A slider-crank's reachable ranges: the rod reaches the slider's line where
+/// `|c − l2·sin θ2| ≤ l3`, so where `sin θ2` lies in `[(c − l3)/l2, (c + l3)/l2]`.
+fn slider_crank_pieces(linkage: &SliderCrank<f64>) -> Vec<Piece> {
+    if linkage.crank_turns_fully() {
+        return vec![Piece::full_turn()];
+    }
+    let [l2, l3, c] = linkage.dimensions();
+    let (low, high) = ((c - l3) / l2, (c + l3) / l2);
+    let arc = |s: f64| s.clamp(-1.0, 1.0).asin().to_degrees();
+    let pieces = if low > -1.0 && high < 1.0 {
+        vec![
+            Piece::between(arc(low), arc(high)),
+            Piece::between(180.0 - arc(high), 180.0 - arc(low)),
+        ]
+    } else if high < 1.0 {
+        vec![Piece::between(180.0 - arc(high), 360.0 + arc(high))]
+    } else {
+        vec![Piece::between(arc(low), 180.0 - arc(low))]
+    };
+    pieces.into_iter().filter(|p| p.from < p.to).collect()
+}
+
+/// An inverted slider-crank's reachable range: the slide passes at `|c·sin γ|` from O4, so
+/// the crank pin A must be at least that far from O4, `|A − O4|² = l1² + l2² − 2·l1·l2·cos θ2`.
+fn inverted_pieces(linkage: &InvertedSliderCrank<f64>) -> Vec<Piece> {
+    let [l1, l2, c, gamma] = linkage.dimensions();
+    // On the linkage scaled to its largest dimension, where no square overflows.
+    let scale = l1.max(l2).max(c.abs());
+    let (l1, l2, reach) = (l1 / scale, l2 / scale, (c * gamma.sin()).abs() / scale);
+    if reach <= (l1 - l2).abs() {
+        return vec![Piece::full_turn()];
+    }
+    let cosine = ((l1 * l1 + l2 * l2 - reach * reach) / (2.0 * l1 * l2)).clamp(-1.0, 1.0);
+    let limit = cosine.acos().to_degrees();
+    [Piece::between(limit, 360.0 - limit)]
+        .into_iter()
+        .filter(|p| p.from < p.to)
+        .collect()
+}
+
+fn four_bar(args: &Args) -> Result<Sweep<'_>, String> {
     let d = &args.dimensions;
     let mut linkage = FourBar::new(d[0], d[1], d[2], d[3]).map_err(|e| e.to_string())?;
     if let Some(p) = &args.coupler_point {
@@ -128,52 +208,15 @@ fn four_bar(args: &Args) -> Result<Sweep, String> {
             .with_coupler_point(p[0], p[1].to_radians())
             .map_err(|e| e.to_string())?;
     }
-    let limits = linkage.limit_angles();
-    // A crank that cannot turn fully is swept between its toggles, just inside them.
-    let (from, to) = if limits.full_turn() {
-        (0.0, 360.0)
-    } else {
-        let inside = 1e-6;
-        (
-            limits.folded.map_or(0.0, |f| f.to_degrees() + inside),
-            limits.extended.map_or(180.0, |e| e.to_degrees() - inside),
-        )
-    };
-    let angles = inputs(from, to, args.step);
-    let samples = sample_inputs(&angles, |input, t| {
-        let m = linkage
-            .motion(t, branch(args), args.rate, args.accel)
-            .map_err(|e| format!("at {input}°: {e}"))?;
-        let p = linkage.points(t, &m.position).map_err(|e| e.to_string())?;
-        Ok(Some(Sample {
-            input,
-            values: vec![
-                m.position.theta3.to_degrees(),
-                m.position.theta4.to_degrees(),
-                m.velocity.theta3,
-                m.velocity.theta4,
-                m.acceleration.theta3,
-                m.acceleration.theta4,
-                linkage.transmission_angle(&m.position).to_degrees(),
-                p.coupler_point.x,
-                p.coupler_point.y,
-            ],
-            joints: vec![
-                (0.0, 0.0),
-                point(p.crank_pin),
-                point(p.rocker_pin),
-                (d[0], 0.0),
-                point(p.coupler_point),
-            ],
-        }))
-    })?;
+    let (rate, accel, on) = (args.rate, args.accel, branch(args));
+    let ground = d[0];
     Ok(Sweep {
         title: format!(
             "Four-bar {} {} {} {} mm, {}",
-            d[0],
-            d[1],
-            d[2],
-            d[3],
+            tidy(d[0]),
+            tidy(d[1]),
+            tidy(d[2]),
+            tidy(d[3]),
             four_bar_range(&linkage)
         ),
         columns: names(&[
@@ -196,11 +239,36 @@ fn four_bar(args: &Args) -> Result<Sweep, String> {
         band_column: Some(6),
         links: vec![(0, 1), (1, 2), (2, 3), (1, 4), (2, 4)],
         traced: 4,
-        samples,
+        pieces: four_bar_pieces(&linkage),
+        sample: Box::new(move |input| {
+            let t = input.to_radians();
+            let m = linkage.motion(t, on, rate, accel)?;
+            let p = linkage.points(t, &m.position)?;
+            Ok(Sample {
+                values: vec![
+                    m.position.theta3.to_degrees(),
+                    m.position.theta4.to_degrees(),
+                    m.velocity.theta3,
+                    m.velocity.theta4,
+                    m.acceleration.theta3,
+                    m.acceleration.theta4,
+                    linkage.transmission_angle(&m.position).to_degrees(),
+                    p.coupler_point.x,
+                    p.coupler_point.y,
+                ],
+                joints: vec![
+                    (0.0, 0.0),
+                    point(p.crank_pin),
+                    point(p.rocker_pin),
+                    (ground, 0.0),
+                    point(p.coupler_point),
+                ],
+            })
+        }),
     })
 }
 
-fn slider_crank(args: &Args) -> Result<Sweep, String> {
+fn slider_crank(args: &Args) -> Result<Sweep<'_>, String> {
     let d = &args.dimensions;
     let mut linkage = SliderCrank::new(d[0], d[1], d[2]).map_err(|e| e.to_string())?;
     if let Some(p) = &args.coupler_point {
@@ -208,41 +276,14 @@ fn slider_crank(args: &Args) -> Result<Sweep, String> {
             .with_coupler_point(p[0], p[1].to_radians())
             .map_err(|e| e.to_string())?;
     }
-    let angles = inputs(0.0, 360.0, args.step);
-    let samples = sample_inputs(&angles, |input, t| {
-        // A crank that cannot turn fully: the samples the rod can reach.
-        let Ok(m) = linkage.motion(t, branch(args), args.rate, args.accel) else {
-            return Ok(None);
-        };
-        let p = linkage.points(t, &m.position).map_err(|e| e.to_string())?;
-        Ok(Some(Sample {
-            input,
-            values: vec![
-                m.position.theta3.to_degrees(),
-                m.position.d,
-                m.velocity.theta3,
-                m.velocity.d,
-                m.acceleration.theta3,
-                m.acceleration.d,
-                linkage.transmission_angle(&m.position).to_degrees(),
-                p.coupler_point.x,
-                p.coupler_point.y,
-            ],
-            joints: vec![
-                (0.0, 0.0),
-                point(p.crank_pin),
-                point(p.slider_pin),
-                point(p.coupler_point),
-            ],
-        }))
-    })?;
-    if samples.is_empty() {
-        return Err(
-            "the slider-crank cannot be assembled at any crank angle on that branch".into(),
-        );
-    }
+    let (rate, accel, on) = (args.rate, args.accel, branch(args));
     Ok(Sweep {
-        title: format!("Slider-crank {} {} mm, offset {} mm", d[0], d[1], d[2]),
+        title: format!(
+            "Slider-crank {} {} mm, offset {} mm",
+            tidy(d[0]),
+            tidy(d[1]),
+            tidy(d[2])
+        ),
         columns: names(&[
             "theta3_deg",
             "d",
@@ -264,42 +305,47 @@ fn slider_crank(args: &Args) -> Result<Sweep, String> {
         band_column: Some(6),
         links: vec![(0, 1), (1, 2), (1, 3), (2, 3)],
         traced: 3,
-        samples,
+        pieces: slider_crank_pieces(&linkage),
+        sample: Box::new(move |input| {
+            let t = input.to_radians();
+            let m = linkage.motion(t, on, rate, accel)?;
+            let p = linkage.points(t, &m.position)?;
+            Ok(Sample {
+                values: vec![
+                    m.position.theta3.to_degrees(),
+                    m.position.d,
+                    m.velocity.theta3,
+                    m.velocity.d,
+                    m.acceleration.theta3,
+                    m.acceleration.d,
+                    linkage.transmission_angle(&m.position).to_degrees(),
+                    p.coupler_point.x,
+                    p.coupler_point.y,
+                ],
+                joints: vec![
+                    (0.0, 0.0),
+                    point(p.crank_pin),
+                    point(p.slider_pin),
+                    point(p.coupler_point),
+                ],
+            })
+        }),
     })
 }
 
-fn inverted(args: &Args) -> Result<Sweep, String> {
+fn inverted(args: &Args) -> Result<Sweep<'_>, String> {
     let d = &args.dimensions;
     let linkage =
         InvertedSliderCrank::new(d[0], d[1], d[2], d[3].to_radians()).map_err(|e| e.to_string())?;
-    let angles = inputs(0.0, 360.0, args.step);
-    let samples = sample_inputs(&angles, |input, t| {
-        let Ok(m) = linkage.motion(t, branch(args), args.rate, args.accel) else {
-            return Ok(None);
-        };
-        let p = linkage.points(t, &m.position).map_err(|e| e.to_string())?;
-        Ok(Some(Sample {
-            input,
-            values: vec![
-                m.position.theta4.to_degrees(),
-                m.position.b,
-                m.velocity.theta4,
-                m.velocity.b,
-                m.acceleration.theta4,
-                m.acceleration.b,
-            ],
-            joints: vec![
-                (0.0, 0.0),
-                point(p.crank_pin),
-                (d[0], 0.0),
-                point(p.slide_origin),
-            ],
-        }))
-    })?;
+    let (rate, accel, on) = (args.rate, args.accel, branch(args));
+    let ground = d[0];
     Ok(Sweep {
         title: format!(
             "Inverted slider-crank {} {} mm, offset {} mm, angle {}°",
-            d[0], d[1], d[2], d[3]
+            tidy(d[0]),
+            tidy(d[1]),
+            tidy(d[2]),
+            tidy(d[3])
         ),
         columns: names(&["theta4_deg", "b", "omega4", "b_dot", "alpha4", "b_ddot"]),
         groups: vec![
@@ -311,46 +357,34 @@ fn inverted(args: &Args) -> Result<Sweep, String> {
         band_column: None,
         links: vec![(0, 1), (2, 3), (3, 1)],
         traced: 1,
-        samples,
+        pieces: inverted_pieces(&linkage),
+        sample: Box::new(move |input| {
+            let t = input.to_radians();
+            let m = linkage.motion(t, on, rate, accel)?;
+            let p = linkage.points(t, &m.position)?;
+            Ok(Sample {
+                values: vec![
+                    m.position.theta4.to_degrees(),
+                    m.position.b,
+                    m.velocity.theta4,
+                    m.velocity.b,
+                    m.acceleration.theta4,
+                    m.acceleration.b,
+                ],
+                joints: vec![
+                    (0.0, 0.0),
+                    point(p.crank_pin),
+                    (ground, 0.0),
+                    point(p.slide_origin),
+                ],
+            })
+        }),
     })
 }
 
-fn jansen(args: &Args) -> Result<Sweep, String> {
+fn jansen(args: &Args) -> Result<Sweep<'_>, String> {
     let leg = JansenLeg::<f64>::holy();
-    let angles = inputs(0.0, 360.0, args.step);
-    let samples = sample_inputs(&angles, |input, t| {
-        let m = leg
-            .motion(t, JansenLeg::<f64>::DRAWN, args.rate, args.accel)
-            .map_err(|e| format!("at {input}°: {e}"))?;
-        let p = leg.points(t, &m.position).map_err(|e| e.to_string())?;
-        let v = leg
-            .point_velocities(t, &m.position, args.rate, &m.velocity)
-            .map_err(|e| e.to_string())?;
-        let a = leg
-            .point_accelerations(
-                t,
-                &m.position,
-                args.rate,
-                &m.velocity,
-                args.accel,
-                &m.acceleration,
-            )
-            .map_err(|e| e.to_string())?;
-        Ok(Some(Sample {
-            input,
-            values: vec![p.foot.x, p.foot.y, v.foot.x, v.foot.y, a.foot.x, a.foot.y],
-            joints: vec![
-                (0.0, 0.0),
-                point(p.crank_pin),
-                (-38.0, -7.8),
-                point(p.upper),
-                point(p.lower),
-                point(p.back),
-                point(p.knee),
-                point(p.foot),
-            ],
-        }))
-    })?;
+    let (rate, accel) = (args.rate, args.accel);
     Ok(Sweep {
         title: "Jansen's leg, published lengths".into(),
         columns: names(&[
@@ -376,21 +410,202 @@ fn jansen(args: &Args) -> Result<Sweep, String> {
             (6, 7),
         ],
         traced: 7,
-        samples,
+        pieces: vec![Piece::full_turn()],
+        sample: Box::new(move |input| {
+            let t = input.to_radians();
+            let m = leg.motion(t, JansenLeg::<f64>::DRAWN, rate, accel)?;
+            let p = leg.points(t, &m.position)?;
+            let v = leg.point_velocities(t, &m.position, rate, &m.velocity)?;
+            let a =
+                leg.point_accelerations(t, &m.position, rate, &m.velocity, accel, &m.acceleration)?;
+            Ok(Sample {
+                values: vec![p.foot.x, p.foot.y, v.foot.x, v.foot.y, a.foot.x, a.foot.y],
+                joints: vec![
+                    (0.0, 0.0),
+                    point(p.crank_pin),
+                    (-38.0, -7.8),
+                    point(p.upper),
+                    point(p.lower),
+                    point(p.back),
+                    point(p.knee),
+                    point(p.foot),
+                ],
+            })
+        }),
     })
 }
 
-/// The CSV text: the input in degrees, then every column, to 10 significant digits.
-fn csv(sweep: &Sweep) -> String {
-    let mut out = format!("input_deg,{}\n", sweep.columns.join(","));
-    for sample in &sweep.samples {
-        let cells: Vec<String> = sample.values.iter().map(|v| format!("{v:.9e}")).collect();
-        writeln!(out, "{},{}", sample.input, cells.join(",")).unwrap();
-    }
-    out
+/// Most points a chart's series keeps, and most frames the animation keeps: a longer sweep
+/// is thinned to these, evenly, so the drawings take bounded memory however long it is.
+const CHART_POINTS: f64 = 4000.0;
+const FRAMES: f64 = 720.0;
+
+/// The thinned samples the drawings are made from, gathered as the sweep streams past.
+struct Drawings {
+    chart_stride: u64,
+    frame_stride: u64,
+    /// Per column, its runs of points `(segment, points)`: a new run at each piece and after
+    /// each sample that could not be computed, so no line is drawn across either.
+    series: Vec<Vec<svg::Run>>,
+    frames: Vec<Vec<(f64, f64)>>,
+    frame_segments: Vec<usize>,
+    broken: bool,
 }
 
-fn charts(sweep: &Sweep) -> String {
+impl Drawings {
+    fn new(columns: usize, total: u64) -> Self {
+        let stride = |most: f64| ((total as f64 / most).ceil() as u64).max(1);
+        Drawings {
+            chart_stride: stride(CHART_POINTS),
+            frame_stride: stride(FRAMES),
+            series: vec![Vec::new(); columns],
+            frames: Vec::new(),
+            frame_segments: Vec::new(),
+            broken: true,
+        }
+    }
+
+    /// Takes the sample numbered `index` of the whole sweep if the thinning keeps it (or
+    /// `last`, the end of a piece, which is always kept).
+    fn add(&mut self, index: u64, last: bool, segment: usize, input: f64, sample: &Sample) {
+        if index % self.chart_stride == 0 || last || self.broken {
+            for (column, runs) in self.series.iter_mut().enumerate() {
+                if self.broken || runs.last().is_none_or(|run| run.0 != segment) {
+                    runs.push((segment, Vec::new()));
+                }
+                let run = &mut runs.last_mut().expect("a run was just pushed").1;
+                run.push((input, sample.values[column]));
+            }
+            self.broken = false;
+        }
+        if index % self.frame_stride == 0 || last {
+            self.frames.push(sample.joints.clone());
+            self.frame_segments.push(segment);
+        }
+    }
+}
+
+/// Samples that could not be computed inside a piece, by reason, with the first few inputs.
+#[derive(Default)]
+struct Failures {
+    singular: u64,
+    inaccurate: u64,
+    overflow: u64,
+    other: u64,
+    first: Vec<(f64, String)>,
+}
+
+impl Failures {
+    fn count(&self) -> u64 {
+        self.singular + self.inaccurate + self.overflow + self.other
+    }
+
+    fn add(&mut self, input: f64, error: &Error<f64>) {
+        let why = match error {
+            Error::Singular { .. } => {
+                self.singular += 1;
+                "singular".to_string()
+            }
+            Error::Inaccurate { estimate, .. } => {
+                self.inaccurate += 1;
+                format!("inaccurate, estimated error {estimate:.1e}")
+            }
+            Error::NonFinite { quantity } => {
+                self.overflow += 1;
+                format!("{quantity} not finite (overflow)")
+            }
+            other => {
+                self.other += 1;
+                other.to_string()
+            }
+        };
+        if self.first.len() < 3 {
+            self.first.push((input, why));
+        }
+    }
+
+    /// "3 not computed (2 singular, 1 inaccurate): at 0° singular, …", or nothing.
+    fn words(&self) -> Option<String> {
+        if self.count() == 0 {
+            return None;
+        }
+        let kinds: Vec<String> = [
+            (self.singular, "singular"),
+            (self.inaccurate, "inaccurate"),
+            (self.overflow, "not finite"),
+            (self.other, "other"),
+        ]
+        .into_iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, kind)| format!("{n} {kind}"))
+        .collect();
+        let at: Vec<String> = self
+            .first
+            .iter()
+            .map(|(input, why)| format!("{}° {why}", tidy(*input)))
+            .collect();
+        Some(format!(
+            "{} not computed ({}): at {}{}",
+            self.count(),
+            kinds.join(", "),
+            at.join(", "),
+            if self.count() > self.first.len() as u64 {
+                ", …"
+            } else {
+                ""
+            }
+        ))
+    }
+}
+
+/// Where an output goes: standard output for `-`, else the path under `--out-dir`.
+enum Target {
+    Stdout,
+    File(PathBuf),
+}
+
+impl Target {
+    fn new(path: &Path, out_dir: &Path) -> Self {
+        if path == Path::new("-") {
+            Target::Stdout
+        } else {
+            Target::File(out_dir.join(path))
+        }
+    }
+
+    fn name(&self) -> String {
+        match self {
+            Target::Stdout => "standard output".into(),
+            Target::File(path) => path.display().to_string(),
+        }
+    }
+
+    fn open(&self) -> Result<Box<dyn Write>, String> {
+        Ok(match self {
+            Target::Stdout => Box::new(BufWriter::new(io::stdout())),
+            Target::File(path) => Box::new(BufWriter::new(
+                File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))?,
+            )),
+        })
+    }
+
+    /// A failed write: a closed pipe ends the program quietly, anything else is an error.
+    fn failed(&self, error: io::Error) -> String {
+        match self {
+            Target::Stdout => output::gone(error),
+            Target::File(path) => format!("cannot write {}: {error}", path.display()),
+        }
+    }
+
+    fn write(&self, text: &str) -> Result<(), String> {
+        let mut out = self.open()?;
+        out.write_all(text.as_bytes())
+            .and_then(|()| out.flush())
+            .map_err(|e| self.failed(e))
+    }
+}
+
+fn charts(sweep: &Sweep, drawings: &Drawings) -> String {
     let charts: Vec<Chart> = sweep
         .groups
         .iter()
@@ -399,14 +614,7 @@ fn charts(sweep: &Sweep) -> String {
             y_label: title.split(" (").next().unwrap_or(title).to_string(),
             series: columns
                 .clone()
-                .map(|c| {
-                    let points = sweep
-                        .samples
-                        .iter()
-                        .map(|s| (s.input, s.values[c]))
-                        .collect();
-                    (sweep.columns[c].clone(), points)
-                })
+                .map(|c| (sweep.columns[c].clone(), drawings.series[c].clone()))
                 .collect(),
             band: (sweep.band_column == Some(columns.start)).then_some((40.0, 140.0)),
         })
@@ -414,42 +622,199 @@ fn charts(sweep: &Sweep) -> String {
     svg::charts("input angle (°)", &charts)
 }
 
-pub fn run(args: &Args) -> Result<(), String> {
+fn check(args: &Args) -> Result<(), String> {
     args.mechanism.check(&args.dimensions)?;
-    if args.coupler_point.as_ref().is_some_and(|p| p.len() != 2) {
-        return Err("--coupler-point takes two numbers: distance,angle".into());
+    if let Some(p) = &args.coupler_point {
+        if !matches!(args.mechanism, Mechanism::FourBar | Mechanism::SliderCrank) {
+            return Err(format!(
+                "--coupler-point applies to the four-bar and the slider-crank, not the {}",
+                args.mechanism.name()
+            ));
+        }
+        if p.len() != 2 {
+            return Err("--coupler-point takes two numbers: distance,angle".into());
+        }
     }
+    if args.branch.is_some() && args.mechanism == Mechanism::Jansen {
+        return Err("--branch does not apply to Jansen's leg, which is always as drawn".into());
+    }
+    finite("--rate", args.rate, "rad/s")?;
+    finite("--accel", args.accel, "rad/s²")?;
     if !(args.step > 0.0 && args.step.is_finite()) {
         return Err(format!(
-            "--step must be a positive number of degrees, got {}",
-            args.step
+            "--step must be a positive, finite number of degrees, got {}",
+            tidy(args.step)
         ));
     }
+    let outputs = [&args.csv, &args.svg, &args.animation];
+    if outputs.iter().filter(|p| p.as_os_str() == "-").count() > 1 {
+        return Err("only one of --csv, --svg and --animation can be - (standard output)".into());
+    }
+    Ok(())
+}
+
+/// `value` if finite, else an error naming the flag and its unit.
+pub fn finite(flag: &str, value: f64, unit: &str) -> Result<(), String> {
+    if value.is_finite() {
+        Ok(())
+    } else {
+        Err(format!(
+            "{flag} must be a finite number of {unit}, got {value}"
+        ))
+    }
+}
+
+pub fn run(args: &Args) -> Result<(), String> {
+    check(args)?;
     let sweep = match args.mechanism {
         Mechanism::FourBar => four_bar(args)?,
         Mechanism::SliderCrank => slider_crank(args)?,
         Mechanism::InvertedSliderCrank => inverted(args)?,
         Mechanism::Jansen => jansen(args)?,
     };
-    let write = |path: &PathBuf, text: String| {
-        std::fs::write(path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))
+    if sweep.pieces.is_empty() {
+        return Err(format!(
+            "the {} cannot be assembled at any input angle",
+            args.mechanism.name()
+        ));
+    }
+    // The sample count, checked before anything is computed or written.
+    let grids: Vec<(f64, f64)> = sweep.pieces.iter().map(|p| p.grid(args.step)).collect();
+    let total: f64 = grids.iter().map(|g| g.1).sum();
+    if total > args.max_samples as f64 {
+        return Err(format!(
+            "a step of {}° makes {} samples, more than --max-samples {}: take a larger \
+             --step, or raise --max-samples if you mean it",
+            tidy(args.step),
+            tidy(total.round()),
+            args.max_samples
+        ));
+    }
+    let total = total as u64;
+    std::fs::create_dir_all(&args.out_dir)
+        .map_err(|e| format!("cannot create {}: {e}", args.out_dir.display()))?;
+    let table = Target::new(&args.csv, &args.out_dir);
+    let chart_target = Target::new(&args.svg, &args.out_dir);
+    let animation_target = Target::new(&args.animation, &args.out_dir);
+    let mut writer = csv::Writer::from_writer(table.open()?);
+    let csv_failed = |error: csv::Error| match error.into_kind() {
+        csv::ErrorKind::Io(error) => table.failed(error),
+        other => format!("cannot write {}: {other:?}", table.name()),
     };
-    write(&args.csv, csv(&sweep))?;
-    write(&args.svg, charts(&sweep))?;
-    let frames: Vec<Vec<(f64, f64)>> = sweep.samples.iter().map(|s| s.joints.clone()).collect();
-    write(
-        &args.animation,
-        svg::animation(&sweep.title, &sweep.links, &frames, sweep.traced, 6.0),
-    )?;
-    println!(
-        "{}: {} samples from {}° to {}°; wrote {}, {} and {}",
+    let mut header = vec!["input_deg".to_string(), "segment".to_string()];
+    header.extend(sweep.columns.iter().cloned());
+    writer.write_record(&header).map_err(csv_failed)?;
+
+    let started = Instant::now();
+    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
+    let mut drawings = Drawings::new(sweep.columns.len(), total);
+    let mut lines = Vec::new();
+    let mut computed = 0;
+    let mut index = 0u64;
+    let mut record = Vec::with_capacity(header.len());
+    for (segment, (piece, &(first, count))) in sweep.pieces.iter().zip(&grids).enumerate() {
+        let segment = segment + 1;
+        let mut failures = Failures::default();
+        let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
+        let count = count as u64;
+        for k in 0..count {
+            if index % 4096 == 0 {
+                progress(&bar, started, index);
+            }
+            let input = first + k as f64 * args.step;
+            match (sweep.sample)(input) {
+                Ok(sample) => {
+                    computed += 1;
+                    low = low.min(input);
+                    high = high.max(input);
+                    record.clear();
+                    record.push(tidy(input));
+                    record.push(segment.to_string());
+                    record.extend(sample.values.iter().map(|v| format!("{v:.9e}")));
+                    writer.write_record(&record).map_err(csv_failed)?;
+                    drawings.add(index, k + 1 == count, segment, input, &sample);
+                }
+                Err(error) => {
+                    failures.add(input, &error);
+                    drawings.broken = true;
+                }
+            }
+            index += 1;
+        }
+        let ends = if piece.full_turn {
+            "a full turn".to_string()
+        } else {
+            format!(
+                "{}° to {}° (toggles at the ends)",
+                output::fixed(piece.from, 2),
+                output::fixed(piece.to, 2)
+            )
+        };
+        let mut line = format!("  piece {segment}: {ends}; ");
+        match count - failures.count() {
+            0 => line.push_str("no samples"),
+            n => write!(line, "{n} samples from {}° to {}°", tidy(low), tidy(high)).unwrap(),
+        }
+        if let Some(words) = failures.words() {
+            write!(line, "; {words}").unwrap();
+        }
+        lines.push(line);
+    }
+    bar.finish_and_clear();
+    writer
+        .into_inner()
+        .map_err(|e| table.failed(io::Error::other(e.to_string())))?
+        .flush()
+        .map_err(|e| table.failed(e))?;
+    if computed == 0 {
+        return Err(format!(
+            "no sample could be computed:\n{}",
+            lines.join("\n")
+        ));
+    }
+    chart_target.write(&charts(&sweep, &drawings))?;
+    animation_target.write(&svg::animation(
+        &sweep.title,
+        &sweep.links,
+        &drawings.frames,
+        &drawings.frame_segments,
+        sweep.traced,
+        6.0,
+    ))?;
+    // The summary goes where it cannot be mistaken for an output written to standard output.
+    let report = |text: &str| {
+        if [&table, &chart_target, &animation_target]
+            .iter()
+            .any(|t| matches!(t, Target::Stdout))
+        {
+            eprintln!("{text}");
+        } else {
+            say!("{text}");
+        }
+    };
+    report(&format!(
+        "{}: {computed} samples in {} {}; wrote {}, {} and {}",
         sweep.title,
-        sweep.samples.len(),
-        sweep.samples.first().map_or(0.0, |s| s.input),
-        sweep.samples.last().map_or(0.0, |s| s.input),
-        args.csv.display(),
-        args.svg.display(),
-        args.animation.display()
-    );
+        sweep.pieces.len(),
+        if sweep.pieces.len() == 1 {
+            "piece"
+        } else {
+            "pieces"
+        },
+        table.name(),
+        chart_target.name(),
+        animation_target.name()
+    ));
+    for line in lines {
+        report(&line);
+    }
     Ok(())
+}
+
+/// Shows the progress bar once a sweep has taken a second, on a terminal only.
+fn progress(bar: &ProgressBar, started: Instant, done: u64) {
+    if bar.is_hidden() && started.elapsed() > Duration::from_secs(1) && io::stderr().is_terminal() {
+        bar.set_draw_target(ProgressDrawTarget::stderr());
+    }
+    bar.set_position(done);
 }
