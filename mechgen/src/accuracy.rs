@@ -19,8 +19,8 @@
 //! 60-digit references (`docs/ACCURACY.md`) and the multiple-precision oracle of the edge
 //! tests. The position's is derived: Newton accepts a residual up to `16·ε` of the loops'
 //! magnitudes, and the inverse of the column-scaled Jacobian has entries up to κ, so the
-//! errors of two unknowns can add (the edge run, `docs/EDGES.md`, finds positions up to 1.3
-//! times `16·ε·κ` off). Near a change point the κ³ of the acceleration is reached; near a
+//! errors of two unknowns can add (an edge run found positions up to 1.3 times `16·ε·κ`
+//! off; none in the run of `docs/EDGES.md` exceeds `32·ε·κ`). Near a change point the κ³ of the acceleration is reached; near a
 //! toggle the true error grows only as κ², so there the estimate is pessimistic by up to κ.
 //!
 //! Here `s = max(1, ρ/16)`, with ρ the aspect: the sum of the lengths the mechanism's loops
