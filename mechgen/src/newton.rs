@@ -881,19 +881,24 @@ mod tests {
 
     /// The four-bar of the seeds' Example 1 at `theta2`, as generated code evaluates it.
     fn four_bar(theta2: f64) -> impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, [f64; 4]> + Clone {
+        let mut turnings = Turnings::<f64, 2>::new();
+        move |x: &[f64; 2]| evaluated(theta2, turnings.sin_cos(*x))
+    }
+
+    /// The four-bar's loop at `theta2`, from θ3's and θ4's sines and cosines.
+    fn evaluated(
+        theta2: f64,
+        ([s3, s4], [c3, c4]): ([f64; 2], [f64; 2]),
+    ) -> Linearisation<f64, 2, [f64; 4]> {
         let [l1, l2, l3, l4] = [180.0, 80.0, 200.0, 150.0];
         let (s2, c2) = theta2.sin_cos();
-        let mut turnings = Turnings::<f64, 2>::new();
-        move |x: &[f64; 2]| {
-            let ([s3, s4], [c3, c4]) = turnings.sin_cos(*x);
-            let (t0, t1, t2, t3) = (l3 * c3, l3 * s3, l4 * c4, l4 * s4);
-            Linearisation {
-                residual: [l2 * c2 + t0 - t2 - l1, l2 * s2 + t1 - t3],
-                jacobian: [[-t1, t3], [t0, -t2]],
-                scale: l1 + l2 + l3 + l4,
-                weights: [1.0; 2],
-                payload: [s3, c3, s4, c4],
-            }
+        let (t0, t1, t2, t3) = (l3 * c3, l3 * s3, l4 * c4, l4 * s4);
+        Linearisation {
+            residual: [l2 * c2 + t0 - t2 - l1, l2 * s2 + t1 - t3],
+            jacobian: [[-t1, t3], [t0, -t2]],
+            scale: l1 + l2 + l3 + l4,
+            weights: [1.0; 2],
+            payload: [s3, c3, s4, c4],
         }
     }
 
@@ -903,20 +908,8 @@ mod tests {
         theta2: f64,
         guess: [f64; 2],
     ) -> impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, [f64; 4]> {
-        let [l1, l2, l3, l4] = [180.0, 80.0, 200.0, 150.0];
-        let (s2, c2) = theta2.sin_cos();
         let mut started = Started::<f64, 2>::at(guess);
-        move |x: &[f64; 2]| {
-            let ([s3, s4], [c3, c4]) = started.sin_cos(*x);
-            let (t0, t1, t2, t3) = (l3 * c3, l3 * s3, l4 * c4, l4 * s4);
-            Linearisation {
-                residual: [l2 * c2 + t0 - t2 - l1, l2 * s2 + t1 - t3],
-                jacobian: [[-t1, t3], [t0, -t2]],
-                scale: l1 + l2 + l3 + l4,
-                weights: [1.0; 2],
-                payload: [s3, c3, s4, c4],
-            }
-        }
+        move |x: &[f64; 2]| evaluated(theta2, started.sin_cos(*x))
     }
 
     fn bits(converged: &Converged<f64, 2, [f64; 4]>) -> [u64; 6] {
