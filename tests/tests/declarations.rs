@@ -55,7 +55,17 @@ fn a_length_can_drive_the_mechanism() {
             "{} vs {estimate}",
             v.theta2
         );
-        assert!(linkage.acceleration(d, &q, 3.0, &v, 0.0).is_ok());
+        // With the slide at a steady 3 per second, the angle's acceleration is how its rate
+        // changes along the slide, times 3.
+        let a = linkage.acceleration(d, &q, 3.0, &v, 0.0).unwrap();
+        let rate_plus = linkage.velocity(d + h, &plus, 3.0).unwrap();
+        let rate_minus = linkage.velocity(d - h, &minus, 3.0).unwrap();
+        let estimate = (rate_plus.theta2 - rate_minus.theta2) / (2.0 * h) * 3.0;
+        assert!(
+            (a.theta2 - estimate).abs() < 1e-9 * (1.0 + estimate.abs()),
+            "{} vs {estimate}",
+            a.theta2
+        );
     }
 }
 
