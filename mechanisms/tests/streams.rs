@@ -32,13 +32,7 @@ fn a_closed_pipe_ends_the_program_quietly_with_success() {
         .unwrap();
     assert!(first.starts_with("input_deg,segment,"));
     let status = child.wait().unwrap();
-    let mut stderr = String::new();
-    child
-        .stderr
-        .take()
-        .unwrap()
-        .read_to_string(&mut stderr)
-        .unwrap();
+    let stderr = read_stderr(&mut child);
     std::fs::remove_dir_all(&out_dir).ok();
     assert_eq!(status.code(), Some(0), "{stderr}");
     assert_eq!(stderr, "");
@@ -80,13 +74,7 @@ fn peak_resident_kb(args: &[&str]) -> u64 {
             peak = peak.max(hwm.unwrap_or(0));
         }
     }
-    let mut stderr = String::new();
-    child
-        .stderr
-        .take()
-        .unwrap()
-        .read_to_string(&mut stderr)
-        .unwrap();
+    let stderr = read_stderr(&mut child);
     assert!(child.wait().unwrap().success(), "{stderr}");
     assert!(bytes > 100_000_000, "the table was written: {bytes} bytes");
     assert!(stderr.contains("1000000 samples"), "{stderr}");
@@ -126,4 +114,16 @@ fn a_million_sample_sweep_to_standard_output_stays_under_30_mb() {
     ]);
     std::fs::remove_dir_all(&out_dir).ok();
     assert!(peak > 0 && peak < 30 * 1024, "peak resident {peak} kB");
+}
+
+/// Everything the child wrote to its standard error, once it has closed it.
+fn read_stderr(child: &mut std::process::Child) -> String {
+    let mut stderr = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut stderr)
+        .unwrap();
+    stderr
 }
