@@ -349,14 +349,15 @@ fn sweep_rows(dimensions: &[&str], scratch: &Scratch) -> (String, Vec<(f64, u32)
     (summary, rows)
 }
 
-fn segments_drawn(scratch: &Scratch) -> std::collections::BTreeSet<String> {
+/// The lines the charts draw for their series (the only polylines two pixels wide): one per
+/// series and reachable piece where nothing inside a piece fails.
+fn series_lines_drawn(scratch: &Scratch) -> usize {
     let charts = std::fs::read_to_string(scratch.0.join("sweep.svg")).unwrap();
     let document = roxmltree::Document::parse(&charts).unwrap();
     document
         .descendants()
-        .filter(|n| n.attribute("class") == Some("series"))
-        .filter_map(|n| n.attribute("data-segment").map(str::to_owned))
-        .collect()
+        .filter(|n| n.has_tag_name("polyline") && n.attribute("stroke-width") == Some("2"))
+        .count()
 }
 
 #[test]
@@ -383,10 +384,8 @@ fn a_crank_that_cannot_turn_fully_is_swept_over_its_reachable_pieces() {
     for window in rows.windows(2) {
         assert!(window[0].0 < window[1].0, "inputs in order: {window:?}");
     }
-    assert_eq!(
-        segments_drawn(&scratch),
-        ["1".to_string(), "2".to_string()].into()
-    );
+    // θ3, θ4, ω3, ω4, α3, α4 and the transmission angle, each piece a line of its own.
+    assert_eq!(series_lines_drawn(&scratch), 2 * 7);
     // A slider-crank whose rod is shorter than its crank: two pieces, nothing between.
     let scratch = Scratch::new("slider-crank");
     let (summary, rows) = sweep_rows(&["slider-crank", "200", "50", "0"], &scratch);
@@ -437,23 +436,32 @@ fn a_sweep_writes_csv_charts_and_an_animation() {
     stdout_of(&arguments);
     let charts = std::fs::read_to_string(&charts).unwrap();
     let document = roxmltree::Document::parse(&charts).expect("the charts are well-formed XML");
-    let series: Vec<&str> = document
+    let texts: Vec<&str> = document
         .descendants()
-        .filter(|n| n.has_tag_name("polyline"))
-        .filter_map(|n| n.attribute("data-name"))
+        .filter(|n| n.has_tag_name("text"))
+        .filter_map(|n| n.text())
+        .map(str::trim)
         .collect();
-    assert_eq!(
-        series,
-        [
-            "theta3_deg",
-            "theta4_deg",
-            "omega3",
-            "omega4",
-            "alpha3",
-            "alpha4",
-            "transmission_deg"
-        ]
-    );
+    // A chart per unit, each titled, with its unit on the y-axis and its series' symbols in
+    // the legend, in order.
+    let legend: Vec<&str> = texts
+        .iter()
+        .copied()
+        .filter(|t| ["θ3", "θ4", "ω3", "ω4", "α3", "α4", "μ"].contains(t))
+        .collect();
+    assert_eq!(legend, ["θ3", "θ4", "ω3", "ω4", "α3", "α4", "μ"]);
+    for text in [
+        "output angles (°)",
+        "angular velocities (rad/s)",
+        "angle (°)",
+        "rad/s",
+        "rad/s²",
+        "input angle (°)",
+    ] {
+        assert!(texts.contains(&text), "{text} in {texts:?}");
+    }
+    // Ticks: more than the ends of each axis are labelled.
+    assert!(texts.iter().filter(|t| t.parse::<f64>().is_ok()).count() > 4 * 8);
     let animation = std::fs::read_to_string(&animation).unwrap();
     let document =
         roxmltree::Document::parse(&animation).expect("the animation is well-formed XML");
@@ -476,6 +484,16 @@ fn a_sweep_writes_csv_charts_and_an_animation() {
             .descendants()
             .any(|n| n.attribute("class") == Some("coupler-curve"))
     );
+    // The two ground pivots, O2 and O4, each drawn grounded.
+    for class in ["ground", "pivot"] {
+        assert_eq!(
+            document
+                .descendants()
+                .filter(|n| n.attribute("class") == Some(class))
+                .count(),
+            2
+        );
+    }
     let table = std::fs::read_to_string(&csv).unwrap();
     std::fs::remove_dir_all(&directory).ok();
     insta::with_settings!({

@@ -1,26 +1,40 @@
-//! Plain SVG: line charts stacked in one figure, and an animation of a linkage.
+//! The drawings: line charts stacked in one figure (plotters, SVG backend), and an animation
+//! of a linkage (SVG's own `<animate>`, which plotters does not make).
 
 use std::fmt::Write;
+
+use plotters::prelude::*;
 
 /// A run of a series: the piece (segment) it belongs to, and its points.
 pub type Run = (usize, Vec<(f64, f64)>);
 
-/// One chart: a title, a y-axis label, its series `(name, runs)` with each run
-/// `(segment, points)` drawn as a polyline of its own, and an optional shaded band
-/// `(low, high)` (the transmission angle's 40° to 140°).
+/// One chart: a title, the unit of its y-axis, its series `(label, runs)` with each run
+/// `(segment, points)` drawn as a line of its own, and an optional shaded band `(low, high)`
+/// (the transmission angle's 40° to 140°).
 pub struct Chart {
     pub title: String,
-    pub y_label: String,
+    pub unit: String,
     pub series: Vec<(String, Vec<Run>)>,
     pub band: Option<(f64, f64)>,
 }
 
-const COLOURS: [&str; 6] = [
-    "#1f6feb", "#d1242f", "#1a7f37", "#9a6700", "#8250df", "#bc4c00",
+const COLOURS: [RGBColor; 6] = [
+    RGBColor(0x1f, 0x6f, 0xeb),
+    RGBColor(0xd1, 0x24, 0x2f),
+    RGBColor(0x1a, 0x7f, 0x37),
+    RGBColor(0x9a, 0x67, 0x00),
+    RGBColor(0x82, 0x50, 0xdf),
+    RGBColor(0xbc, 0x4c, 0x00),
 ];
 const WIDTH: f64 = 720.0;
-const HEIGHT: f64 = 260.0;
 const MARGIN: f64 = 60.0;
+/// The charts' pixels: each chart's height, the figure's width, and the legend's column at
+/// its right, where no curve runs.
+const CHART_HEIGHT: u32 = 280;
+const FIGURE_WIDTH: u32 = 820;
+const LEGEND_WIDTH: u32 = 110;
+/// The width of a series' line, which tells it from the grid's and the zero line's.
+const SERIES_STROKE: u32 = 2;
 
 fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
@@ -30,94 +44,136 @@ fn escape(text: &str) -> String {
 
 fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (low, high) = values.fold((f64::MAX, f64::MIN), |(l, h), v| (l.min(v), h.max(v)));
-    if low >= high {
-        (low - 1.0, high + 1.0)
+    if low > high {
+        (-1.0, 1.0)
+    } else if low == high {
+        let pad = if low == 0.0 { 1.0 } else { low.abs() * 0.05 };
+        (low - pad, high + pad)
     } else {
         (low, high)
     }
 }
 
-/// Charts stacked vertically, sharing the x axis label.
-pub fn charts(x_label: &str, charts: &[Chart]) -> String {
-    let total = HEIGHT * charts.len() as f64;
-    let mut svg = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{total}\" font-family=\"sans-serif\" font-size=\"11\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-    );
-    for (k, chart) in charts.iter().enumerate() {
-        let top = HEIGHT * k as f64;
-        let points = chart
-            .series
-            .iter()
-            .flat_map(|(_, runs)| runs.iter().flat_map(|(_, p)| p.iter()));
-        let (x0, x1) = range(points.clone().map(|p| p.0));
-        let (y0, y1) = range(
-            points
-                .map(|p| p.1)
-                .chain(chart.band.iter().flat_map(|b| [b.0, b.1])),
-        );
-        let px = |x: f64| MARGIN + (x - x0) / (x1 - x0) * (WIDTH - 2.0 * MARGIN);
-        let py =
-            |y: f64| top + HEIGHT - MARGIN * 0.7 - (y - y0) / (y1 - y0) * (HEIGHT - MARGIN * 1.4);
-        writeln!(svg, "<g class=\"chart\"><text x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"13\">{}</text>", WIDTH / 2.0, top + 18.0, escape(&chart.title)).unwrap();
-        if let Some((low, high)) = chart.band {
-            writeln!(
-                svg,
-                "<rect x=\"{MARGIN}\" y=\"{:.1}\" width=\"{}\" height=\"{:.1}\" fill=\"#dafbe1\"/>",
-                py(high),
-                WIDTH - 2.0 * MARGIN,
-                py(low) - py(high)
-            )
-            .unwrap();
+/// `(low, high)` widened by 5% each way, so no curve runs along the frame.
+fn padded((low, high): (f64, f64)) -> (f64, f64) {
+    let pad = (high - low) * 0.05;
+    (low - pad, high + pad)
+}
+
+/// A tick label: few digits, no trailing zeros, exponent form for the very large or small.
+fn tick(value: f64) -> String {
+    let magnitude = value.abs();
+    if value == 0.0 {
+        "0".into()
+    } else if !(1e-3..1e6).contains(&magnitude) {
+        format!("{value:.2e}")
+    } else {
+        let text = format!("{value:.4}");
+        let text = text.trim_end_matches('0').trim_end_matches('.');
+        if text == "-0" {
+            "0".into()
+        } else {
+            text.into()
         }
-        writeln!(svg, "<rect x=\"{MARGIN}\" y=\"{:.1}\" width=\"{}\" height=\"{:.1}\" fill=\"none\" stroke=\"#888\"/>", py(y1), WIDTH - 2.0 * MARGIN, py(y0) - py(y1)).unwrap();
-        for (value, anchor_y) in [(y0, py(y0)), (y1, py(y1))] {
-            writeln!(
-                svg,
-                "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"end\">{value:.3}</text>",
-                MARGIN - 4.0,
-                anchor_y + 4.0
-            )
-            .unwrap();
-        }
-        for (value, anchor_x) in [(x0, px(x0)), (x1, px(x1))] {
-            writeln!(
-                svg,
-                "<text x=\"{anchor_x:.1}\" y=\"{:.1}\" text-anchor=\"middle\">{value:.1}</text>",
-                py(y0) + 14.0
-            )
-            .unwrap();
-        }
-        writeln!(
-            svg,
-            "<text x=\"{}\" y=\"{:.1}\" text-anchor=\"middle\">{}</text>",
-            WIDTH / 2.0,
-            py(y0) + 26.0,
-            escape(x_label)
-        )
-        .unwrap();
-        writeln!(svg, "<text x=\"14\" y=\"{:.1}\" transform=\"rotate(-90 14 {:.1})\" text-anchor=\"middle\">{}</text>", top + HEIGHT / 2.0, top + HEIGHT / 2.0, escape(&chart.y_label)).unwrap();
-        for (s, (name, runs)) in chart.series.iter().enumerate() {
-            let colour = COLOURS[s % COLOURS.len()];
-            for (segment, points) in runs {
-                let path: Vec<String> = points
-                    .iter()
-                    .map(|(x, y)| format!("{:.2},{:.2}", px(*x), py(*y)))
-                    .collect();
-                writeln!(svg, "<polyline class=\"series\" data-name=\"{}\" data-segment=\"{segment}\" fill=\"none\" stroke=\"{colour}\" stroke-width=\"1.5\" points=\"{}\"/>", escape(name), path.join(" ")).unwrap();
-            }
-            writeln!(
-                svg,
-                "<text x=\"{}\" y=\"{:.1}\" fill=\"{colour}\">{}</text>",
-                MARGIN + 8.0,
-                top + 44.0 + 14.0 * s as f64,
-                escape(name)
-            )
-            .unwrap();
-        }
-        svg.push_str("</g>\n");
     }
-    svg.push_str("</svg>\n");
-    svg
+}
+
+/// Charts stacked vertically, sharing the x-axis and its label: ticks and a light grid on
+/// both axes, a zero line where zero is in range, the unit on every axis, and a legend in a
+/// column of its own at the right.
+pub fn charts(x_label: &str, charts: &[Chart]) -> Result<String, String> {
+    let mut svg = String::new();
+    let rows = u32::try_from(charts.len()).unwrap_or(u32::MAX).max(1);
+    {
+        let root = SVGBackend::with_string(&mut svg, (FIGURE_WIDTH, CHART_HEIGHT * rows))
+            .into_drawing_area();
+        root.fill(&WHITE).map_err(drawing)?;
+        for (area, chart) in root.split_evenly((charts.len(), 1)).iter().zip(charts) {
+            draw_chart(area, x_label, chart)?;
+        }
+        root.present().map_err(drawing)?;
+    }
+    Ok(svg)
+}
+
+fn drawing(error: impl std::fmt::Display) -> String {
+    format!("cannot draw the charts: {error}")
+}
+
+fn draw_chart<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    x_label: &str,
+    chart: &Chart,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    let (plot, legend) = area.split_horizontally(FIGURE_WIDTH - LEGEND_WIDTH);
+    let points = chart
+        .series
+        .iter()
+        .flat_map(|(_, runs)| runs.iter().flat_map(|(_, p)| p.iter()));
+    let (x0, x1) = range(points.clone().map(|p| p.0));
+    let (y0, y1) = padded(range(
+        points
+            .map(|p| p.1)
+            .chain(chart.band.iter().flat_map(|b| [b.0, b.1])),
+    ));
+    let mut context = ChartBuilder::on(&plot)
+        .caption(&chart.title, ("sans-serif", 15))
+        .margin(8)
+        .x_label_area_size(40)
+        .y_label_area_size(72)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(drawing)?;
+    context
+        .configure_mesh()
+        .x_desc(x_label)
+        .y_desc(&chart.unit)
+        .x_labels(12)
+        .y_labels(6)
+        .label_style(("sans-serif", 12))
+        .axis_desc_style(("sans-serif", 13))
+        .bold_line_style(BLACK.mix(0.12))
+        .light_line_style(BLACK.mix(0.04))
+        .x_label_formatter(&|x| tick(*x))
+        .y_label_formatter(&|y| tick(*y))
+        .draw()
+        .map_err(drawing)?;
+    if let Some((low, high)) = chart.band {
+        let shade = RGBColor(0xda, 0xfb, 0xe1).mix(0.7).filled();
+        context
+            .draw_series(std::iter::once(Rectangle::new(
+                [(x0, low), (x1, high)],
+                shade,
+            )))
+            .map_err(drawing)?;
+    }
+    if y0 < 0.0 && 0.0 < y1 {
+        context
+            .draw_series(LineSeries::new([(x0, 0.0), (x1, 0.0)], BLACK.mix(0.5)))
+            .map_err(drawing)?;
+    }
+    for (s, (label, runs)) in chart.series.iter().enumerate() {
+        let colour = COLOURS[s % COLOURS.len()];
+        for (_, points) in runs {
+            context
+                .draw_series(LineSeries::new(
+                    points.iter().copied(),
+                    colour.stroke_width(SERIES_STROKE),
+                ))
+                .map_err(drawing)?;
+        }
+        let y = 48 + 20 * i32::try_from(s).unwrap_or(0);
+        // A filled swatch, not a line: the figure's only lines this wide are the series'.
+        legend
+            .draw(&Rectangle::new([(8, y - 1), (32, y + 1)], colour.filled()))
+            .map_err(drawing)?;
+        legend
+            .draw(&Text::new(label.as_str(), (38, y - 7), ("sans-serif", 13)))
+            .map_err(drawing)?;
+    }
+    Ok(())
 }
 
 /// An animated drawing of a linkage: each link is a line whose ends move through `frames`
@@ -172,6 +228,19 @@ pub fn animation(
             .collect::<Vec<_>>()
             .join(";")
     };
+    // The ground pivots, the joints that never move: a grounded triangle under each.
+    let ground: Vec<(f64, f64)> = frames
+        .first()
+        .map(|first| {
+            (0..first.len())
+                .filter(|&joint| frames.iter().all(|f| f[joint] == first[joint]))
+                .map(|joint| (px(first[joint].0), py(first[joint].1)))
+                .collect()
+        })
+        .unwrap_or_default();
+    for &(x, y) in &ground {
+        writeln!(svg, "<path class=\"ground\" d=\"M{x:.2},{y:.2} l-10,16 h20 z M{:.2},{:.2} h28\" fill=\"#d0d7de\" stroke=\"#57606a\" stroke-width=\"1.5\"/>", x - 14.0, y + 16.0).unwrap();
+    }
     for &(from, to) in links {
         let first = &frames[0];
         writeln!(
@@ -189,6 +258,9 @@ pub fn animation(
             writeln!(svg, "  <animate attributeName=\"{attribute}\" dur=\"{seconds}s\" repeatCount=\"indefinite\" values=\"{}\"/>", values(joint, axis)).unwrap();
         }
         svg.push_str("</line>\n");
+    }
+    for &(x, y) in &ground {
+        writeln!(svg, "<circle class=\"pivot\" cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"4\" fill=\"white\" stroke=\"#1f2328\" stroke-width=\"2\"/>").unwrap();
     }
     svg.push_str("</svg>\n");
     svg

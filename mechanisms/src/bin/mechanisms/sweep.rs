@@ -298,8 +298,10 @@ fn slider_crank(args: &Args) -> Result<Sweep<'_>, String> {
         groups: vec![
             ("rod angle (°)".into(), 0..1),
             ("slider position (mm)".into(), 1..2),
-            ("rates: ω3 (rad/s), ḋ (mm/s)".into(), 2..4),
-            ("accelerations: α3 (rad/s²), d̈ (mm/s²)".into(), 4..6),
+            ("rod angular velocity (rad/s)".into(), 2..3),
+            ("slider velocity (mm/s)".into(), 3..4),
+            ("rod angular acceleration (rad/s²)".into(), 4..5),
+            ("slider acceleration (mm/s²)".into(), 5..6),
             ("transmission angle (°), 40°–140° shaded".into(), 6..7),
         ],
         band_column: Some(6),
@@ -351,8 +353,10 @@ fn inverted(args: &Args) -> Result<Sweep<'_>, String> {
         groups: vec![
             ("rocker angle (°)".into(), 0..1),
             ("slide length (mm)".into(), 1..2),
-            ("rates: ω4 (rad/s), ḃ (mm/s)".into(), 2..4),
-            ("accelerations: α4 (rad/s²), b̈ (mm/s²)".into(), 4..6),
+            ("rocker angular velocity (rad/s)".into(), 2..3),
+            ("slide velocity (mm/s)".into(), 3..4),
+            ("rocker angular acceleration (rad/s²)".into(), 4..5),
+            ("slide acceleration (mm/s²)".into(), 5..6),
         ],
         band_column: None,
         links: vec![(0, 1), (2, 3), (3, 1)],
@@ -605,21 +609,87 @@ impl Target {
     }
 }
 
-fn charts(sweep: &Sweep, drawings: &Drawings) -> String {
+/// The charts, one per unit (a chart's title ends in its unit, in brackets): series
+/// labelled with their symbols, angles unwrapped along each run so a turn draws no jump.
+fn charts(sweep: &Sweep, drawings: &Drawings) -> Result<String, String> {
     let charts: Vec<Chart> = sweep
         .groups
         .iter()
-        .map(|(title, columns)| Chart {
-            title: title.clone(),
-            y_label: title.split(" (").next().unwrap_or(title).to_string(),
-            series: columns
-                .clone()
-                .map(|c| (sweep.columns[c].clone(), drawings.series[c].clone()))
-                .collect(),
-            band: (sweep.band_column == Some(columns.start)).then_some((40.0, 140.0)),
+        .map(|(title, columns)| {
+            let unit = title
+                .rsplit_once(" (")
+                .and_then(|(_, unit)| unit.split(')').next())
+                .unwrap_or("")
+                .to_string();
+            let band = (sweep.band_column == Some(columns.start)).then_some((40.0, 140.0));
+            let angles = unit == "°" && band.is_none();
+            Chart {
+                title: title.clone(),
+                unit: if unit == "°" {
+                    "angle (°)".into()
+                } else {
+                    unit
+                },
+                series: columns
+                    .clone()
+                    .map(|c| {
+                        let runs = drawings.series[c].clone();
+                        let runs = if angles {
+                            runs.into_iter().map(unwrapped).collect()
+                        } else {
+                            runs
+                        };
+                        (symbol(&sweep.columns[c]), runs)
+                    })
+                    .collect(),
+                band,
+            }
         })
         .collect();
     svg::charts("input angle (°)", &charts)
+}
+
+/// A run of angles in degrees with every jump of more than half a turn taken out, so an
+/// angle that passes ±180° draws on past it.
+fn unwrapped((segment, points): svg::Run) -> svg::Run {
+    let mut turns = 0.0;
+    let mut last: Option<f64> = None;
+    let points = points
+        .into_iter()
+        .map(|(x, y)| {
+            if let Some(previous) = last {
+                turns -= 360.0 * ((y - previous) / 360.0).round();
+            }
+            last = Some(y);
+            (x, y + turns)
+        })
+        .collect();
+    (segment, points)
+}
+
+/// A column's symbol for a legend.
+fn symbol(column: &str) -> String {
+    let symbol = match column {
+        "theta3_deg" => "θ3",
+        "theta4_deg" => "θ4",
+        "omega3" => "ω3",
+        "omega4" => "ω4",
+        "alpha3" => "α3",
+        "alpha4" => "α4",
+        "transmission_deg" => "μ",
+        "d_dot" => "ḋ",
+        "d_ddot" => "d̈",
+        "b_dot" => "ḃ",
+        "b_ddot" => "b̈",
+        "foot_x" => "x",
+        "foot_y" => "y",
+        "foot_vx" => "vx",
+        "foot_vy" => "vy",
+        "foot_ax" => "ax",
+        "foot_ay" => "ay",
+        other => other,
+    };
+    symbol.to_string()
 }
 
 fn check(args: &Args) -> Result<(), String> {
@@ -772,7 +842,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             lines.join("\n")
         ));
     }
-    chart_target.write(&charts(&sweep, &drawings))?;
+    chart_target.write(&charts(&sweep, &drawings)?)?;
     animation_target.write(&svg::animation(
         &sweep.title,
         &sweep.links,
@@ -817,4 +887,32 @@ fn progress(bar: &ProgressBar, started: Instant, done: u64) {
         bar.set_draw_target(ProgressDrawTarget::stderr());
     }
     bar.set_position(done);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::unwrapped;
+
+    #[test]
+    fn an_angle_that_passes_half_a_turn_draws_on_past_it() {
+        let run = (
+            1,
+            vec![(0.0, 170.0), (1.0, 179.0), (2.0, -172.0), (3.0, -160.0)],
+        );
+        let (segment, points) = unwrapped(run);
+        assert_eq!(segment, 1);
+        let angles: Vec<f64> = points.iter().map(|p| p.1).collect();
+        assert_eq!(angles, [170.0, 179.0, 188.0, 200.0]);
+        // Down through −180° and back up through it.
+        let run = vec![
+            (0.0, -170.0),
+            (1.0, 175.0),
+            (2.0, 165.0),
+            (3.0, -178.0),
+            (4.0, 176.0),
+        ];
+        let (_, points) = unwrapped((2, run));
+        let angles: Vec<f64> = points.iter().map(|p| p.1).collect();
+        assert_eq!(angles, [-170.0, -185.0, -195.0, -178.0, -184.0]);
+    }
 }
