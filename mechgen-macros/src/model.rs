@@ -473,6 +473,20 @@ impl Scope {
                 None
             }
         });
+        // A bare number in a length is a length in no unit the mechanism knows: it would not
+        // scale with the declared lengths, which every solver scales to keep the digits of a
+        // mechanism of any size.
+        let resolved = resolved.and_then(|linear| {
+            if expected == Kind::Length && linear.constant != 0.0 {
+                errors.push(scalar.error(
+                    "a vector's magnitude cannot hold a length as a bare number: declare it \
+                     in `params` (a number may multiply or divide a declared length)",
+                ));
+                None
+            } else {
+                Some(linear)
+            }
+        });
         match resolved {
             Some(linear) => {
                 self.appearing.extend(linear.coefficients.keys().copied());

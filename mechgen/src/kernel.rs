@@ -82,6 +82,35 @@ pub fn length_scale<T: Real>(lengths: &[T]) -> (T, T) {
     (scale, scale.recip())
 }
 
+/// `values` with each length among them (where `lengths` is true) multiplied by `unscale`,
+/// back from a computation on the mechanism scaled by [`length_scale`] to its own units; an
+/// error naming `quantity` if one is then not finite (a length beyond the float's range).
+#[inline(always)]
+pub fn unscaled<T: Real, const N: usize>(
+    values: [T; N],
+    lengths: [bool; N],
+    unscale: T,
+    quantity: &'static str,
+) -> Result<[T; N], Error<T>> {
+    let mut values = values;
+    for (value, length) in values.iter_mut().zip(lengths) {
+        if length {
+            *value = *value * unscale;
+        }
+    }
+    crate::newton::finite(values, quantity)
+}
+
+/// `error` from a computation at the input scaled by [`length_scale`], with the input it
+/// names (where it cannot assemble) the caller's own.
+#[cold]
+pub fn at_input<T>(error: Error<T>, input: T) -> Error<T> {
+    match error {
+        Error::CannotAssemble { .. } => Error::CannotAssemble { input },
+        other => other,
+    }
+}
+
 /// `sign·½·√((sum − span)(sum + span)(span − |difference|)(span + |difference|))`: twice the
 /// area of the triangle with sides `r1`, `r2` and `span`, given `sum = r1 + r2` and
 /// `difference = r1 − r2` (Heron's formula in factors, which keeps the digits of a thin

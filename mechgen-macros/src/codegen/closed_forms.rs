@@ -8,7 +8,7 @@ use syn::ext::IdentExt;
 use super::docs::doc;
 use super::emit::{Block, Emitted, local};
 use super::{Bindings, Generator, arg};
-use crate::model::SymbolRef;
+use crate::model::{Kind, SymbolRef};
 use crate::symbolic::{Case, ExprId, Node, Step, Var};
 
 impl Generator<'_> {
@@ -46,6 +46,17 @@ impl Generator<'_> {
              the range of motion); a degenerate configuration; a non-finite parameter or input.",
         );
         let docs = doc(&docs);
+        let inner = local("mechgen_assemble_normalised");
+        let branch_argument = self.branch_argument(steps);
+        let Normalised {
+            prologue,
+            receiver,
+            input: scaled_input,
+            restore,
+            ..
+        } = self.normalised();
+        let position = local("position");
+        let finish = self.unscaled_unknowns(&position, "position");
         quote! {
             #docs
             pub fn assemble(
@@ -53,8 +64,104 @@ impl Generator<'_> {
                 #input: T #branch_parameter
             ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
+                #prologue
+                let #position = #receiver.#inner(#scaled_input #branch_argument)#restore?;
+                ::core::result::Result::Ok(#finish)
+            }
+
+            /// [`Self::assemble`] on the mechanism scaled by a power of two (its arguments
+            /// checked), which keeps every digit at any size.
+            #[inline(always)]
+            fn #inner(
+                &self,
+                #input: T #branch_parameter
+            ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
                 #solve
                 ::core::result::Result::Ok(#ty { #(#names),* })
+            }
+        }
+    }
+
+    /// How a closed-form function computes on the mechanism scaled by a power of two, so
+    /// that it gives the same bits at every size (see [`Normalised`]).
+    fn normalised(&self) -> Normalised {
+        let (scale, unscale) = (local("scale"), local("unscale"));
+        let receiver = local("normalised");
+        let name = &self.model.name;
+        let lengths = self
+            .model
+            .params
+            .iter()
+            .filter(|param| param.kind == Kind::Length)
+            .map(|param| &param.name);
+        let fields = self.model.params.iter().map(|param| {
+            let field = &param.name;
+            if param.kind == Kind::Length {
+                quote!(#field: self.#field * #scale)
+            } else {
+                quote!(#field: self.#field)
+            }
+        });
+        let input = &self.model.input.name;
+        let length_input = self.model.input.kind == Kind::Length;
+        let scaled = |value: &Ident| {
+            if length_input {
+                quote!(#value * #scale)
+            } else {
+                quote!(#value)
+            }
+        };
+        Normalised {
+            prologue: quote! {
+                let (#scale, #unscale) = ::mechgen::__private::length_scale(&[#(self.#lengths),*]);
+                let #receiver = #name { #(#fields),* };
+            },
+            receiver,
+            input: scaled(input),
+            input_dot: scaled(&self.input_dot),
+            input_ddot: scaled(&self.input_ddot),
+            restore: length_input.then(|| {
+                let error = arg("failure");
+                quote!(.map_err(|#error| ::mechgen::__private::at_input(#error, #input)))
+            }),
+        }
+    }
+
+    /// `values` (an unknowns struct) back in the mechanism's units: its lengths times
+    /// `unscale`, checked finite as `quantity`. The struct itself where there are no lengths.
+    fn unscaled_unknowns(&self, values: &Ident, quantity: &str) -> TokenStream {
+        let ty = &self.unknowns_type;
+        let lengths: Vec<bool> = self
+            .model
+            .unknowns
+            .iter()
+            .map(|unknown| unknown.kind == Kind::Length)
+            .collect();
+        if !lengths.contains(&true) {
+            return quote!(#values);
+        }
+        let unscale = local("unscale");
+        quote! {
+            #ty::from_array(::mechgen::__private::unscaled(
+                #values.to_array(),
+                [#(#lengths),*],
+                #unscale,
+                #quantity,
+            )?)
+        }
+    }
+
+    /// The `branch` or `branches` argument a closed-form function passes on.
+    fn branch_argument(&self, steps: &[Step]) -> TokenStream {
+        match steps.iter().filter(|s| s.case.has_branches()).count() {
+            0 => TokenStream::new(),
+            1 => {
+                let branch = arg("branch");
+                quote!(, #branch)
+            }
+            _ => {
+                let branches = arg("branches");
+                quote!(, #branches)
             }
         }
     }
@@ -225,6 +332,27 @@ impl Generator<'_> {
              them.\n\nErrors: as [`Self::assemble`], [`Self::velocity`] and \
              [`Self::acceleration`]."
         ));
+        let inner = local("mechgen_motion_normalised");
+        let branch_argument = self.branch_argument(steps);
+        let Normalised {
+            prologue,
+            receiver,
+            input: scaled_input,
+            input_dot: scaled_dot,
+            input_ddot: scaled_ddot,
+            restore,
+            ..
+        } = self.normalised();
+        let motion = local("motion");
+        let [position, velocity, acceleration] =
+            ["position", "velocity", "acceleration"].map(local);
+        let finish = [
+            (&position, "position"),
+            (&velocity, "velocity"),
+            (&acceleration, "acceleration"),
+        ]
+        .map(|(values, quantity)| self.unscaled_unknowns(values, quantity));
+        let [finish_position, finish_velocity, finish_acceleration] = finish;
         quote! {
             #docs
             pub fn motion(
@@ -235,6 +363,29 @@ impl Generator<'_> {
             ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
                 ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                #prologue
+                let #motion = #receiver
+                    .#inner(#scaled_input #branch_argument, #scaled_dot, #scaled_ddot)#restore?;
+                let #position = #motion.position;
+                let #velocity = #motion.velocity;
+                let #acceleration = #motion.acceleration;
+                ::core::result::Result::Ok(::mechgen::Motion {
+                    position: #finish_position,
+                    velocity: #finish_velocity,
+                    acceleration: #finish_acceleration,
+                    accuracy: #motion.accuracy,
+                })
+            }
+
+            /// [`Self::motion`] on the mechanism scaled by a power of two (its arguments
+            /// checked), which keeps every digit at any size.
+            #[inline(always)]
+            fn #inner(
+                &self,
+                #input: T #branch_parameter,
+                #input_dot: T,
+                #input_ddot: T,
+            ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 #bindings
                 #(#solves)*
                 #rate_solves
@@ -345,6 +496,23 @@ impl Generator<'_> {
             })
             .collect()
     }
+}
+
+/// A closed-form function's way to compute on its mechanism scaled by a power of two (the
+/// longest length brought into `[1/2, 1)`): exactly, so that the same mechanism at any size,
+/// scaled by a power of two, gives the same bits, and no product of lengths overflows or
+/// leaves the float's normal range.
+struct Normalised {
+    /// Binds `scale`, `unscale` and the scaled copy of the mechanism.
+    prologue: TokenStream,
+    /// The scaled copy.
+    receiver: Ident,
+    /// The input, and its rate and acceleration, as the scaled copy takes them.
+    input: TokenStream,
+    input_dot: TokenStream,
+    input_ddot: TokenStream,
+    /// Gives back an error the input of the caller's units, where the input is a length.
+    restore: Option<TokenStream>,
 }
 
 /// A closed-form case's complex coefficients, in the order its runtime solver takes them.
