@@ -7,6 +7,7 @@
 mod analyse;
 mod output;
 mod seeds;
+mod six_bars;
 mod svg;
 mod sweep;
 
@@ -43,6 +44,12 @@ pub enum Mechanism {
     InvertedSliderCrank,
     /// Theo Jansen's leg with his published lengths (no dimensions).
     Jansen,
+    /// Watt six-bar: ground crank coupler rocker extension extension-angle(°)
+    /// second-coupler second-rocker pivot-x pivot-y.
+    WattSixBar,
+    /// Stephenson six-bar: ground crank link ternary-bc ternary-cd ternary-angle(°) rocker
+    /// output-rocker pivot-x pivot-y.
+    StephensonSixBar,
 }
 
 impl Mechanism {
@@ -53,6 +60,30 @@ impl Mechanism {
             Mechanism::SliderCrank => &["crank", "rod", "offset"],
             Mechanism::InvertedSliderCrank => &["ground", "crank", "offset", "angle (°)"],
             Mechanism::Jansen => &[],
+            Mechanism::WattSixBar => &[
+                "ground",
+                "crank",
+                "coupler",
+                "rocker",
+                "extension",
+                "extension-angle (°)",
+                "second-coupler",
+                "second-rocker",
+                "pivot-x",
+                "pivot-y",
+            ],
+            Mechanism::StephensonSixBar => &[
+                "ground",
+                "crank",
+                "link",
+                "ternary-bc",
+                "ternary-cd",
+                "ternary-angle (°)",
+                "rocker",
+                "output-rocker",
+                "pivot-x",
+                "pivot-y",
+            ],
         }
     }
 
