@@ -67,10 +67,13 @@ impl Args {
 }
 
 /// How many angles `--guess` takes for a mechanism Newton is traced on, and their names.
-fn unknowns(mechanism: Mechanism) -> Option<&'static str> {
+fn unknowns(mechanism: Mechanism) -> Option<(usize, &'static str)> {
     match mechanism {
-        Mechanism::FourBar => Some("theta3,theta4 (as 15,80)"),
-        Mechanism::StephensonSixBar => Some("theta3,theta4,theta5,theta6 (as -10,40,80,80)"),
+        Mechanism::FourBar => Some((2, "two finite angles in degrees, theta3,theta4 (as 15,80)")),
+        Mechanism::StephensonSixBar => Some((
+            4,
+            "four finite angles in degrees, theta3,theta4,theta5,theta6 (as 20,-20,-70,-150)",
+        )),
         _ => None,
     }
 }
@@ -106,11 +109,10 @@ fn check(args: &Args) -> Result<(), String> {
         if !args.trace {
             return Err("--guess is Newton's start for --trace, which was not given".into());
         }
-        let names = names.unwrap_or_default();
-        let count = names.split(',').count();
+        let (count, names) = names.unwrap_or_default();
         if guess.len() != count || !guess.iter().all(|g| g.is_finite()) {
             return Err(format!(
-                "--guess takes {count} finite angles in degrees for the {}, {names}, got {}",
+                "--guess takes {names} for the {}, got {}",
                 args.mechanism.name(),
                 guess.iter().map(|&g| tidy(g)).collect::<Vec<_>>().join(",")
             ));
@@ -636,11 +638,12 @@ fn jansen(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
+/// A [`Row`] that owns its label and text.
+type OwnedRow<U> = (String, Needs, Box<dyn Fn(&U, &U) -> String>);
+
 /// The four angles, rates and accelerations of a six-bar's unknowns, as table rows.
-fn six_bar_rows<U: 'static>(
-    array: fn(&U) -> [f64; 4],
-) -> Vec<(String, Needs, Box<dyn Fn(&U, &U) -> String>)> {
-    let mut rows: Vec<(String, Needs, Box<dyn Fn(&U, &U) -> String>)> = Vec::new();
+fn six_bar_rows<U: 'static>(array: fn(&U) -> [f64; 4]) -> Vec<OwnedRow<U>> {
+    let mut rows: Vec<OwnedRow<U>> = Vec::new();
     for (k, n) in [3, 4, 5, 6].into_iter().enumerate() {
         rows.push((
             format!("θ{n} (°)"),
@@ -874,10 +877,11 @@ fn solve<const N: usize>(mut a: [[f64; N]; N], mut b: [f64; N]) -> Option<[f64; 
         }
         a.swap(column, pivot);
         b.swap(column, pivot);
+        let pivot_row = a[column];
         for row in column + 1..N {
-            let factor = a[row][column] / a[column][column];
-            for k in column..N {
-                a[row][k] -= factor * a[column][k];
+            let factor = a[row][column] / pivot_row[column];
+            for (entry, above) in a[row].iter_mut().zip(pivot_row).skip(column) {
+                *entry -= factor * above;
             }
             b[row] -= factor * b[column];
         }
