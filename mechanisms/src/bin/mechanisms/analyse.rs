@@ -296,16 +296,13 @@ fn nothing<U>(solved: &[&Solved<U>], cannot: impl Fn() -> String) -> Result<(), 
         .iter()
         .filter_map(|s| s.position.as_ref().err())
         .collect();
-    match errors.first() {
-        _ if errors
-            .iter()
-            .any(|e| matches!(e, Error::CannotAssemble { .. })) =>
-        {
-            Err(cannot())
-        }
-        Some(e) => Err(format!("{e}")),
-        None => Err(cannot()),
+    if errors
+        .iter()
+        .any(|e| matches!(e, Error::CannotAssemble { .. }))
+    {
+        return Err(cannot());
     }
+    Err(errors.first().map_or_else(&cannot, |e| e.to_string()))
 }
 
 /// Where a four-bar's crank can go, in words.

@@ -25,7 +25,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Positions, velocities and accelerations on both branches, with the analyses.
+    /// Positions, velocities and accelerations on every branch (every assembly found, for
+    /// the Stephenson six-bar), with the analyses.
     Analyse(analyse::Args),
     /// A full turn (or the reachable range) on one branch, as CSV and SVG.
     Sweep(sweep::Args),
