@@ -1013,6 +1013,16 @@ fn bad_six_bar_input_is_a_clear_message_and_a_failure() {
     );
     fails_with(
         &strings(&with(
+            &["analyse"],
+            &strings(&with(
+                &strings(&stephenson),
+                &["--trace", "--guess", "20", "-20"],
+            )),
+        )),
+        "--guess takes four angles joined by commas",
+    );
+    fails_with(
+        &strings(&with(
             &["sweep"],
             &strings(&with(&strings(&stephenson), &["--branch", "open"])),
         )),

@@ -91,7 +91,11 @@ pub fn refused(error: DimensionError<f64>) -> String {
 fn check(args: &Args) -> Result<(), String> {
     // Before the count of dimensions, which `--guess 15 80` makes one too many.
     if args.guess.as_ref().is_some_and(|g| g.len() == 1) {
-        return Err("--guess takes two angles joined by a comma, as --guess 15,80".into());
+        return Err(if args.mechanism == Mechanism::StephensonSixBar {
+            "--guess takes four angles joined by commas, as --guess 20,-20,-70,-150".into()
+        } else {
+            "--guess takes two angles joined by a comma, as --guess 15,80".into()
+        });
     }
     args.mechanism.check(&args.dimensions)?;
     finite("--at", args.at, "degrees")?;

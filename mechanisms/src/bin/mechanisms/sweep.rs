@@ -567,8 +567,8 @@ fn stop_words(stop: &Stop<f64>) -> &'static str {
     }
 }
 
-/// Where a walk of `steps` steps of `step` from `start` stops, if it does: the last input
-/// it reaches (radians) and why it stopped. The walk reports only the step it could not
+/// Where a walk of `steps` steps of `step` from `start` stops: the last input it reaches
+/// (radians) and the position there, and why it stopped, if it did. The walk reports only the step it could not
 /// finish, so the end is then closed in on by halving: from the last position reached, a
 /// step of half the last length is tried, kept if the walk finishes it, halved again if
 /// not, down to the input's rounding.
@@ -578,7 +578,7 @@ fn edge(
     position: [f64; 4],
     step: f64,
     steps: u32,
-) -> Option<(f64, Stop<f64>)> {
+) -> ((f64, [f64; 4]), Option<Stop<f64>>) {
     let options = NewtonOptions::default();
     let mut last = (start, position);
     let mut stop = None;
@@ -591,7 +591,9 @@ fn edge(
             }
         }
     }
-    let stop = stop?;
+    let Some(stop) = stop else {
+        return (last, None);
+    };
     let mut length = 0.5 * step;
     for _ in 0..200 {
         if last.0 + length == last.0 {
@@ -602,7 +604,7 @@ fn edge(
             _ => length *= 0.5,
         }
     }
-    Some((last.0, stop))
+    (last, Some(stop))
 }
 
 /// The Stephenson six-bar, which has no closed form. Its start is its first assembly (in
@@ -631,19 +633,32 @@ fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
     let degree = 1f64.to_radians();
     let walk = |step: f64, steps: u32| edge(&linkage, start.to_radians(), position, step, steps);
     let (piece, shift) = match walk(degree, 360) {
-        None => {
+        (end, None) => {
+            // A circuit may need more than one turn of the input to close; the sweep draws
+            // one, from its start, and says so.
+            let turn = std::f64::consts::TAU;
+            let back = end.1.iter().zip(position).all(|(a, b)| {
+                let d = (a - b).rem_euclid(turn);
+                d.min(turn - d) < 1e-6
+            });
             let mut piece = Piece::full_turn();
             piece.words = format!(
-                "a full turn (followed by Newton from its assembly at {}°)",
-                tidy(start)
+                "a full turn (followed by Newton from its assembly at {}°{})",
+                tidy(start),
+                if back {
+                    ""
+                } else {
+                    "; after a turn it is not back where it started: its circuit takes more \
+                     turns of the input, and the sweep draws the first"
+                }
             );
             (piece, 0.0)
         }
-        Some(up) => {
-            let high = up.0.to_degrees();
+        ((high, _), Some(up)) => {
+            let high = high.to_degrees();
             let left = 360 - ((high - start).ceil().max(0.0) as u32).min(360);
-            let down = walk(-degree, left);
-            let low = down.as_ref().map_or(high - 360.0, |d| d.0.to_degrees());
+            let ((low, _), down) = walk(-degree, left);
+            let low = low.to_degrees();
             // Whole turns, so the piece reads as the other mechanisms' do.
             let shift = low - six_bars::normal(low, high).0;
             let mut piece = Piece::between(low - shift, high - shift);
@@ -652,8 +667,8 @@ fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
                  stopped)",
                 output::fixed(piece.from, 2),
                 output::fixed(piece.to, 2),
-                down.as_ref().map_or("a full turn", |d| stop_words(&d.1)),
-                stop_words(&up.1),
+                down.as_ref().map_or("a full turn", stop_words),
+                stop_words(&up),
                 tidy(start - shift)
             );
             (piece, shift)
