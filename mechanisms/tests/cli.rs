@@ -825,6 +825,13 @@ fn a_watt_sweep_turns_fully_as_the_library_computes_it() {
     }
     // θ3, θ4, θ5, θ6, their rates and accelerations: twelve lines for one piece.
     assert_eq!(series_lines_drawn(&scratch), 12);
+    // The drawing: seven links (the rocker a triangle O4 B C) and three ground pivots.
+    let animation = std::fs::read_to_string(scratch.0.join("animation.svg")).unwrap();
+    let document = roxmltree::Document::parse(&animation).unwrap();
+    let count =
+        |test: &dyn Fn(&roxmltree::Node) -> bool| document.descendants().filter(test).count();
+    assert_eq!(count(&|n| n.has_tag_name("line")), 7);
+    assert_eq!(count(&|n| n.attribute("class") == Some("ground")), 3);
 }
 
 #[test]
