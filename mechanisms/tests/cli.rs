@@ -2,6 +2,7 @@
 //! sweep writes.
 
 use assert_cmd::Command;
+use mechgen::Branch;
 
 fn program() -> Command {
     Command::cargo_bin("mechanisms").expect("the program is built")
@@ -244,7 +245,7 @@ fn negative_and_non_finite_numbers_are_values_not_flags() {
 fn flags_that_do_not_apply_are_errors() {
     fails_with(
         &["analyse", "slider-crank", "50", "150", "0", "--trace"],
-        "--trace applies to the four-bar only, not the slider-crank",
+        "--trace applies to the four-bar and the stephenson-six-bar (Newton-Raphson), not the slider-crank",
     );
     fails_with(
         &[
@@ -503,4 +504,594 @@ fn a_sweep_writes_csv_charts_and_an_animation() {
     }, {
         insta::assert_snapshot!("four_bar_sweep_csv", table);
     });
+}
+
+// ---- the six-bars --------------------------------------------------------------------------
+
+/// The documented Watt six-bar (`WattSixBar`'s example, its angle 0.8 rad in degrees), and
+/// the library's own, to compare with.
+fn watt_args(dimensions: [f64; 10]) -> Vec<String> {
+    let mut args = vec!["watt-six-bar".to_string()];
+    args.extend(dimensions.iter().map(|d| d.to_string()));
+    args
+}
+
+const WATT: [f64; 10] = [
+    180.0,
+    80.0,
+    200.0,
+    150.0,
+    100.0,
+    45.836623610465864,
+    220.0,
+    160.0,
+    300.0,
+    150.0,
+];
+
+fn watt_library() -> mechanisms::WattSixBar<f64> {
+    mechanisms::WattSixBar::new(
+        [180.0, 80.0, 200.0, 150.0],
+        100.0,
+        0.8,
+        220.0,
+        160.0,
+        (300.0, 150.0),
+    )
+    .unwrap()
+}
+
+/// The documented Stephenson six-bar (`examples::stephenson_six_bar`), its ternary angle of
+/// −0.97 rad in degrees, with the crank `crank`.
+fn stephenson_args(crank: f64) -> Vec<String> {
+    let dimensions = [
+        100.0,
+        crank,
+        117.0,
+        60.0,
+        63.0,
+        (-0.97f64).to_degrees(),
+        52.0,
+        85.0,
+        189.0,
+        -26.0,
+    ];
+    let mut args = vec!["stephenson-six-bar".to_string()];
+    args.extend(dimensions.iter().map(|d| d.to_string()));
+    args
+}
+
+fn stephenson_library(crank: f64) -> mechanisms::StephensonSixBar<f64> {
+    mechanisms::StephensonSixBar::new(
+        100.0,
+        crank,
+        117.0,
+        [60.0, 63.0],
+        -0.97,
+        52.0,
+        85.0,
+        (189.0, -26.0),
+    )
+    .unwrap()
+}
+
+/// The numbers in the analyse table's row labelled `label`, one per column.
+fn cells(report: &str, label: &str) -> Vec<f64> {
+    let line = report
+        .lines()
+        .find(|l| l.trim_start().starts_with(label))
+        .unwrap_or_else(|| panic!("no row {label} in:\n{report}"));
+    line.split_whitespace()
+        .filter_map(|c| c.parse().ok())
+        .collect()
+}
+
+/// `r @ θ°`.
+fn polar(r: f64, degrees: f64) -> (f64, f64) {
+    let t = degrees.to_radians();
+    (r * t.cos(), r * t.sin())
+}
+
+fn plus(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    (a.0 + b.0, a.1 + b.1)
+}
+
+fn meets(what: &str, a: (f64, f64), b: (f64, f64), within: f64) {
+    let gap = (a.0 - b.0).hypot(a.1 - b.1);
+    assert!(gap < within, "{what}: {a:?} and {b:?} are {gap} apart");
+}
+
+/// The Stephenson six-bar's joints from its angles in degrees, each loop closed from both
+/// sides: B from A, C from B and from O4, D from C and from O6.
+fn stephenson_closes(crank: f64, input: f64, angles: [f64; 4], within: f64) {
+    let [t3, t4, t5, t6] = angles;
+    let beta = (-0.97f64).to_degrees();
+    let b = plus(polar(crank, input), polar(117.0, t3));
+    let c = plus((100.0, 0.0), polar(52.0, t4));
+    meets(
+        &format!("C at {input}°"),
+        plus(b, polar(60.0, t5)),
+        c,
+        within,
+    );
+    let d = plus(c, polar(63.0, t5 + beta));
+    meets(
+        &format!("D at {input}°"),
+        d,
+        plus((189.0, -26.0), polar(85.0, t6)),
+        within,
+    );
+}
+
+fn wrapped_difference(a: f64, b: f64) -> f64 {
+    let d = (a - b).rem_euclid(360.0);
+    d.min(360.0 - d)
+}
+
+#[test]
+fn analyse_solves_each_watt_branch_pair_with_both_loops_closed() {
+    let report = stdout_of(&strings(&with(&["analyse"], &strings(&watt_args(WATT)))));
+    let [t3, t4, t5, t6] = ["θ3 (°)", "θ4 (°)", "θ5 (°)", "θ6 (°)"].map(|l| cells(&report, l));
+    assert_eq!(t3.len(), 4, "{report}");
+    // The first loop is the notes' Example 1 four-bar at 60°.
+    assert_eq!(
+        [t3[0], t4[0], t3[2], t4[2]],
+        [21.5576, 72.1377, 285.7834, 235.2033]
+    );
+    for k in 0..4 {
+        // B from the crank's side and from the rocker's; D from C's side and from O6's.
+        let b = plus(polar(80.0, 60.0), polar(200.0, t3[k]));
+        meets("B", b, plus((180.0, 0.0), polar(150.0, t4[k])), 1e-3);
+        let c = plus((180.0, 0.0), polar(100.0, t4[k] + WATT[5]));
+        let d = plus(c, polar(220.0, t5[k]));
+        meets("D", d, plus((300.0, 150.0), polar(160.0, t6[k])), 1e-3);
+    }
+    // The second loop's branches are different positions; each column as the library has it.
+    assert!(wrapped_difference(t5[0], t5[1]) > 1.0);
+    let linkage = watt_library();
+    let theta2 = 60f64.to_radians();
+    let (omega6, alpha6) = (cells(&report, "ω6"), cells(&report, "α6"));
+    for (k, pair) in [
+        [Branch::Open, Branch::Open],
+        [Branch::Open, Branch::Crossed],
+        [Branch::Crossed, Branch::Open],
+        [Branch::Crossed, Branch::Crossed],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let m = linkage.motion(theta2, pair, 10.0, 0.0).unwrap();
+        assert!(wrapped_difference(t6[k], m.position.theta6.to_degrees()) < 1e-4);
+        assert!((omega6[k] - m.velocity.theta6).abs() < 1e-4);
+        assert!((alpha6[k] - m.acceleration.theta6).abs() < 1e-4);
+    }
+}
+
+#[test]
+fn analyse_lists_every_stephenson_assembly_each_closing_both_loops() {
+    let report = stdout_of(&strings(&with(
+        &["analyse"],
+        &strings(&with(&strings(&stephenson_args(20.0)), &["--at", "0"])),
+    )));
+    let angles = ["θ3 (°)", "θ4 (°)", "θ5 (°)", "θ6 (°)"].map(|l| cells(&report, l));
+    assert!(report.contains("4 assemblies found"), "{report}");
+    for k in 0..4 {
+        stephenson_closes(20.0, 0.0, angles.clone().map(|a| a[k]), 1e-3);
+    }
+    // One of them is the library's, by Newton from the documented guess.
+    let linkage = stephenson_library(20.0);
+    let guess = mechanisms::StephensonSixBarUnknowns {
+        theta3: -0.25,
+        theta4: 0.63,
+        theta5: 1.43,
+        theta6: 1.46,
+    };
+    let q = linkage
+        .position(0.0, &guess, &mechgen::NewtonOptions::default())
+        .unwrap()
+        .value
+        .to_array()
+        .map(f64::to_degrees);
+    assert!(
+        (0..4).any(|k| (0..4).all(|u| wrapped_difference(angles[u][k], q[u]) < 1e-4)),
+        "{q:?} not among\n{report}"
+    );
+}
+
+/// The trace's rows: the four angles and the residual's largest component.
+fn trace_rows(report: &str) -> Vec<[f64; 5]> {
+    report
+        .lines()
+        .skip_while(|l| !l.contains("max |f|"))
+        .skip(1)
+        .map_while(|l| {
+            let numbers: Vec<f64> = l
+                .split_whitespace()
+                .map(|c| c.parse::<f64>())
+                .collect::<Result<_, _>>()
+                .ok()?;
+            (numbers.len() == 6)
+                .then(|| [numbers[1], numbers[2], numbers[3], numbers[4], numbers[5]])
+        })
+        .collect()
+}
+
+#[test]
+fn trace_prints_the_stephenson_newton_iterates_converging() {
+    // From the documented guess, in degrees: to the library's position, quadratically.
+    let guess = [-0.25f64, 0.63, 1.43, 1.46].map(|g| g.to_degrees().to_string());
+    let guess = guess.join(",");
+    let args = with(
+        &["analyse"],
+        &strings(&with(
+            &strings(&stephenson_args(20.0)),
+            &["--at", "0", "--trace", "--guess", &guess],
+        )),
+    );
+    let report = stdout_of(&strings(&args));
+    assert!(report.contains("  converged"), "{report}");
+    let rows = trace_rows(&report);
+    assert!(rows.len() >= 3, "{report}");
+    for pair in rows.windows(2) {
+        assert!(
+            pair[1][4] < pair[0][4],
+            "the residual falls at every step:\n{report}"
+        );
+    }
+    // Quadratic at the end: each residual about the square of the one before, in mm.
+    let last = rows.len() - 1;
+    assert!(rows[last][4] < 1e-8 && rows[last - 1][4] < 1e-2, "{report}");
+    let q = stephenson_library(20.0)
+        .position(
+            0.0,
+            &mechanisms::StephensonSixBarUnknowns {
+                theta3: -0.25,
+                theta4: 0.63,
+                theta5: 1.43,
+                theta6: 1.46,
+            },
+            &mechgen::NewtonOptions::default(),
+        )
+        .unwrap()
+        .value
+        .to_array();
+    for (got, want) in rows[last][..4].iter().zip(q) {
+        assert!(
+            wrapped_difference(*got, want.to_degrees()) < 1e-5,
+            "{report}"
+        );
+    }
+    // Without a guess it starts from the first assembly read to tens of degrees.
+    let args = with(
+        &["analyse"],
+        &strings(&with(
+            &strings(&stephenson_args(20.0)),
+            &["--at", "0", "--trace"],
+        )),
+    );
+    let report = stdout_of(&strings(&args));
+    assert!(
+        report.contains("Newton-Raphson from θ3 = 20°, θ4 = -20°, θ5 = -70°, θ6 = -150°"),
+        "{report}"
+    );
+    assert!(report.contains("  converged"), "{report}");
+}
+
+/// A sweep's table: its header and its rows as numbers.
+fn sweep_table(args: &[String], scratch: &Scratch) -> (String, Vec<String>, Vec<Vec<f64>>) {
+    let args = with(&["sweep"], &strings(args));
+    let summary = stdout_of(&strings(&with(
+        &strings(&args),
+        &["--out-dir", scratch.path()],
+    )));
+    let table = std::fs::read_to_string(scratch.0.join("sweep.csv")).unwrap();
+    let mut lines = table.lines();
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|c| c.parse().unwrap()).collect())
+        .collect();
+    (summary, header, rows)
+}
+
+#[test]
+fn a_watt_sweep_turns_fully_as_the_library_computes_it() {
+    let scratch = Scratch::new("watt");
+    let (summary, header, rows) = sweep_table(&watt_args(WATT), &scratch);
+    assert!(summary.contains("361 samples in 1 piece"), "{summary}");
+    assert!(summary.contains("piece 1: a full turn"), "{summary}");
+    assert_eq!(
+        header[..4],
+        ["input_deg", "segment", "theta3_deg", "theta4_deg"]
+    );
+    assert_eq!(header.len(), 2 + 12);
+    let linkage = watt_library();
+    for row in &rows {
+        assert_eq!(row[1], 1.0);
+        let m = linkage
+            .motion(row[0].to_radians(), [Branch::Open, Branch::Open], 10.0, 0.0)
+            .unwrap();
+        let want = [
+            m.position.theta6.to_degrees(),
+            m.velocity.theta6,
+            m.acceleration.theta6,
+        ];
+        for (got, want) in [row[5], row[9], row[13]].into_iter().zip(want) {
+            assert!(
+                (got - want).abs() <= 1e-8 * want.abs().max(1.0),
+                "at {}°: {got} vs {want}",
+                row[0]
+            );
+        }
+    }
+    // θ3, θ4, θ5, θ6, their rates and accelerations: twelve lines for one piece.
+    assert_eq!(series_lines_drawn(&scratch), 12);
+    // The drawing: seven links (the rocker a triangle O4 B C) and three ground pivots.
+    let animation = std::fs::read_to_string(scratch.0.join("animation.svg")).unwrap();
+    let document = roxmltree::Document::parse(&animation).unwrap();
+    let count =
+        |test: &dyn Fn(&roxmltree::Node) -> bool| document.descendants().filter(test).count();
+    assert_eq!(count(&|n| n.has_tag_name("line")), 7);
+    assert_eq!(count(&|n| n.attribute("class") == Some("ground")), 3);
+}
+
+#[test]
+fn a_watt_six_bar_that_cannot_turn_fully_is_swept_over_its_pieces() {
+    // The first loop a rocker-crank, the second always closing: the four-bar's two pieces,
+    // each a line of its own.
+    let scratch = Scratch::new("watt-rocker-crank");
+    let (summary, _, rows) = sweep_table(
+        &watt_args([
+            180.0, 150.0, 200.0, 80.0, 100.0, 30.0, 300.0, 300.0, 200.0, 100.0,
+        ]),
+        &scratch,
+    );
+    assert!(summary.contains("2 pieces"), "{summary}");
+    assert!(
+        summary.contains("piece 1: 41.41° to 115.80° (toggles at the ends)"),
+        "{summary}"
+    );
+    assert!(summary.contains("piece 2: 244.20° to 318.59°"), "{summary}");
+    assert!(rows.iter().all(|r| if r[1] == 1.0 {
+        (41.41..115.80).contains(&r[0])
+    } else {
+        r[1] == 2.0 && (244.20..318.59).contains(&r[0])
+    }));
+    assert_eq!(series_lines_drawn(&scratch), 2 * 12);
+    // The first loop a crank-rocker, the second too short to close everywhere: one piece
+    // through 0°, its ends where the library stops assembling the second loop.
+    let scratch = Scratch::new("watt-short-dyad");
+    let mut dimensions = WATT;
+    dimensions[6..].copy_from_slice(&[150.0, 100.0, 330.0, 150.0]);
+    let (summary, _, rows) = sweep_table(&watt_args(dimensions), &scratch);
+    assert!(
+        summary.contains("piece 1: -25.05° to 112.17° (toggles at the ends)"),
+        "{summary}"
+    );
+    assert!(rows.iter().all(|r| (-25.05..112.17).contains(&r[0])));
+    let linkage = mechanisms::WattSixBar::new(
+        [180.0, 80.0, 200.0, 150.0],
+        100.0,
+        0.8,
+        150.0,
+        100.0,
+        (330.0, 150.0),
+    )
+    .unwrap();
+    let open = [Branch::Open, Branch::Open];
+    let closes = |degrees: f64| linkage.assemble(degrees.to_radians(), open).is_ok();
+    assert!(closes(-25.04) && !closes(-25.06) && closes(112.16) && !closes(112.18));
+}
+
+#[test]
+fn a_stephenson_sweep_follows_its_assembly_round_a_full_turn() {
+    let scratch = Scratch::new("stephenson");
+    let (summary, header, rows) = sweep_table(&stephenson_args(20.0), &scratch);
+    assert!(
+        summary.contains("piece 1: a full turn (followed by Newton from its assembly at 0°)"),
+        "{summary}"
+    );
+    assert_eq!(rows.len(), 361);
+    assert_eq!(header[5], "theta6_deg");
+    let linkage = stephenson_library(20.0);
+    for row in &rows {
+        let angles = [row[2], row[3], row[4], row[5]];
+        stephenson_closes(20.0, row[0], angles, 1e-5);
+        // The rates the library computes at that position.
+        let t = row[0].to_radians();
+        let q = mechanisms::StephensonSixBarUnknowns::from_array(angles.map(f64::to_radians));
+        let v = linkage.velocity(t, &q, 10.0).unwrap().to_array();
+        for (got, want) in row[6..10].iter().zip(v) {
+            assert!(
+                (got - want).abs() < 1e-6 * want.abs().max(1.0),
+                "at {}°",
+                row[0]
+            );
+        }
+    }
+    // It stays on its circuit: one continuous motion, no jump between samples.
+    for pair in rows.windows(2) {
+        assert!(wrapped_difference(pair[0][3], pair[1][3]) < 5.0, "{pair:?}");
+    }
+}
+
+#[test]
+fn a_stephenson_six_bar_whose_crank_cannot_turn_is_swept_between_its_toggles() {
+    // A longer crank: the circuit through the first assembly at 0° ends at toggles at
+    // 0.09° and, the other way, 80.77° (−279.23°).
+    let scratch = Scratch::new("stephenson-toggles");
+    let (summary, _, rows) = sweep_table(&stephenson_args(50.0), &scratch);
+    assert!(
+        summary.contains(
+            "piece 1: -279.23° to 0.09° (a toggle below, a toggle above, where Newton's walk \
+             from its assembly at 0° stopped)"
+        ),
+        "{summary}"
+    );
+    assert_eq!(rows.len(), 279);
+    for row in &rows {
+        assert!((-279.23..0.09).contains(&row[0]) && row[1] == 1.0);
+        stephenson_closes(50.0, row[0], [row[2], row[3], row[4], row[5]], 1e-5);
+    }
+    // Toward a toggle the rates grow without bound.
+    let omega4_at_ends = rows[0][7].abs().min(rows[rows.len() - 1][7].abs());
+    let omega4_inside = rows[rows.len() / 2][7].abs();
+    assert!(
+        omega4_at_ends > 3.0 * omega4_inside,
+        "{omega4_at_ends} {omega4_inside}"
+    );
+}
+
+#[test]
+fn bad_six_bar_input_is_a_clear_message_and_a_failure() {
+    fails_with(
+        &["analyse", "watt-six-bar", "180", "80", "200"],
+        "watt-six-bar takes 10 dimensions (ground crank coupler rocker extension",
+    );
+    fails_with(
+        &["sweep", "stephenson-six-bar", "1"],
+        "stephenson-six-bar takes 10 dimensions",
+    );
+    let mut negative = watt_args(WATT);
+    negative[8] = "-160".into();
+    fails_with(
+        &strings(&with(&["analyse"], &strings(&negative))),
+        "second rocker = -160 must be positive and finite",
+    );
+    let mut zero = stephenson_args(20.0);
+    zero[5] = "0".into();
+    fails_with(
+        &strings(&with(&["sweep"], &strings(&zero))),
+        "ternary C D = 0 must be positive and finite",
+    );
+    // Dyads far too short to reach their ground pivots: nowhere assembles.
+    let mut apart = WATT;
+    apart[6..].copy_from_slice(&[1.0, 1.0, 1000.0, 1000.0]);
+    fails_with(
+        &strings(&with(&["sweep"], &strings(&watt_args(apart)))),
+        "the watt-six-bar cannot be assembled at any input angle",
+    );
+    fails_with(
+        &strings(&with(&["analyse"], &strings(&watt_args(apart)))),
+        "the Watt six-bar cannot be assembled at 60°",
+    );
+    let mut apart = stephenson_args(20.0);
+    apart[8..].clone_from_slice(&["1".into(), "1000".into(), "1000".into()]);
+    fails_with(
+        &strings(&with(&["sweep"], &strings(&apart))),
+        "the stephenson-six-bar cannot be assembled at any input angle",
+    );
+    fails_with(
+        &strings(&with(&["analyse"], &strings(&apart))),
+        "the Stephenson six-bar cannot be assembled at 60°",
+    );
+    // Flags that do not apply.
+    let watt = watt_args(WATT);
+    fails_with(
+        &strings(&with(
+            &["analyse"],
+            &strings(&with(&strings(&watt), &["--trace"])),
+        )),
+        "not the watt-six-bar, which is solved in closed form",
+    );
+    fails_with(
+        &strings(&with(
+            &["analyse"],
+            &strings(&with(&strings(&watt), &["--trace", "--guess", "1,2"])),
+        )),
+        "--trace applies to the four-bar and the stephenson-six-bar",
+    );
+    fails_with(
+        &strings(&with(
+            &["analyse"],
+            &strings(&with(&strings(&watt), &["--guess", "1,2"])),
+        )),
+        "--guess is Newton's start for --trace",
+    );
+    let stephenson = stephenson_args(20.0);
+    fails_with(
+        &strings(&with(
+            &["analyse"],
+            &strings(&with(
+                &strings(&stephenson),
+                &["--trace", "--guess", "15,80"],
+            )),
+        )),
+        "--guess takes four finite angles in degrees, theta3,theta4,theta5,theta6",
+    );
+    fails_with(
+        &strings(&with(
+            &["analyse"],
+            &strings(&with(
+                &strings(&stephenson),
+                &["--trace", "--guess", "20", "-20"],
+            )),
+        )),
+        "--guess takes four angles joined by commas",
+    );
+    fails_with(
+        &strings(&with(
+            &["sweep"],
+            &strings(&with(&strings(&stephenson), &["--branch", "open"])),
+        )),
+        "--branch does not apply to the stephenson-six-bar",
+    );
+    fails_with(
+        &strings(&with(
+            &["sweep"],
+            &strings(&with(&strings(&watt), &["--branch", "open"])),
+        )),
+        "the watt-six-bar takes a branch per loop, as --branch open,crossed",
+    );
+    fails_with(
+        &[
+            "sweep",
+            "four-bar",
+            "180",
+            "80",
+            "200",
+            "150",
+            "--branch",
+            "open,open",
+        ],
+        "the four-bar has one loop: --branch takes one branch",
+    );
+    fails_with(
+        &strings(&with(
+            &["sweep"],
+            &strings(&with(&strings(&watt), &["--coupler-point", "10,0"])),
+        )),
+        "--coupler-point applies to the four-bar and the slider-crank, not the watt-six-bar",
+    );
+}
+
+#[test]
+fn huge_and_tiny_six_bars_never_panic() {
+    for scale in [1e300, 1e-300] {
+        let watt = watt_args(WATT.map(|d| if d == WATT[5] { d } else { d * scale }));
+        let mut stephenson = stephenson_args(20.0);
+        for (k, d) in stephenson.iter_mut().enumerate().skip(1) {
+            if k != 6 {
+                *d = (d.parse::<f64>().unwrap() * scale).to_string();
+            }
+        }
+        for args in [watt, stephenson] {
+            for command in ["analyse", "sweep"] {
+                let scratch = Scratch::new("huge-six-bar");
+                let mut all = with(&[command], &strings(&args));
+                if command == "sweep" {
+                    all.extend(with(&["--step", "30", "--out-dir"], &[scratch.path()]));
+                }
+                let output = program().args(&all).output().unwrap();
+                let stderr = String::from_utf8_lossy(&output.stderr);
+                assert!(!stderr.contains("panicked"), "{all:?}: {stderr}");
+                let stdout = String::from_utf8_lossy(&output.stdout);
+                assert!(!stdout.contains("NaN"), "{all:?}: {stdout}");
+                assert!(
+                    output.status.code() == Some(0)
+                        || (output.status.code() == Some(1) && stderr.starts_with("error: ")),
+                    "{all:?}: {stderr}"
+                );
+            }
+        }
+    }
 }

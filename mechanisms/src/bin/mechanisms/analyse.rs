@@ -5,12 +5,14 @@ use std::collections::BTreeSet;
 use clap::Parser;
 use mechanisms::{
     DimensionError, FourBar, FourBarUnknowns, InvertedSliderCrank, JansenLeg, SliderCrank,
+    StephensonSixBar, StephensonSixBarUnknowns, WattSixBarUnknowns,
 };
 use mechgen::grashof::{Class, Inversion, Special};
 use mechgen::{Accuracy, Branch, Error, MechanicalAdvantage};
 
 use crate::Mechanism;
 use crate::output::{self, fixed, say, tidy};
+use crate::six_bars::{self, StephensonDimensions};
 use crate::sweep::finite;
 
 #[derive(Parser)]
@@ -30,11 +32,13 @@ pub struct Args {
     /// The input's acceleration, rad/s².
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub accel: f64,
-    /// Also solve by Newton-Raphson from `--guess` and print every iterate (four-bar).
+    /// Also solve by Newton-Raphson from `--guess` and print every iterate (four-bar,
+    /// Stephenson six-bar).
     #[arg(long)]
     pub trace: bool,
-    /// Newton's starting angles θ3,θ4 in degrees, joined by a comma, for `--trace`
-    /// [default: 15,80].
+    /// Newton's starting angles in degrees, joined by a comma, for `--trace`: θ3,θ4 for the
+    /// four-bar [default: 15,80], θ3,θ4,θ5,θ6 for the Stephenson six-bar [default: its first
+    /// assembly's angles rounded to tens of degrees].
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub guess: Option<Vec<f64>>,
 }
@@ -62,6 +66,18 @@ impl Args {
     }
 }
 
+/// How many angles `--guess` takes for a mechanism Newton is traced on, and their names.
+fn unknowns(mechanism: Mechanism) -> Option<(usize, &'static str)> {
+    match mechanism {
+        Mechanism::FourBar => Some((2, "two finite angles in degrees, theta3,theta4 (as 15,80)")),
+        Mechanism::StephensonSixBar => Some((
+            4,
+            "four finite angles in degrees, theta3,theta4,theta5,theta6 (as 20,-20,-70,-150)",
+        )),
+        _ => None,
+    }
+}
+
 /// A dimension the library refused, with its value written tidily (`1e308`, not 309 digits).
 pub fn refused(error: DimensionError<f64>) -> String {
     format!(
@@ -75,15 +91,21 @@ pub fn refused(error: DimensionError<f64>) -> String {
 fn check(args: &Args) -> Result<(), String> {
     // Before the count of dimensions, which `--guess 15 80` makes one too many.
     if args.guess.as_ref().is_some_and(|g| g.len() == 1) {
-        return Err("--guess takes two angles joined by a comma, as --guess 15,80".into());
+        return Err(if args.mechanism == Mechanism::StephensonSixBar {
+            "--guess takes four angles joined by commas, as --guess 20,-20,-70,-150".into()
+        } else {
+            "--guess takes two angles joined by a comma, as --guess 15,80".into()
+        });
     }
     args.mechanism.check(&args.dimensions)?;
     finite("--at", args.at, "degrees")?;
     finite("--rate", args.rate, "rad/s")?;
     finite("--accel", args.accel, "rad/s²")?;
-    if args.trace && args.mechanism != Mechanism::FourBar {
+    let names = unknowns(args.mechanism);
+    if args.trace && names.is_none() {
         return Err(format!(
-            "--trace applies to the four-bar only, not the {}",
+            "--trace applies to the four-bar and the stephenson-six-bar (Newton-Raphson), not \
+             the {}, which is solved in closed form",
             args.mechanism.name()
         ));
     }
@@ -91,9 +113,11 @@ fn check(args: &Args) -> Result<(), String> {
         if !args.trace {
             return Err("--guess is Newton's start for --trace, which was not given".into());
         }
-        if guess.len() != 2 || !guess.iter().all(|g| g.is_finite()) {
+        let (count, names) = names.unwrap_or_default();
+        if guess.len() != count || !guess.iter().all(|g| g.is_finite()) {
             return Err(format!(
-                "--guess takes two finite angles in degrees, theta3,theta4 (as 15,80), got {}",
+                "--guess takes {names} for the {}, got {}",
+                args.mechanism.name(),
                 guess.iter().map(|&g| tidy(g)).collect::<Vec<_>>().join(",")
             ));
         }
@@ -116,6 +140,8 @@ pub fn run(args: &Args) -> Result<(), String> {
             InvertedSliderCrank::new(d[0], d[1], d[2], d[3].to_radians()).map_err(refused)?,
         ),
         Mechanism::Jansen => jansen(args),
+        Mechanism::WattSixBar => watt(args, six_bars::watt(d)?),
+        Mechanism::StephensonSixBar => stephenson(args, six_bars::stephenson(d)?),
     }
 }
 
@@ -220,10 +246,10 @@ fn notes(met: &BTreeSet<&'static str>) {
     }
 }
 
-/// The table, open and crossed side by side, each cell a value the library computed within
-/// its accuracy estimate or the reason it could not.
-fn table<U>(rows: &[Row<U>], open: &Solved<U>, crossed: &Solved<U>) {
-    row("", "open".into(), "crossed".into());
+/// The table, the branches (or assemblies) side by side, each cell a value the library
+/// computed within its accuracy estimate or the reason it could not.
+fn table<U>(rows: &[Row<U>], columns: &[(String, &Solved<U>)]) {
+    row("", columns.iter().map(|(name, _)| name.clone()).collect());
     let mut met = BTreeSet::new();
     for &(label, needs, text) in rows {
         let mut cell = |solved: &Solved<U>| {
@@ -237,14 +263,23 @@ fn table<U>(rows: &[Row<U>], open: &Solved<U>, crossed: &Solved<U>) {
                 (Err(e), _) | (_, Err(e)) => reason(e, &mut met),
             }
         };
-        let (o, c) = (cell(open), cell(crossed));
-        row(label, o, c);
+        let cells = columns.iter().map(|(_, solved)| cell(solved)).collect();
+        row(label, cells);
     }
     notes(&met);
 }
 
-fn row(label: &str, open: String, crossed: String) {
-    say!("  {label:<26} {open:>14} {crossed:>14}");
+fn row(label: &str, cells: Vec<String>) {
+    let mut line = format!("  {label:<26}");
+    for cell in cells {
+        line.push_str(&format!(" {cell:>14}"));
+    }
+    say!("{line}");
+}
+
+/// The open and crossed branches' columns.
+fn branches<'a, U>(open: &'a Solved<U>, crossed: &'a Solved<U>) -> [(String, &'a Solved<U>); 2] {
+    [("open".into(), open), ("crossed".into(), crossed)]
 }
 
 fn advantage(ma: Result<MechanicalAdvantage<f64>, Error<f64>>) -> String {
@@ -257,17 +292,21 @@ fn advantage(ma: Result<MechanicalAdvantage<f64>, Error<f64>>) -> String {
 }
 
 /// An error when no branch assembles: nothing at all could be computed.
-fn nothing<U>(
-    open: &Solved<U>,
-    crossed: &Solved<U>,
-    cannot: impl Fn() -> String,
-) -> Result<(), String> {
-    match (&open.position, &crossed.position) {
-        (Err(Error::CannotAssemble { .. }), Err(_))
-        | (Err(_), Err(Error::CannotAssemble { .. })) => Err(cannot()),
-        (Err(e), Err(_)) => Err(format!("{e}")),
-        _ => Ok(()),
+fn nothing<U>(solved: &[&Solved<U>], cannot: impl Fn() -> String) -> Result<(), String> {
+    if solved.iter().any(|s| s.position.is_ok()) {
+        return Ok(());
     }
+    let errors: Vec<&Error<f64>> = solved
+        .iter()
+        .filter_map(|s| s.position.as_ref().err())
+        .collect();
+    if errors
+        .iter()
+        .any(|e| matches!(e, Error::CannotAssemble { .. }))
+    {
+        return Err(cannot());
+    }
+    Err(errors.first().map_or_else(&cannot, |e| e.to_string()))
 }
 
 /// Where a four-bar's crank can go, in words.
@@ -348,7 +387,7 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
             say!("Limit angle ({name}): θ2 = ±{:.4}°", limit.to_degrees());
         }
     }
-    nothing(&open, &crossed, || {
+    nothing(&[&open, &crossed], || {
         cannot("four-bar", args.at, four_bar_range(&linkage))
     })?;
     let (sine, cosine) = theta2.sin_cos();
@@ -377,7 +416,7 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
             advantage(linkage.mechanical_advantage(theta2, q))
         }),
     ];
-    table(&rows, &open, &crossed);
+    table(&rows, &branches(&open, &crossed));
     let extremes = linkage.transmission_extremes();
     say!(
         "Transmission angle over the motion: {:.2}° at θ2 = {:.2}° to {:.2}° at θ2 = {:.2}°; {}",
@@ -476,7 +515,7 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
         }
         (None, _) => say!("The crank cannot turn fully (l3 − l2 < |c|)"),
     }
-    nothing(&open, &crossed, || {
+    nothing(&[&open, &crossed], || {
         cannot(
             "slider-crank",
             args.at,
@@ -505,7 +544,7 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
             advantage(linkage.mechanical_advantage(theta2, q))
         }),
     ];
-    table(&rows, &open, &crossed);
+    table(&rows, &branches(&open, &crossed));
     Ok(())
 }
 
@@ -527,7 +566,7 @@ fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String
         tidy(c),
         tidy(gamma.to_degrees())
     );
-    nothing(&open, &crossed, || {
+    nothing(&[&open, &crossed], || {
         cannot(
             "inverted slider-crank",
             args.at,
@@ -553,7 +592,7 @@ fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String
             advantage(linkage.mechanical_advantage(theta2, q))
         }),
     ];
-    table(&rows, &open, &crossed);
+    table(&rows, &branches(&open, &crossed));
     Ok(())
 }
 
@@ -598,4 +637,260 @@ fn jansen(args: &Args) -> Result<(), String> {
         a.foot.y
     );
     Ok(())
+}
+
+/// A [`Row`] that owns its label and text.
+type OwnedRow<U> = (String, Needs, Box<dyn Fn(&U, &U) -> String>);
+
+/// The four angles, rates and accelerations of a six-bar's unknowns, as table rows.
+fn six_bar_rows<U: 'static>(array: fn(&U) -> [f64; 4]) -> Vec<OwnedRow<U>> {
+    let mut rows: Vec<OwnedRow<U>> = Vec::new();
+    for (k, n) in [3, 4, 5, 6].into_iter().enumerate() {
+        rows.push((
+            format!("θ{n} (°)"),
+            Needs::Position,
+            Box::new(move |q, _| angle(array(q)[k])),
+        ));
+    }
+    for (k, n) in [3, 4, 5, 6].into_iter().enumerate() {
+        rows.push((
+            format!("ω{n} (rad/s)"),
+            Needs::Velocity,
+            Box::new(move |_, v| value(array(v)[k])),
+        ));
+    }
+    for (k, n) in [3, 4, 5, 6].into_iter().enumerate() {
+        rows.push((
+            format!("α{n} (rad/s²)"),
+            Needs::Acceleration,
+            Box::new(move |_, a| value(array(a)[k])),
+        ));
+    }
+    rows
+}
+
+/// A Watt six-bar: each of the four branch pairs (one branch per loop), in closed form.
+fn watt(args: &Args, linkage: mechanisms::WattSixBar<f64>) -> Result<(), String> {
+    let d = &args.dimensions;
+    let theta2 = args.at.to_radians();
+    let pairs = [
+        [Branch::Open, Branch::Open],
+        [Branch::Open, Branch::Crossed],
+        [Branch::Crossed, Branch::Open],
+        [Branch::Crossed, Branch::Crossed],
+    ];
+    let solved: Vec<Solved<WattSixBarUnknowns<f64>>> = pairs
+        .iter()
+        .map(|&pair| {
+            Solved::new(
+                linkage.assemble(theta2, pair),
+                |q| linkage.velocity(theta2, q, args.rate),
+                |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
+            )
+        })
+        .collect();
+    say!(
+        "Watt six-bar: four-bar {} {} {} {} mm; extension {} mm at {}° from the rocker; \
+         second coupler {} mm, second rocker {} mm from O6 = ({}, {}) mm",
+        tidy(d[0]),
+        tidy(d[1]),
+        tidy(d[2]),
+        tidy(d[3]),
+        tidy(d[4]),
+        tidy(d[5]),
+        tidy(d[6]),
+        tidy(d[7]),
+        tidy(d[8]),
+        tidy(d[9])
+    );
+    let all: Vec<&Solved<_>> = solved.iter().collect();
+    nothing(&all, || {
+        cannot(
+            "Watt six-bar",
+            args.at,
+            "neither loop pair closes there (`sweep` lists the ranges where they do)".into(),
+        )
+    })?;
+    say!(
+        "Input: θ2 = {}°, ω2 = {} rad/s, α2 = {} rad/s²; each column a branch per loop, \
+         in closed form",
+        tidy(args.at),
+        tidy(args.rate),
+        tidy(args.accel)
+    );
+    let rows = six_bar_rows(|q: &WattSixBarUnknowns<f64>| q.to_array());
+    let rows: Vec<Row<WattSixBarUnknowns<f64>>> = rows
+        .iter()
+        .map(|(label, needs, text)| (label.as_str(), *needs, text.as_ref()))
+        .collect();
+    let columns: Vec<(String, &Solved<_>)> = pairs
+        .iter()
+        .zip(&solved)
+        .map(|(pair, s)| (format!("{},{}", word(pair[0]), word(pair[1])), s))
+        .collect();
+    table(&rows, &columns);
+    Ok(())
+}
+
+fn word(branch: Branch) -> &'static str {
+    match branch {
+        Branch::Open => "open",
+        Branch::Crossed => "crossed",
+    }
+}
+
+/// A Stephenson six-bar: every assembly the scan finds at the input, each solved by the
+/// generated Newton, with its rates.
+fn stephenson(args: &Args, linkage: StephensonSixBar<f64>) -> Result<(), String> {
+    let d = &args.dimensions;
+    let theta2 = args.at.to_radians();
+    let found = six_bars::stephenson_assemblies(&linkage, &StephensonDimensions::new(d), theta2);
+    say!(
+        "Stephenson six-bar: ground {} mm, crank {} mm, link {} mm; ternary link B C {} mm, \
+         C D {} mm at {}°; rocker O4 C {} mm, output rocker {} mm from O6 = ({}, {}) mm",
+        tidy(d[0]),
+        tidy(d[1]),
+        tidy(d[2]),
+        tidy(d[3]),
+        tidy(d[4]),
+        tidy(d[5]),
+        tidy(d[6]),
+        tidy(d[7]),
+        tidy(d[8]),
+        tidy(d[9])
+    );
+    if found.is_empty() {
+        return Err(cannot(
+            "Stephenson six-bar",
+            args.at,
+            "no position closes both loops there (a scan of the rocker angle found none)".into(),
+        ));
+    }
+    say!(
+        "Input: θ2 = {}°, ω2 = {} rad/s, α2 = {} rad/s²; {} {} found by a scan of θ4 \
+         (no closed form), each solved by Newton",
+        tidy(args.at),
+        tidy(args.rate),
+        tidy(args.accel),
+        found.len(),
+        if found.len() == 1 {
+            "assembly"
+        } else {
+            "assemblies"
+        }
+    );
+    let solved: Vec<Solved<StephensonSixBarUnknowns<f64>>> = found
+        .iter()
+        .map(|&q| {
+            Solved::new(
+                Ok(q),
+                |q| linkage.velocity(theta2, q, args.rate),
+                |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
+            )
+        })
+        .collect();
+    let rows = six_bar_rows(|q: &StephensonSixBarUnknowns<f64>| q.to_array());
+    let rows: Vec<Row<StephensonSixBarUnknowns<f64>>> = rows
+        .iter()
+        .map(|(label, needs, text)| (label.as_str(), *needs, text.as_ref()))
+        .collect();
+    let columns: Vec<(String, &Solved<_>)> = solved
+        .iter()
+        .enumerate()
+        .map(|(k, s)| (format!("assembly {}", k + 1), s))
+        .collect();
+    table(&rows, &columns);
+    if args.trace {
+        // From the guess given, or the first assembly read off a drawing to tens of degrees.
+        let guess = match args.guess.as_deref() {
+            Some(&[a, b, c, e]) => [a, b, c, e],
+            _ => found[0]
+                .to_array()
+                .map(|t| (t.to_degrees() / 10.0).round() * 10.0),
+        };
+        stephenson_trace(&linkage, d, theta2, guess);
+    }
+    Ok(())
+}
+
+/// Newton-Raphson on all four unknowns with the generated residual and Jacobian (the
+/// generated `position` iterates on θ3 and θ4 alone, closing the second loop inside), each
+/// step solved by Gaussian elimination with partial pivoting. It stops, saying why, at a
+/// singular Jacobian or an iterate that is no longer finite.
+fn stephenson_trace(linkage: &StephensonSixBar<f64>, d: &[f64], theta2: f64, guess: [f64; 4]) {
+    say!(
+        "Newton-Raphson from θ3 = {}°, θ4 = {}°, θ5 = {}°, θ6 = {}°:",
+        tidy(guess[0]),
+        tidy(guess[1]),
+        tidy(guess[2]),
+        tidy(guess[3])
+    );
+    say!(
+        "  {:>4} {:>12} {:>12} {:>12} {:>12} {:>14}",
+        "step",
+        "θ3 (°)",
+        "θ4 (°)",
+        "θ5 (°)",
+        "θ6 (°)",
+        "max |f| (mm)"
+    );
+    // The four-bar trace's rule: converged when the residual is 1e-10 of the linkage's size.
+    let size: f64 = d[..5].iter().chain(&d[6..8]).sum::<f64>() + d[8].hypot(d[9]);
+    let mut q = guess.map(f64::to_radians);
+    for step in 0..=30 {
+        let position = StephensonSixBarUnknowns::from_array(q);
+        let f = linkage.residual(theta2, &position);
+        let norm = f.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
+        if !(norm.is_finite() && q.iter().all(|t| t.is_finite())) {
+            say!("  the iterate is no longer finite: stopped");
+            return;
+        }
+        say!(
+            "  {step:>4} {:>12} {:>12} {:>12} {:>12} {:>14}",
+            fixed(q[0].to_degrees(), 6),
+            fixed(q[1].to_degrees(), 6),
+            fixed(q[2].to_degrees(), 6),
+            fixed(q[3].to_degrees(), 6),
+            format!("{norm:.3e}")
+        );
+        if norm < 1e-10 * size {
+            say!("  converged");
+            return;
+        }
+        let Some(delta) = solve(linkage.jacobian(theta2, &position), f) else {
+            say!("  singular Jacobian: stopped");
+            return;
+        };
+        for (t, dt) in q.iter_mut().zip(delta) {
+            *t -= dt;
+        }
+    }
+    say!("  not converged in 30 steps: stopped");
+}
+
+/// `x` with `a·x = b`, by Gaussian elimination with partial pivoting; `None` for a zero pivot.
+fn solve<const N: usize>(mut a: [[f64; N]; N], mut b: [f64; N]) -> Option<[f64; N]> {
+    for column in 0..N {
+        let pivot =
+            (column..N).max_by(|&i, &j| a[i][column].abs().total_cmp(&a[j][column].abs()))?;
+        if a[pivot][column] == 0.0 {
+            return None;
+        }
+        a.swap(column, pivot);
+        b.swap(column, pivot);
+        let pivot_row = a[column];
+        for row in column + 1..N {
+            let factor = a[row][column] / pivot_row[column];
+            for (entry, above) in a[row].iter_mut().zip(pivot_row).skip(column) {
+                *entry -= factor * above;
+            }
+            b[row] -= factor * b[column];
+        }
+    }
+    let mut x = [0.0; N];
+    for row in (0..N).rev() {
+        let tail: f64 = (row + 1..N).map(|k| a[row][k] * x[k]).sum();
+        x[row] = (b[row] - tail) / a[row][row];
+    }
+    Some(x)
 }

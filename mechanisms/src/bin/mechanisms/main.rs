@@ -7,6 +7,7 @@
 mod analyse;
 mod output;
 mod seeds;
+mod six_bars;
 mod svg;
 mod sweep;
 
@@ -24,7 +25,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Positions, velocities and accelerations on both branches, with the analyses.
+    /// Positions, velocities and accelerations on every branch (every assembly found, for
+    /// the Stephenson six-bar), with the analyses.
     Analyse(analyse::Args),
     /// A full turn (or the reachable range) on one branch, as CSV and SVG.
     Sweep(sweep::Args),
@@ -43,6 +45,12 @@ pub enum Mechanism {
     InvertedSliderCrank,
     /// Theo Jansen's leg with his published lengths (no dimensions).
     Jansen,
+    /// Watt six-bar: ground crank coupler rocker extension extension-angle(°)
+    /// second-coupler second-rocker pivot-x pivot-y.
+    WattSixBar,
+    /// Stephenson six-bar: ground crank link ternary-bc ternary-cd ternary-angle(°) rocker
+    /// output-rocker pivot-x pivot-y.
+    StephensonSixBar,
 }
 
 impl Mechanism {
@@ -53,6 +61,30 @@ impl Mechanism {
             Mechanism::SliderCrank => &["crank", "rod", "offset"],
             Mechanism::InvertedSliderCrank => &["ground", "crank", "offset", "angle (°)"],
             Mechanism::Jansen => &[],
+            Mechanism::WattSixBar => &[
+                "ground",
+                "crank",
+                "coupler",
+                "rocker",
+                "extension",
+                "extension-angle (°)",
+                "second-coupler",
+                "second-rocker",
+                "pivot-x",
+                "pivot-y",
+            ],
+            Mechanism::StephensonSixBar => &[
+                "ground",
+                "crank",
+                "link",
+                "ternary-bc",
+                "ternary-cd",
+                "ternary-angle (°)",
+                "rocker",
+                "output-rocker",
+                "pivot-x",
+                "pivot-y",
+            ],
         }
     }
 

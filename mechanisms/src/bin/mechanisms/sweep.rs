@@ -10,12 +10,17 @@ use std::time::{Duration, Instant};
 
 use clap::{Parser, ValueEnum};
 use indicatif::{ProgressBar, ProgressDrawTarget};
-use mechanisms::{FourBar, InvertedSliderCrank, JansenLeg, SliderCrank};
-use mechgen::{Branch, Error, Vec2};
+use mechanisms::{
+    FourBar, InvertedSliderCrank, JansenLeg, SliderCrank, StephensonSixBar,
+    StephensonSixBarUnknowns,
+};
+use mechgen::sweep::{Stop, Sweep as Walk};
+use mechgen::{Branch, Error, NewtonOptions, Vec2};
 
 use crate::Mechanism;
 use crate::analyse::four_bar_range;
 use crate::output::{self, say, tidy};
+use crate::six_bars::{self, Reach, StephensonDimensions};
 use crate::svg::{self, Chart};
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -32,9 +37,11 @@ pub struct Args {
     /// Its dimensions in mm (an angle in degrees).
     #[arg(allow_negative_numbers = true)]
     pub dimensions: Vec<f64>,
-    /// The assembly branch to follow [default: open] (not for Jansen's leg, always as drawn).
-    #[arg(long, value_enum)]
-    pub branch: Option<BranchName>,
+    /// The assembly branch to follow [default: open]; one per loop for the Watt six-bar, as
+    /// `open,crossed` [default: open,open]. Not for Jansen's leg (always as drawn) nor the
+    /// Stephenson six-bar (followed by Newton from its first assembly).
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub branch: Option<Vec<BranchName>>,
     /// The input's step, degrees.
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub step: f64,
@@ -82,19 +89,22 @@ struct Sweep<'a> {
     traced: usize,
     /// The input's reachable ranges, in order.
     pieces: Vec<Piece>,
-    /// The sample at an input in degrees.
-    sample: Box<dyn Fn(f64) -> Result<Sample, Error<f64>> + 'a>,
+    /// The sample at an input in degrees. It may keep state: a mechanism solved by Newton
+    /// continues from its last position, so the inputs of a piece come in order.
+    sample: Box<dyn FnMut(f64) -> Result<Sample, Error<f64>> + 'a>,
 }
 
 /// A reachable range of the input, degrees. A full turn is sampled from its start, ends
 /// included; a range that ends at toggles (where the rates are unbounded and the branches
 /// meet) is sampled every step from its middle, a regular point, out toward both ends,
 /// strictly inside them.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 struct Piece {
     from: f64,
     to: f64,
     full_turn: bool,
+    /// The piece in words, for the summary.
+    words: String,
 }
 
 impl Piece {
@@ -103,6 +113,7 @@ impl Piece {
             from: 0.0,
             to: 360.0,
             full_turn: true,
+            words: "a full turn".into(),
         }
     }
 
@@ -111,6 +122,11 @@ impl Piece {
             from,
             to,
             full_turn: false,
+            words: format!(
+                "{}° to {}° (toggles at the ends)",
+                output::fixed(from, 2),
+                output::fixed(to, 2)
+            ),
         }
     }
 
@@ -136,11 +152,16 @@ fn names(columns: &[&str]) -> Vec<String> {
     columns.iter().map(|&c| c.to_owned()).collect()
 }
 
-fn branch(args: &Args) -> Branch {
-    match args.branch.unwrap_or(BranchName::Open) {
-        BranchName::Open => Branch::Open,
-        BranchName::Crossed => Branch::Crossed,
+/// The branch of loop `which` (0 for the first) given by `--branch`, open if not given.
+fn branch_of(args: &Args, which: usize) -> Branch {
+    match args.branch.as_ref().and_then(|b| b.get(which)) {
+        Some(BranchName::Crossed) => Branch::Crossed,
+        Some(BranchName::Open) | None => Branch::Open,
     }
+}
+
+fn branch(args: &Args) -> Branch {
+    branch_of(args, 0)
 }
 
 /// A four-bar crank's reachable ranges from its closed-form limit angles: `|θ2|` between the
@@ -439,6 +460,290 @@ fn jansen(args: &Args) -> Result<Sweep<'_>, String> {
     })
 }
 
+/// A six-bar's columns: its four unknowns' angles, rates and accelerations.
+fn six_bar_columns() -> (Vec<String>, Vec<(String, std::ops::Range<usize>)>) {
+    (
+        names(&[
+            "theta3_deg",
+            "theta4_deg",
+            "theta5_deg",
+            "theta6_deg",
+            "omega3",
+            "omega4",
+            "omega5",
+            "omega6",
+            "alpha3",
+            "alpha4",
+            "alpha5",
+            "alpha6",
+        ]),
+        vec![
+            ("link angles (°)".into(), 0..4),
+            ("angular velocities (rad/s)".into(), 4..8),
+            ("angular accelerations (rad/s²)".into(), 8..12),
+        ],
+    )
+}
+
+/// A six-bar's values: angles in degrees, then rates, then accelerations.
+fn six_bar_values(position: [f64; 4], velocity: [f64; 4], acceleration: [f64; 4]) -> Vec<f64> {
+    position
+        .iter()
+        .map(|t| t.to_degrees())
+        .chain(velocity)
+        .chain(acceleration)
+        .collect()
+}
+
+fn watt(args: &Args) -> Result<Sweep<'_>, String> {
+    let d = &args.dimensions;
+    let linkage = six_bars::watt(d)?;
+    let (rate, accel) = (args.rate, args.accel);
+    let on = [branch_of(args, 0), branch_of(args, 1)];
+    let pieces = match six_bars::watt_reach(&linkage, on) {
+        Reach::FullTurn => vec![Piece::full_turn()],
+        Reach::Ranges(ranges) => ranges
+            .into_iter()
+            .map(|(from, to)| Piece::between(from, to))
+            .collect(),
+    };
+    let (columns, groups) = six_bar_columns();
+    let pivot = (d[8], d[9]);
+    let ground = d[0];
+    let word = |b: Branch| if b == Branch::Open { "open" } else { "crossed" };
+    Ok(Sweep {
+        title: format!(
+            "Watt six-bar {} {} {} {} mm, extension {} mm at {}°, {} {} mm, O6 ({}, {}) mm, \
+             branches {},{}",
+            tidy(d[0]),
+            tidy(d[1]),
+            tidy(d[2]),
+            tidy(d[3]),
+            tidy(d[4]),
+            tidy(d[5]),
+            tidy(d[6]),
+            tidy(d[7]),
+            tidy(d[8]),
+            tidy(d[9]),
+            word(on[0]),
+            word(on[1])
+        ),
+        columns,
+        groups,
+        band_column: None,
+        // O2 A B O4 C D O6; the rocker O4 B C is a ternary link.
+        links: vec![(0, 1), (1, 2), (2, 3), (3, 4), (2, 4), (4, 5), (5, 6)],
+        traced: 5,
+        pieces,
+        sample: Box::new(move |input| {
+            let t = input.to_radians();
+            let m = linkage.motion(t, on, rate, accel)?;
+            let p = linkage.points(t, &m.position)?;
+            Ok(Sample {
+                values: six_bar_values(
+                    m.position.to_array(),
+                    m.velocity.to_array(),
+                    m.acceleration.to_array(),
+                ),
+                joints: vec![
+                    (0.0, 0.0),
+                    point(p.crank_pin),
+                    point(p.rocker_pin),
+                    (ground, 0.0),
+                    point(p.extension_pin),
+                    point(p.output_pin),
+                    pivot,
+                ],
+            })
+        }),
+    })
+}
+
+/// Where a walk stopped, in words.
+fn stop_words(stop: &Stop<f64>) -> &'static str {
+    match stop {
+        Stop::Toggle { .. } => "a toggle",
+        Stop::BranchChange { .. } => "a change point",
+    }
+}
+
+/// Where a walk of `steps` steps of `step` from `start` stops: the last input it reaches
+/// (radians) and the position there, and why it stopped, if it did. The walk reports only the step it could not
+/// finish, so the end is then closed in on by halving: from the last position reached, a
+/// step of half the last length is tried, kept if the walk finishes it, halved again if
+/// not, down to the input's rounding.
+fn edge(
+    linkage: &StephensonSixBar<f64>,
+    start: f64,
+    position: [f64; 4],
+    step: f64,
+    steps: u32,
+) -> ((f64, [f64; 4]), Option<Stop<f64>>) {
+    let options = NewtonOptions::default();
+    let mut last = (start, position);
+    let mut stop = None;
+    for sample in Walk::new(linkage, start, position, step, steps, options) {
+        match sample {
+            Ok(sample) => last = (sample.input, sample.position),
+            Err(why) => {
+                stop = Some(why);
+                break;
+            }
+        }
+    }
+    let Some(stop) = stop else {
+        return (last, None);
+    };
+    let mut length = 0.5 * step;
+    for _ in 0..200 {
+        if last.0 + length == last.0 {
+            break;
+        }
+        match Walk::new(linkage, last.0, last.1, length, 1, options).last() {
+            Some(Ok(sample)) => last = (sample.input, sample.position),
+            _ => length *= 0.5,
+        }
+    }
+    (last, Some(stop))
+}
+
+/// The Stephenson six-bar, which has no closed form. Its start is its first assembly (in
+/// the scan's order, see `six_bars::stephenson_assemblies`) at the first whole degree from 0°
+/// where it has one. From there `mechgen::sweep::Sweep` walks it up, degree by degree, and
+/// down, each way until it stops at a toggle (or a change point) or has gone a full turn
+/// between them: that is the reachable piece. Other assemblies' circuits are not followed.
+/// Each sample then walks on from the last one, so Newton always starts near its root.
+fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
+    let d = &args.dimensions;
+    let linkage = six_bars::stephenson(d)?;
+    let dimensions = StephensonDimensions::new(d);
+    let Some((start, position)) = (0..360).find_map(|degree| {
+        let input = f64::from(degree);
+        six_bars::stephenson_assemblies(&linkage, &dimensions, input.to_radians())
+            .first()
+            .map(|q| (input, q.to_array()))
+    }) else {
+        return Err(
+            "the stephenson-six-bar cannot be assembled at any input angle: at no \
+                    whole degree does any position close both loops"
+                .into(),
+        );
+    };
+    let options = NewtonOptions::default();
+    let degree = 1f64.to_radians();
+    let walk = |step: f64, steps: u32| edge(&linkage, start.to_radians(), position, step, steps);
+    let (piece, shift) = match walk(degree, 360) {
+        (end, None) => {
+            // A circuit may need more than one turn of the input to close; the sweep draws
+            // one, from its start, and says so.
+            let turn = std::f64::consts::TAU;
+            let back = end.1.iter().zip(position).all(|(a, b)| {
+                let d = (a - b).rem_euclid(turn);
+                d.min(turn - d) < 1e-6
+            });
+            let mut piece = Piece::full_turn();
+            piece.words = format!(
+                "a full turn (followed by Newton from its assembly at {}°{})",
+                tidy(start),
+                if back {
+                    ""
+                } else {
+                    "; after a turn it is not back where it started: its circuit takes more \
+                     turns of the input, and the sweep draws the first"
+                }
+            );
+            (piece, 0.0)
+        }
+        ((high, _), Some(up)) => {
+            let high = high.to_degrees();
+            let left = 360 - ((high - start).ceil().max(0.0) as u32).min(360);
+            let ((low, _), down) = walk(-degree, left);
+            let low = low.to_degrees();
+            // Whole turns, so the piece reads as the other mechanisms' do.
+            let shift = low - six_bars::normal(low, high).0;
+            let mut piece = Piece::between(low - shift, high - shift);
+            piece.words = format!(
+                "{}° to {}° ({} below, {} above, where Newton's walk from its assembly at {}° \
+                 stopped)",
+                output::fixed(piece.from, 2),
+                output::fixed(piece.to, 2),
+                down.as_ref().map_or("a full turn", stop_words),
+                stop_words(&up),
+                tidy(start - shift)
+            );
+            (piece, shift)
+        }
+    };
+    let (rate, accel) = (args.rate, args.accel);
+    let (ground, pivot) = (d[0], (d[8], d[9]));
+    let (columns, groups) = six_bar_columns();
+    // Where the walk to the next sample starts: the last position solved.
+    let mut last = ((start - shift).to_radians(), position);
+    Ok(Sweep {
+        title: format!(
+            "Stephenson six-bar {} {} {} mm, ternary {} {} mm at {}°, rockers {} {} mm, \
+             O6 ({}, {}) mm",
+            tidy(d[0]),
+            tidy(d[1]),
+            tidy(d[2]),
+            tidy(d[3]),
+            tidy(d[4]),
+            tidy(d[5]),
+            tidy(d[6]),
+            tidy(d[7]),
+            tidy(d[8]),
+            tidy(d[9])
+        ),
+        columns,
+        groups,
+        band_column: None,
+        // O2 A B C O4 D O6; B C D is the floating ternary link.
+        links: vec![(0, 1), (1, 2), (2, 3), (3, 4), (3, 5), (2, 5), (5, 6)],
+        traced: 2,
+        pieces: vec![piece],
+        sample: Box::new(move |input| {
+            let t = input.to_radians();
+            let distance = t - last.0;
+            let q = if distance == 0.0 {
+                last.1
+            } else {
+                let steps = (distance.abs() / degree)
+                    .ceil()
+                    .clamp(1.0, f64::from(u32::MAX));
+                let mut walk = Walk::new(
+                    &linkage,
+                    last.0,
+                    last.1,
+                    distance / steps,
+                    steps as u32,
+                    options,
+                );
+                match walk.by_ref().last() {
+                    Some(Ok(sample)) => sample.position,
+                    Some(Err(Stop::Toggle { error, .. })) => return Err(error),
+                    Some(Err(Stop::BranchChange { .. })) | None => return Err(Error::OtherBranch),
+                }
+            };
+            last = (t, q);
+            let position = StephensonSixBarUnknowns::from_array(q);
+            let m = linkage.motion_at(t, &position, rate, accel)?;
+            let p = linkage.points(t, &position)?;
+            Ok(Sample {
+                values: six_bar_values(q, m.velocity.to_array(), m.acceleration.to_array()),
+                joints: vec![
+                    (0.0, 0.0),
+                    point(p.crank_pin),
+                    point(p.b),
+                    point(p.c),
+                    (ground, 0.0),
+                    point(p.d),
+                    pivot,
+                ],
+            })
+        }),
+    })
+}
+
 /// Most points a chart's series keeps, and most frames the animation keeps: a longer sweep
 /// is thinned to these, evenly, so the drawings take bounded memory however long it is.
 const CHART_POINTS: f64 = 4000.0;
@@ -687,6 +992,12 @@ fn symbol(column: &str) -> String {
         "foot_vy" => "vy",
         "foot_ax" => "ax",
         "foot_ay" => "ay",
+        "theta5_deg" => "θ5",
+        "theta6_deg" => "θ6",
+        "omega5" => "ω5",
+        "omega6" => "ω6",
+        "alpha5" => "α5",
+        "alpha6" => "α6",
         other => other,
     };
     symbol.to_string()
@@ -705,8 +1016,35 @@ fn check(args: &Args) -> Result<(), String> {
             return Err("--coupler-point takes two numbers: distance,angle".into());
         }
     }
-    if args.branch.is_some() && args.mechanism == Mechanism::Jansen {
-        return Err("--branch does not apply to Jansen's leg, which is always as drawn".into());
+    if let Some(branches) = &args.branch {
+        match args.mechanism {
+            Mechanism::Jansen => {
+                return Err(
+                    "--branch does not apply to Jansen's leg, which is always as drawn".into(),
+                );
+            }
+            Mechanism::StephensonSixBar => {
+                return Err(
+                    "--branch does not apply to the stephenson-six-bar, which has no \
+                            closed-form branches: it is followed by Newton from its first \
+                            assembly"
+                        .into(),
+                );
+            }
+            Mechanism::WattSixBar if branches.len() != 2 => {
+                return Err(
+                    "the watt-six-bar takes a branch per loop, as --branch open,crossed".into(),
+                );
+            }
+            Mechanism::WattSixBar => {}
+            _ if branches.len() != 1 => {
+                return Err(format!(
+                    "the {} has one loop: --branch takes one branch, open or crossed",
+                    args.mechanism.name()
+                ));
+            }
+            _ => {}
+        }
     }
     finite("--rate", args.rate, "rad/s")?;
     finite("--accel", args.accel, "rad/s²")?;
@@ -736,11 +1074,13 @@ pub fn finite(flag: &str, value: f64, unit: &str) -> Result<(), String> {
 
 pub fn run(args: &Args) -> Result<(), String> {
     check(args)?;
-    let sweep = match args.mechanism {
+    let mut sweep = match args.mechanism {
         Mechanism::FourBar => four_bar(args)?,
         Mechanism::SliderCrank => slider_crank(args)?,
         Mechanism::InvertedSliderCrank => inverted(args)?,
         Mechanism::Jansen => jansen(args)?,
+        Mechanism::WattSixBar => watt(args)?,
+        Mechanism::StephensonSixBar => stephenson(args)?,
     };
     if sweep.pieces.is_empty() {
         return Err(format!(
@@ -811,16 +1151,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             }
             index += 1;
         }
-        let ends = if piece.full_turn {
-            "a full turn".to_string()
-        } else {
-            format!(
-                "{}° to {}° (toggles at the ends)",
-                output::fixed(piece.from, 2),
-                output::fixed(piece.to, 2)
-            )
-        };
-        let mut line = format!("  piece {segment}: {ends}; ");
+        let mut line = format!("  piece {segment}: {}; ", piece.words);
         match count - failures.count() {
             0 => line.push_str("no samples"),
             n => write!(line, "{n} samples from {}° to {}°", tidy(low), tidy(high)).unwrap(),
