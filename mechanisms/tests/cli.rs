@@ -400,11 +400,67 @@ fn a_crank_that_cannot_turn_fully_is_swept_over_its_reachable_pieces() {
 
 #[test]
 fn a_linkage_with_singular_positions_still_sweeps_and_counts_them() {
-    // A parallelogram is flat, and singular, at 0° and 180°.
+    // A parallelogram is flat, and singular, at 0° and 180°: change points, past which the
+    // motion goes on on the other closed-form branch.
     let scratch = Scratch::new("parallelogram");
     let (summary, rows) = sweep_rows(&["four-bar", "100", "50", "100", "50"], &scratch);
     assert!(summary.contains("3 not computed (3 singular)"), "{summary}");
+    assert!(
+        summary.contains("crossed change points at 180°, 360° onto the other branch"),
+        "{summary}"
+    );
     assert_eq!(rows.len(), 361 - 3);
+    // It stays a parallelogram all the way round: the rocker turns with the crank, θ4 = θ2
+    // (where the open branch alone would fold into the antiparallelogram past 180°).
+    for (input, theta4) in column(&scratch, 3) {
+        let turned = (theta4 - input).rem_euclid(360.0);
+        assert!(turned.min(360.0 - turned) < 1e-9, "θ4 {theta4} at {input}°");
+    }
+}
+
+#[test]
+fn change_points_are_crossed_on_the_branch_that_goes_on() {
+    // A slider-crank with its rod as long as its crank: the rod stands square to the slide
+    // at 90° and 270°. Crossing them, the slider's motion goes on smoothly.
+    let scratch = Scratch::new("equal-crank-rod");
+    let (summary, _) = sweep_rows(&["slider-crank", "50", "50", "0"], &scratch);
+    assert!(
+        summary.contains("crossed change points at 90°, 270° onto the other branch"),
+        "{summary}"
+    );
+    let d = column(&scratch, 3);
+    for pair in d.windows(2) {
+        let ((a, x), (b, y)) = (pair[0], pair[1]);
+        // At most the crank's and the rod's own motion in the step: no jump.
+        assert!(
+            (y - x).abs() <= 2.0 * 100.0 * (b - a).to_radians(),
+            "d {x} → {y} at {a}°"
+        );
+    }
+    // The isosceles inverted slider-crank passes through its change point at 0° and 360°.
+    let scratch = Scratch::new("isosceles");
+    let (summary, _) = sweep_rows(&["inverted-slider-crank", "150", "150", "0", "0"], &scratch);
+    assert!(
+        summary.contains("crossed change points at 360°"),
+        "{summary}"
+    );
+    // And a crank-rocker has none.
+    let scratch = Scratch::new("crank-rocker");
+    let (summary, _) = sweep_rows(&["four-bar", "180", "80", "200", "150"], &scratch);
+    assert!(!summary.contains("change point"), "{summary}");
+}
+
+/// `(input, value)` of column `index` of a sweep's table.
+fn column(scratch: &Scratch, index: usize) -> Vec<(f64, f64)> {
+    let table = std::fs::read_to_string(scratch.0.join("sweep.csv")).unwrap();
+    table
+        .lines()
+        .skip(1)
+        .map(|line| {
+            let cells: Vec<&str> = line.split(',').collect();
+            (cells[0].parse().unwrap(), cells[index].parse().unwrap())
+        })
+        .collect()
 }
 
 #[test]

@@ -79,9 +79,10 @@ fn tick(value: f64) -> String {
 }
 
 /// Charts stacked vertically, sharing the x-axis and its label: ticks and a light grid on
-/// both axes, a zero line where zero is in range, the unit on every axis, and a legend in a
-/// column of its own at the right.
-pub fn charts(x_label: &str, charts: &[Chart]) -> Result<String, String> {
+/// both axes, a zero line where zero is in range, the unit on every axis, a legend in a
+/// column of its own at the right, and a dashed line at each of `markers` (the change points
+/// a sweep crossed).
+pub fn charts(x_label: &str, charts: &[Chart], markers: &[f64]) -> Result<String, String> {
     let mut svg = String::new();
     let rows = u32::try_from(charts.len()).unwrap_or(u32::MAX).max(1);
     {
@@ -89,7 +90,7 @@ pub fn charts(x_label: &str, charts: &[Chart]) -> Result<String, String> {
             .into_drawing_area();
         root.fill(&WHITE).map_err(drawing)?;
         for (area, chart) in root.split_evenly((charts.len(), 1)).iter().zip(charts) {
-            draw_chart(area, x_label, chart)?;
+            draw_chart(area, x_label, chart, markers)?;
         }
         root.present().map_err(drawing)?;
     }
@@ -104,6 +105,7 @@ fn draw_chart<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     x_label: &str,
     chart: &Chart,
+    markers: &[f64],
 ) -> Result<(), String>
 where
     DB::ErrorType: 'static,
@@ -152,6 +154,22 @@ where
     if y0 < 0.0 && 0.0 < y1 {
         context
             .draw_series(LineSeries::new([(x0, 0.0), (x1, 0.0)], BLACK.mix(0.5)))
+            .map_err(drawing)?;
+    }
+    for &at in markers {
+        context
+            .draw_series(DashedLineSeries::new(
+                [(at, y0), (at, y1)],
+                6,
+                4,
+                RGBColor(0x82, 0x50, 0xdf).stroke_width(1),
+            ))
+            .map_err(drawing)?;
+    }
+    if !markers.is_empty() {
+        let y = 48 + 20 * i32::try_from(chart.series.len()).unwrap_or(0);
+        legend
+            .draw(&Text::new("change point", (8, y - 7), ("sans-serif", 12)))
             .map_err(drawing)?;
     }
     for (s, (label, runs)) in chart.series.iter().enumerate() {

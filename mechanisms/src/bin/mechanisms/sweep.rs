@@ -89,9 +89,14 @@ struct Sweep<'a> {
     traced: usize,
     /// The input's reachable ranges, in order.
     pieces: Vec<Piece>,
-    /// The sample at an input in degrees. It may keep state: a mechanism solved by Newton
-    /// continues from its last position, so the inputs of a piece come in order.
-    sample: Box<dyn FnMut(f64) -> Result<Sample, Error<f64>> + 'a>,
+    /// The inputs (degrees, in `[0°, 360°)`, repeating every turn) where the linkage lies
+    /// flat at a change point: singular, the branches meet, and the motion goes on smoothly
+    /// only on the other closed-form branch.
+    change_points: Vec<f64>,
+    /// The sample at an input in degrees, on the requested branch or (`true`) the other one,
+    /// after a change point. It may keep state: a mechanism solved by Newton continues from
+    /// its last position, so the inputs of a piece come in order.
+    sample: Box<dyn FnMut(f64, bool) -> Result<Sample, Error<f64>> + 'a>,
 }
 
 /// A reachable range of the input, degrees. A full turn is sampled from its start, ends
@@ -221,6 +226,73 @@ fn inverted_pieces(linkage: &InvertedSliderCrank<f64>) -> Vec<Piece> {
         .collect()
 }
 
+/// Whether two lengths of a linkage whose longest is `longest` are equal to rounding.
+fn equal_lengths(a: f64, b: f64, longest: f64) -> bool {
+    (a - b).abs() <= 8.0 * f64::EPSILON * longest
+}
+
+/// A four-bar's change points: the chord O4 − A is shortest at 0° (`|l1 − l2|`) and longest
+/// at 180° (`l1 + l2`); where that extreme equals the shortest (`|l3 − l4|`) or longest
+/// (`l3 + l4`) chord the dyad closes over, the linkage lies flat there and goes on, on the
+/// other branch. (Where 0°'s chord equals `l3 + l4`, or 180°'s `|l3 − l4|`, it assembles at
+/// that input alone: no piece holds it.)
+fn four_bar_change_points(linkage: &FourBar<f64>) -> Vec<f64> {
+    let longest = linkage.lengths().into_iter().fold(0.0, f64::max);
+    // On lengths scaled to the longest, where no sum overflows.
+    let [l1, l2, l3, l4] = linkage.lengths().map(|l| l / longest);
+    let mut points = Vec::new();
+    if equal_lengths((l1 - l2).abs(), (l3 - l4).abs(), 1.0) {
+        points.push(0.0);
+    }
+    if equal_lengths(l1 + l2, l3 + l4, 1.0) {
+        points.push(180.0);
+    }
+    points
+}
+
+/// A slider-crank's change points: the rod is square to the slide (`|c − l2·sin θ2| = l3`)
+/// at an extreme of `c − l2·sin θ2`, at 90° (`c − l2`) or 270° (`c + l2`): crank and rod
+/// equal, say, with no offset.
+fn slider_crank_change_points(linkage: &SliderCrank<f64>) -> Vec<f64> {
+    let dimensions = linkage.dimensions();
+    let longest = dimensions.iter().fold(0.0, |m: f64, d| m.max(d.abs()));
+    let [l2, l3, c] = dimensions.map(|d| d / longest);
+    [(90.0, c - l2), (270.0, c + l2)]
+        .into_iter()
+        .filter(|(_, reach)| equal_lengths(reach.abs(), l3, 1.0))
+        .map(|(at, _)| at)
+        .collect()
+}
+
+/// An inverted slider-crank's change point: the crank pin A comes closest to O4 at 0°
+/// (`|l1 − l2|`); where that is the slide's distance from O4 (`|c·sin γ|`), the slide passes
+/// through A there, square to the chord (the isosceles linkage, `l1 = l2`, `c·sin γ = 0`).
+fn inverted_change_points(linkage: &InvertedSliderCrank<f64>) -> Vec<f64> {
+    let [l1, l2, c, gamma] = linkage.dimensions();
+    let longest = l1.max(l2).max(c.abs());
+    let (l1, l2, reach) = (
+        l1 / longest,
+        l2 / longest,
+        (c * gamma.sin()).abs() / longest,
+    );
+    if equal_lengths((l1 - l2).abs(), reach, 1.0) {
+        vec![0.0]
+    } else {
+        Vec::new()
+    }
+}
+
+/// The change points (`points`, each repeating every turn) in `(from, to]`.
+fn crossed(points: &[f64], from: f64, to: f64) -> impl Iterator<Item = f64> + '_ {
+    points.iter().flat_map(move |&point| {
+        let first = ((from - point) / 360.0).floor() as i64;
+        let last = ((to - point) / 360.0).ceil() as i64;
+        (first..=last)
+            .map(move |turn| point + 360.0 * turn as f64)
+            .filter(move |&at| from < at && at <= to)
+    })
+}
+
 fn four_bar(args: &Args) -> Result<Sweep<'_>, String> {
     let d = &args.dimensions;
     let mut linkage = FourBar::new(d[0], d[1], d[2], d[3]).map_err(|e| e.to_string())?;
@@ -261,8 +333,10 @@ fn four_bar(args: &Args) -> Result<Sweep<'_>, String> {
         links: vec![(0, 1), (1, 2), (2, 3), (1, 4), (2, 4)],
         traced: 4,
         pieces: four_bar_pieces(&linkage),
-        sample: Box::new(move |input| {
+        change_points: four_bar_change_points(&linkage),
+        sample: Box::new(move |input, flipped| {
             let t = input.to_radians();
+            let on = if flipped { on.other() } else { on };
             let m = linkage.motion(t, on, rate, accel)?;
             let p = linkage.points(t, &m.position)?;
             Ok(Sample {
@@ -329,8 +403,10 @@ fn slider_crank(args: &Args) -> Result<Sweep<'_>, String> {
         links: vec![(0, 1), (1, 2), (1, 3), (2, 3)],
         traced: 3,
         pieces: slider_crank_pieces(&linkage),
-        sample: Box::new(move |input| {
+        change_points: slider_crank_change_points(&linkage),
+        sample: Box::new(move |input, flipped| {
             let t = input.to_radians();
+            let on = if flipped { on.other() } else { on };
             let m = linkage.motion(t, on, rate, accel)?;
             let p = linkage.points(t, &m.position)?;
             Ok(Sample {
@@ -383,8 +459,10 @@ fn inverted(args: &Args) -> Result<Sweep<'_>, String> {
         links: vec![(0, 1), (2, 3), (3, 1)],
         traced: 1,
         pieces: inverted_pieces(&linkage),
-        sample: Box::new(move |input| {
+        change_points: inverted_change_points(&linkage),
+        sample: Box::new(move |input, flipped| {
             let t = input.to_radians();
+            let on = if flipped { on.other() } else { on };
             let m = linkage.motion(t, on, rate, accel)?;
             let p = linkage.points(t, &m.position)?;
             Ok(Sample {
@@ -436,7 +514,8 @@ fn jansen(args: &Args) -> Result<Sweep<'_>, String> {
         ],
         traced: 7,
         pieces: vec![Piece::full_turn()],
-        sample: Box::new(move |input| {
+        change_points: Vec::new(),
+        sample: Box::new(move |input, _| {
             let t = input.to_radians();
             let m = leg.motion(t, JansenLeg::<f64>::DRAWN, rate, accel)?;
             let p = leg.points(t, &m.position)?;
@@ -535,7 +614,8 @@ fn watt(args: &Args) -> Result<Sweep<'_>, String> {
         links: vec![(0, 1), (1, 2), (2, 3), (3, 4), (2, 4), (4, 5), (5, 6)],
         traced: 5,
         pieces,
-        sample: Box::new(move |input| {
+        change_points: Vec::new(),
+        sample: Box::new(move |input, _| {
             let t = input.to_radians();
             let m = linkage.motion(t, on, rate, accel)?;
             let p = linkage.points(t, &m.position)?;
@@ -701,7 +781,8 @@ fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
         links: vec![(0, 1), (1, 2), (2, 3), (3, 4), (3, 5), (2, 5), (5, 6)],
         traced: 2,
         pieces: vec![piece],
-        sample: Box::new(move |input| {
+        change_points: Vec::new(),
+        sample: Box::new(move |input, _| {
             let t = input.to_radians();
             let distance = t - last.0;
             let q = if distance == 0.0 {
@@ -759,6 +840,8 @@ struct Drawings {
     frames: Vec<Vec<(f64, f64)>>,
     frame_segments: Vec<usize>,
     broken: bool,
+    /// The change points the sweep crossed, degrees, marked on the charts.
+    markers: Vec<f64>,
 }
 
 impl Drawings {
@@ -771,6 +854,7 @@ impl Drawings {
             frames: Vec::new(),
             frame_segments: Vec::new(),
             broken: true,
+            markers: Vec::new(),
         }
     }
 
@@ -939,11 +1023,7 @@ fn charts(sweep: &Sweep, drawings: &Drawings) -> Result<String, String> {
                     .clone()
                     .map(|c| {
                         let runs = drawings.series[c].clone();
-                        let runs = if angles {
-                            runs.into_iter().map(unwrapped).collect()
-                        } else {
-                            runs
-                        };
+                        let runs = if angles { unwrapped(runs) } else { runs };
                         (symbol(&sweep.columns[c]), runs)
                     })
                     .collect(),
@@ -951,25 +1031,33 @@ fn charts(sweep: &Sweep, drawings: &Drawings) -> Result<String, String> {
             }
         })
         .collect();
-    svg::charts("input angle (°)", &charts)
+    svg::charts("input angle (°)", &charts, &drawings.markers)
 }
 
-/// A run of angles in degrees with every jump of more than half a turn taken out, so an
-/// angle that passes ±180° draws on past it.
-fn unwrapped((segment, points): svg::Run) -> svg::Run {
+/// Runs of angles in degrees with every jump of more than half a turn taken out, so an
+/// angle that passes ±180° draws on past it: within a run, and from one run to the next of
+/// the same piece (across a sample that could not be computed, such as a change point).
+fn unwrapped(runs: Vec<svg::Run>) -> Vec<svg::Run> {
     let mut turns = 0.0;
-    let mut last: Option<f64> = None;
-    let points = points
-        .into_iter()
-        .map(|(x, y)| {
-            if let Some(previous) = last {
-                turns -= 360.0 * ((y - previous) / 360.0).round();
+    let mut last: Option<(usize, f64)> = None;
+    runs.into_iter()
+        .map(|(segment, points)| {
+            if last.is_some_and(|(piece, _)| piece != segment) {
+                (turns, last) = (0.0, None);
             }
-            last = Some(y);
-            (x, y + turns)
+            let points = points
+                .into_iter()
+                .map(|(x, y)| {
+                    if let Some((_, previous)) = last {
+                        turns -= 360.0 * ((y - previous) / 360.0).round();
+                    }
+                    last = Some((segment, y));
+                    (x, y + turns)
+                })
+                .collect();
+            (segment, points)
         })
-        .collect();
-    (segment, points)
+        .collect()
 }
 
 /// A column's symbol for a legend.
@@ -1127,12 +1215,21 @@ pub fn run(args: &Args) -> Result<(), String> {
         let mut failures = Failures::default();
         let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
         let count = count as u64;
+        // Past each change point the motion goes on on the other branch.
+        let mut flipped = false;
+        let mut change_points = Vec::new();
         for k in 0..count {
             if index % 4096 == 0 {
                 progress(&bar, started, index);
             }
             let input = first + k as f64 * args.step;
-            match (sweep.sample)(input) {
+            if k > 0 {
+                for at in crossed(&sweep.change_points, input - args.step, input) {
+                    flipped = !flipped;
+                    change_points.push(at);
+                }
+            }
+            match (sweep.sample)(input, flipped) {
                 Ok(sample) => {
                     computed += 1;
                     low = low.min(input);
@@ -1159,6 +1256,19 @@ pub fn run(args: &Args) -> Result<(), String> {
         if let Some(words) = failures.words() {
             write!(line, "; {words}").unwrap();
         }
+        if !change_points.is_empty() {
+            let at: Vec<String> = change_points
+                .iter()
+                .map(|at| format!("{}°", tidy(*at)))
+                .collect();
+            write!(
+                line,
+                "; crossed change points at {} onto the other branch",
+                at.join(", ")
+            )
+            .unwrap();
+        }
+        drawings.markers.extend(change_points);
         lines.push(line);
     }
     bar.finish_and_clear();
@@ -1222,18 +1332,21 @@ fn progress(bar: &ProgressBar, started: Instant, done: u64) {
 
 #[cfg(test)]
 mod tests {
-    use super::unwrapped;
+    use super::{svg, unwrapped};
 
     #[test]
     fn an_angle_that_passes_half_a_turn_draws_on_past_it() {
+        let angles = |runs: Vec<svg::Run>| -> Vec<Vec<f64>> {
+            unwrapped(runs)
+                .into_iter()
+                .map(|(_, points)| points.iter().map(|p| p.1).collect())
+                .collect()
+        };
         let run = (
             1,
             vec![(0.0, 170.0), (1.0, 179.0), (2.0, -172.0), (3.0, -160.0)],
         );
-        let (segment, points) = unwrapped(run);
-        assert_eq!(segment, 1);
-        let angles: Vec<f64> = points.iter().map(|p| p.1).collect();
-        assert_eq!(angles, [170.0, 179.0, 188.0, 200.0]);
+        assert_eq!(angles(vec![run]), [[170.0, 179.0, 188.0, 200.0]]);
         // Down through −180° and back up through it.
         let run = vec![
             (0.0, -170.0),
@@ -1242,8 +1355,19 @@ mod tests {
             (3.0, -178.0),
             (4.0, 176.0),
         ];
-        let (_, points) = unwrapped((2, run));
-        let angles: Vec<f64> = points.iter().map(|p| p.1).collect();
-        assert_eq!(angles, [-170.0, -185.0, -195.0, -178.0, -184.0]);
+        assert_eq!(
+            angles(vec![(2, run)]),
+            [[-170.0, -185.0, -195.0, -178.0, -184.0]]
+        );
+        // Across a gap in the same piece (a change point), but not into another piece.
+        let runs = vec![
+            (1, vec![(178.0, 178.0), (179.0, 179.0)]),
+            (1, vec![(181.0, -179.0), (182.0, -178.0)]),
+            (2, vec![(300.0, -60.0)]),
+        ];
+        assert_eq!(
+            angles(runs),
+            [vec![178.0, 179.0], vec![181.0, 182.0], vec![-60.0]]
+        );
     }
 }
