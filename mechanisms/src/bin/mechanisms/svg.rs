@@ -213,8 +213,12 @@ pub fn animation(
     let px = |x: f64| MARGIN + (x - x0) * scale;
     let py = |y: f64| MARGIN + (y1 - y) * scale;
     let height = 2.0 * MARGIN + (y1 - y0) * scale;
+    // A long title (a six-bar's ten dimensions) in smaller type, so it fits the width: a
+    // character of sans-serif is about 0.55 of the type's size.
+    let characters = title.chars().count().max(1) as f64;
+    let title_size = (0.95 * WIDTH / (0.55 * characters)).min(14.0);
     let mut svg = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{height:.0}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n",
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{WIDTH}\" height=\"{height:.0}\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"{title_size:.1}\">{}</text>\n",
         WIDTH / 2.0,
         escape(title)
     );
