@@ -2867,11 +2867,23 @@ pub mod judge {
             } else {
                 f64::MAX
             } / 16.0;
-            [&t.velocity, &t.acceleration]
+            let unknowns = [&t.velocity, &t.acceleration]
                 .into_iter()
                 .flatten()
                 .flat_map(|values| values.iter().zip(&t.columns))
-                .any(|(value, column)| (value.to_f64() * column).abs() > largest)
+                .any(|(value, column)| (value.to_f64() * column).abs() > largest);
+            // A point's acceleration sums each link's centripetal and tangential terms,
+            // `|r|·(ω² + |α|)`, the input's and the unknowns' alike (a crank at ω2 = 43 rad/s
+            // with a length of 2e35 is beyond f32 by itself): within the mechanism's size
+            // times the largest of those.
+            let spin = |w: f64, a: f64| (w * w + a.abs()).max(w.abs());
+            let mut fastest = spin(t.omega, t.alpha);
+            if let (Some(w), Some(a)) = (&t.velocity, &t.acceleration) {
+                for (w, a) in w.iter().zip(a) {
+                    fastest = fastest.max(spin(w.to_f64(), a.to_f64()));
+                }
+            }
+            unknowns || self.size() * fastest > largest
         }
 
         /// Judges an error.
