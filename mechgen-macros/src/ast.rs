@@ -64,6 +64,8 @@ pub struct VectorTerm {
 pub enum Scalar {
     Name(Ident),
     Number(f64, Span),
+    /// `90 deg`: an angle written in degrees (the number as written).
+    Degrees(f64, Span),
     Neg(Span, Box<Scalar>),
     Binary(BinaryOp, Span, Box<Scalar>, Box<Scalar>),
 }
@@ -81,15 +83,25 @@ impl Scalar {
     pub fn span(&self) -> Span {
         match self {
             Scalar::Name(name) => name.span(),
-            Scalar::Number(_, span) | Scalar::Neg(span, _) => *span,
+            Scalar::Number(_, span) | Scalar::Degrees(_, span) | Scalar::Neg(span, _) => *span,
             Scalar::Binary(_, _, left, _) => left.span(),
+        }
+    }
+
+    /// The numbers written without a unit, each with its span, left to right.
+    pub fn numbers(&self) -> Box<dyn Iterator<Item = (f64, Span)> + '_> {
+        match self {
+            Scalar::Number(value, span) => Box::new(std::iter::once((*value, *span))),
+            Scalar::Name(_) | Scalar::Degrees(..) => Box::new(std::iter::empty()),
+            Scalar::Neg(_, inner) => inner.numbers(),
+            Scalar::Binary(_, _, left, right) => Box::new(left.numbers().chain(right.numbers())),
         }
     }
 
     fn last_span(&self) -> Span {
         match self {
             Scalar::Name(name) => name.span(),
-            Scalar::Number(_, span) => *span,
+            Scalar::Number(_, span) | Scalar::Degrees(_, span) => *span,
             Scalar::Neg(_, inner) | Scalar::Binary(_, _, _, inner) => inner.last_span(),
         }
     }
@@ -310,13 +322,28 @@ fn parse_atom(input: ParseStream) -> syn::Result<Scalar> {
     } else if lookahead.peek(syn::LitInt) {
         let literal: syn::LitInt = input.parse()?;
         reject_suffix(literal.suffix(), literal.span())?;
-        finite(literal.base10_parse()?, literal.span())
+        in_degrees(input, finite(literal.base10_parse()?, literal.span())?)
     } else if lookahead.peek(syn::LitFloat) {
         let literal: syn::LitFloat = input.parse()?;
         reject_suffix(literal.suffix(), literal.span())?;
-        finite(literal.base10_parse()?, literal.span())
+        in_degrees(input, finite(literal.base10_parse()?, literal.span())?)
     } else {
         Err(lookahead.error())
+    }
+}
+
+/// `number deg` (an angle in degrees) where `deg` follows the number, else the number.
+fn in_degrees(input: ParseStream, number: Scalar) -> syn::Result<Scalar> {
+    let follows = input
+        .fork()
+        .parse::<Ident>()
+        .is_ok_and(|unit| unit == "deg");
+    match number {
+        Scalar::Number(value, span) if follows => {
+            input.parse::<Ident>()?;
+            Ok(Scalar::Degrees(value, span))
+        }
+        other => Ok(other),
     }
 }
 

@@ -473,6 +473,27 @@ impl Scope {
                 None
             }
         });
+        // A bare number in an angle is radians: beyond a turn, it is degrees written without
+        // their unit far more often than an angle of several turns.
+        let resolved = resolved.and_then(|linear| {
+            let turn = std::f64::consts::TAU;
+            let literal = (expected == Kind::Angle && linear.constant.abs() > turn)
+                .then(|| scalar.numbers().find(|(value, _)| value.abs() > turn))
+                .flatten();
+            match literal {
+                Some((value, span)) => {
+                    errors.error_at_span(
+                        span,
+                        format!(
+                            "`{value}` in an angle is {value} radians, more than a turn: \
+                             write `{value} deg` for degrees"
+                        ),
+                    );
+                    None
+                }
+                None => Some(linear),
+            }
+        });
         // A bare number in a length is a length in no unit the mechanism knows: it would not
         // scale with the declared lengths, which every solver scales to keep the digits of a
         // mechanism of any size.
@@ -504,6 +525,13 @@ impl Scope {
     fn linear(&mut self, scalar: &Scalar, expected: Kind, errors: &mut Errors) -> Option<Linear> {
         match scalar {
             Scalar::Number(value, _) => Some(Linear::constant(*value)),
+            Scalar::Degrees(value, _) if expected == Kind::Length => {
+                errors.push(scalar.error(format!(
+                    "`{value} deg` is an angle: degrees are for a vector's angle, not its magnitude"
+                )));
+                None
+            }
+            Scalar::Degrees(value, _) => Some(Linear::constant(value.to_radians())),
             Scalar::Name(name) => match self.names.get(&name.to_string()).copied() {
                 Some((symbol, kind)) => {
                     self.seen.insert(symbol);
@@ -698,6 +726,7 @@ impl fmt::Display for Scalar {
         match self {
             Scalar::Name(name) => write!(f, "{name}"),
             Scalar::Number(value, _) => write!(f, "{value}"),
+            Scalar::Degrees(value, _) => write!(f, "{value} deg"),
             Scalar::Neg(_, inner) => write!(f, "-{inner}"),
             Scalar::Binary(op, _, left, right) => {
                 let op = match op {

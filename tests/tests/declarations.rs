@@ -200,3 +200,60 @@ fn two_unknown_lengths_solve_linearly_without_a_branch() {
     assert!((q.x - 2.0 * 0.5f64.cos()).abs() < 1e-15);
     assert!((q.y - 2.0 * 0.5f64.sin()).abs() < 1e-15);
 }
+
+mechanism! {
+    /// A slider on a line at 30°, its offset square to the line, written in degrees.
+    pub struct InclinedDegrees {
+        params: l2, l3, c;
+        input: theta2: angle;
+        unknowns: theta3: angle, d: length;
+        loop: l2 @ theta2 + l3 @ theta3 - c @ 120 deg - d @ 30 deg;
+    }
+}
+
+mechanism! {
+    /// The same, in radians.
+    pub struct InclinedRadians {
+        params: l2, l3, c;
+        input: theta2: angle;
+        unknowns: theta3: angle, d: length;
+        loop: l2 @ theta2 + l3 @ theta3 - c @ 2 * pi / 3 - d @ pi / 6;
+    }
+}
+
+#[test]
+fn angles_can_be_written_in_degrees() {
+    let degrees = InclinedDegrees {
+        l2: 40.0,
+        l3: 130.0,
+        c: 15.0,
+    };
+    let radians = InclinedRadians {
+        l2: 40.0,
+        l3: 130.0,
+        c: 15.0,
+    };
+    for step in 0..36 {
+        let theta2 = f64::from(step) * 10f64.to_radians();
+        let a = degrees.motion(theta2, Branch::Open, 3.0, 1.0).unwrap();
+        let b = radians.motion(theta2, Branch::Open, 3.0, 1.0).unwrap();
+        for (x, y) in [
+            (a.position.theta3, b.position.theta3),
+            (a.position.d, b.position.d),
+            (a.velocity.d, b.velocity.d),
+            (a.acceleration.d, b.acceleration.d),
+        ] {
+            assert!((x - y).abs() <= 1e-12 * y.abs().max(1.0), "{x} against {y}");
+        }
+        // The slider is on the 30° line, `c` off it: B − (d·e^{i30°} + c·e^{i120°}) = 0.
+        let (s2, c2) = theta2.sin_cos();
+        let (s3, c3) = a.position.theta3.sin_cos();
+        let b_x = 40.0 * c2 + 130.0 * c3;
+        let b_y = 40.0 * s2 + 130.0 * s3;
+        let (s30, c30) = 30f64.to_radians().sin_cos();
+        let (s120, c120) = 120f64.to_radians().sin_cos();
+        let gap_x = b_x - a.position.d * c30 - 15.0 * c120;
+        let gap_y = b_y - a.position.d * s30 - 15.0 * s120;
+        assert!(gap_x.hypot(gap_y) < 1e-12 * 200.0, "gap {gap_x}, {gap_y}");
+    }
+}
