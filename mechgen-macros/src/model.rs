@@ -199,11 +199,8 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         );
     }
     if loops.is_empty() {
-        required(
-            "loop",
-            "loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0",
-            &mut errors,
-        );
+        let example = example_loop(&params, &input, &unknowns);
+        required("loop", &example, &mut errors);
     }
 
     let mut undetermined = BTreeSet::new();
@@ -439,6 +436,26 @@ impl Scope {
         }
     }
 
+    /// The declared name most like `name`, if one is close: the same but for case (`PI` for
+    /// `pi`, `Theta2`), or a misspelling within a third of its letters (`theta` for `theta2`;
+    /// never `l4` for `l5`, which is more likely a name left undeclared).
+    fn closest(&self, name: &str) -> Option<String> {
+        let folded = name.to_lowercase();
+        let names = self.names.keys().map(String::as_str);
+        if let Some(same) = names
+            .clone()
+            .chain(["pi"])
+            .find(|c| c.to_lowercase() == folded)
+        {
+            return Some(same.to_string());
+        }
+        names
+            .map(|candidate| (strsim::levenshtein(name, candidate), candidate))
+            .filter(|(distance, _)| *distance <= name.chars().count() / 3)
+            .min()
+            .map(|(_, candidate)| candidate.to_string())
+    }
+
     /// Whether `symbol` is the one its name resolves to (a duplicate declaration is not).
     fn resolves_to(&self, symbol: SymbolRef) -> bool {
         self.names.values().any(|(s, _)| *s == symbol)
@@ -542,7 +559,17 @@ impl Scope {
                                 Kind::Angle => "a vector's angle must be an angle",
                             };
                             let article = article(kind);
-                            errors.error_at(name, format!("`{name}` is {article} {kind}: {place}"));
+                            // A parameter is a length unless declared otherwise.
+                            let hint = match symbol {
+                                SymbolRef::Param(_) if expected == Kind::Angle => {
+                                    format!(" (declare it `{name}: angle` in `params`)")
+                                }
+                                _ => String::new(),
+                            };
+                            errors.error_at(
+                                name,
+                                format!("`{name}` is {article} {kind}: {place}{hint}"),
+                            );
                             None
                         }
                         _ => Some(Linear::symbol(symbol)),
@@ -551,11 +578,21 @@ impl Scope {
                 None if name == "pi" => Some(Linear::constant(std::f64::consts::PI)),
                 None if self.poisoned.contains(&name.to_string()) => None,
                 None => {
+                    let hint = match self.closest(&name.to_string()) {
+                        Some(close) => {
+                            // Meant, so it counts as appearing (no "appears in no loop").
+                            if let Some(&(symbol, _)) = self.names.get(&close) {
+                                self.seen.insert(symbol);
+                            }
+                            format!("; did you mean `{close}`?")
+                        }
+                        None => String::new(),
+                    };
                     errors.error_at(
                         name,
                         format!(
                             "cannot find `{name}` in this mechanism: \
-                             declare it in `params`, `input` or `unknowns`"
+                             declare it in `params`, `input` or `unknowns`{hint}"
                         ),
                     );
                     None
@@ -745,4 +782,45 @@ impl fmt::Display for Scalar {
             }
         }
     }
+}
+
+/// A loop to suggest for a declaration that has none, from its own names: the input's vector,
+/// one for each unknown angle, and the ground's, with the declared lengths (placeholders
+/// where there are too few).
+fn example_loop(
+    params: &Option<(Ident, Vec<SymbolDecl>)>,
+    input: &Option<(Ident, Vec<SymbolDecl>)>,
+    unknowns: &Option<(Ident, Vec<SymbolDecl>)>,
+) -> String {
+    let names = |section: &Option<(Ident, Vec<SymbolDecl>)>| -> Vec<String> {
+        section
+            .as_ref()
+            .map(|(_, decls)| decls.iter().map(|d| d.name.to_string()).collect())
+            .unwrap_or_default()
+    };
+    let lengths = names(params);
+    let mut length = lengths
+        .iter()
+        .cloned()
+        .chain((1..).map(|k| format!("r{k}")));
+    let input = names(input)
+        .into_iter()
+        .next()
+        .unwrap_or_else(|| "theta2".into());
+    let mut terms = vec![format!("{} @ {input}", length.next().unwrap_or_default())];
+    let angles = names(unknowns);
+    let angles = if angles.is_empty() {
+        vec!["theta3".to_string(), "theta4".to_string()]
+    } else {
+        angles
+    };
+    for (k, angle) in angles.iter().enumerate() {
+        let sign = if k == 0 { "+" } else { "-" };
+        terms.push(format!(
+            "{sign} {} @ {angle}",
+            length.next().unwrap_or_default()
+        ));
+    }
+    terms.push(format!("- {} @ 0", length.next().unwrap_or_default()));
+    format!("loop: {}", terms.join(" "))
 }
