@@ -149,6 +149,10 @@ impl Model {
     }
 }
 
+/// Names a declaration cannot give its values: the generated code binds each with `let`,
+/// where these are patterns.
+const PRELUDE_VARIANTS: [&str; 4] = ["Ok", "Err", "Some", "None"];
+
 /// Resolves and checks a parsed declaration.
 pub fn build(declaration: Declaration) -> syn::Result<Model> {
     let mut errors = Errors::default();
@@ -180,6 +184,14 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
             }
             Section::Scene(docs, name, outputs) => scenes.push((docs, name, outputs)),
         }
+    }
+
+    if name == "T" {
+        errors.error_at(
+            &name,
+            "a mechanism cannot be named `T`: the generated code's float type parameter is `T`; \
+             pick another name",
+        );
     }
 
     let required = |what: &str, example: &str, errors: &mut Errors| {
@@ -235,6 +247,15 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
     scope
         .poisoned
         .extend(input.iter().skip(1).map(|extra| extra.name.to_string()));
+    // So are the names refused above.
+    scope.poisoned.extend(
+        params
+            .iter()
+            .chain(&input)
+            .chain(&unknowns)
+            .map(|symbol| symbol.name.to_string())
+            .filter(|name| PRELUDE_VARIANTS.contains(&name.as_str())),
+    );
     let loops: Vec<VectorSum> = loops
         .iter()
         .map(|sum| scope.vector_sum(sum, &mut errors))
@@ -415,6 +436,15 @@ impl Scope {
                 errors.error_at(
                     name,
                     "`pi` is reserved for the constant π; pick another name",
+                );
+            } else if PRELUDE_VARIANTS.contains(&text.as_str()) {
+                // The generated code binds each name with `let`, where these are patterns.
+                errors.error_at(
+                    name,
+                    format!(
+                        "`{text}` is a variant of Rust's prelude, which the generated code \
+                         cannot bind as a value; pick another name"
+                    ),
                 );
             } else {
                 let kind = (!undetermined.contains(&text)).then_some(*kind);
