@@ -357,6 +357,17 @@ fn symbols(
                  name,
                  kind,
              }| {
+                // A doc comment documents the field; any other attribute (`#[cfg]` would
+                // remove a value the loops read) has no meaning here.
+                for attr in attrs.iter().filter(|attr| !attr.path().is_ident("doc")) {
+                    errors.error_at(
+                        attr,
+                        format!(
+                            "only doc comments are allowed on `{name}`: the loops need every \
+                             declared name, whatever an attribute would do to its field"
+                        ),
+                    );
+                }
                 if !matches!(vis, Visibility::Inherited) && default.is_none() {
                     errors.error_at(
                         &vis,
