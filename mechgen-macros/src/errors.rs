@@ -25,6 +25,11 @@ impl Errors {
         }
     }
 
+    /// Whether nothing was recorded.
+    pub fn is_empty(&self) -> bool {
+        self.combined.is_none()
+    }
+
     /// `Ok(value)` if nothing was recorded, else every recorded error.
     pub fn finish<T>(self, value: T) -> syn::Result<T> {
         match self.combined {

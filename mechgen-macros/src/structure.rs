@@ -8,8 +8,8 @@
 //! along a fixed direction (`d @ 0`, which enters only the x equation) is seen for what it is.
 
 use crate::errors::Errors;
-use crate::model::Model;
-use crate::symbolic::Equations;
+use crate::model::{Model, SymbolRef};
+use crate::symbolic::{Equations, Var};
 
 pub fn check(model: &Model, equations: &Equations) -> syn::Result<()> {
     let mut errors = Errors::default();
@@ -93,7 +93,87 @@ pub fn check(model: &Model, equations: &Equations) -> syn::Result<()> {
             ),
         );
     }
+    if errors.is_empty() {
+        generic_rank(model, equations, &mut errors);
+    }
     errors.finish(())
+}
+
+/// Rule: the Jacobian must be invertible somewhere. A matching only says each unknown has an
+/// equation; the unknowns may still enter only in a fixed combination (`l3 @ (theta3 +
+/// theta4)`), and then the Jacobian is singular for every value of everything. Its rank as
+/// a matrix of expressions is its rank at a point chosen at random (almost surely), so it is
+/// evaluated at a few such points: singular at all of them, it is singular everywhere.
+fn generic_rank(model: &Model, equations: &Equations, errors: &mut Errors) {
+    let n = model.unknowns.len();
+    // A fixed sequence, so that the macro's verdict is the same on every build.
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut random = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut dependent = None;
+    for _ in 0..3 {
+        let params: Vec<f64> = (0..model.params.len()).map(|_| 1.0 + random()).collect();
+        let point: Vec<f64> = (0..=n).map(|_| std::f64::consts::TAU * random()).collect();
+        let values = equations.graph.evaluate_all(|var| match var {
+            Var::Value(SymbolRef::Param(i)) => params[i],
+            Var::Value(SymbolRef::Unknown(i)) => point[i],
+            Var::Value(SymbolRef::Input) => point[n],
+            // Rates: the Jacobian holds none.
+            _ => 0.5,
+        });
+        let matrix: Vec<Vec<f64>> = equations
+            .jacobian
+            .iter()
+            .map(|row| row.iter().map(|e| values[e.index()]).collect())
+            .collect();
+        match dependent_column(matrix) {
+            Some(column) => dependent = Some(column),
+            None => return,
+        }
+    }
+    if let Some(column) = dependent {
+        let name = &model.unknowns[column].name;
+        errors.error_at(
+            name,
+            format!(
+                "the loops never determine `{name}`: the Jacobian is singular for every value \
+                 of the dimensions and unknowns (`{name}` enters only together with other \
+                 unknowns, as in a sum of angles), so no position can be solved"
+            ),
+        );
+    }
+}
+
+/// The first column of `matrix` that is a combination of the ones before it (to a relative
+/// 1e-9), by Gaussian elimination with partial pivoting; `None` where it is invertible.
+fn dependent_column(mut matrix: Vec<Vec<f64>>) -> Option<usize> {
+    let n = matrix.len();
+    let scale = matrix
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    for (row, column) in (0..n).enumerate() {
+        let pivot = (row..n)
+            .max_by(|&a, &b| matrix[a][column].abs().total_cmp(&matrix[b][column].abs()))?;
+        if matrix[pivot][column].abs() <= 1e-9 * scale {
+            return Some(column);
+        }
+        matrix.swap(row, pivot);
+        let (above, below) = matrix.split_at_mut(row + 1);
+        let pivot_row = &above[row];
+        for other in below {
+            let factor = other[column] / pivot_row[column];
+            for (entry, pivot_entry) in other[column..].iter_mut().zip(&pivot_row[column..]) {
+                *entry -= factor * pivot_entry;
+            }
+        }
+    }
+    None
 }
 
 /// Kuhn's augmenting path step: tries to match `column`, re-matching others as needed.

@@ -10,6 +10,7 @@ use std::collections::HashMap;
 
 use crate::model::{Linear, SymbolRef};
 
+mod evaluate;
 mod products;
 
 /// A variable of the generated code.
