@@ -20,7 +20,10 @@
 //! tests. The position's is derived: Newton accepts a residual up to `16·ε` of the loops'
 //! magnitudes, and the inverse of the column-scaled Jacobian has entries up to κ, so the
 //! errors of two unknowns can add (an edge run found positions up to 1.3 times `16·ε·κ`
-//! off; none in the run of `docs/EDGES.md` exceeds `32·ε·κ`). Near a change point the κ³ of the acceleration is reached; near a
+//! off; none in the run of `docs/EDGES.md` exceeds `32·ε·κ`). That derivation makes a
+//! Newton position's estimate relative to the larger of the mechanism's size and each loop's
+//! magnitudes at the position (a slide's extension counted, which can exceed the declared
+//! lengths). Near a change point the κ³ of the acceleration is reached; near a
 //! toggle the true error grows only as κ², so there the estimate is pessimistic by up to κ.
 //!
 //! Here `s = max(1, ρ/16)`, with ρ the aspect: the sum of the lengths the mechanism's loops

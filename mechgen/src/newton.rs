@@ -17,7 +17,7 @@ pub struct NewtonOptions<T> {
     /// rounding floor of the residual (`16 ε Σ|r|` over each loop's own vectors, for that
     /// loop's components) is raised to that floor, so a tight tolerance never turns into a spurious failure. Zero, the default,
     /// means "as accurate as the floating-point type allows": Newton stops at the floor only
-    /// after a step that started within `√ε` of the root (relative), so a step that lands
+    /// after a step that started within `√ε/κ` of the root (relative), so a step that lands
     /// on the floor from farther is followed by one more, and a solve restarted from its own
     /// result polishes it rather than returning it untouched.
     pub tolerance: T,
@@ -139,8 +139,9 @@ const MAX_HALVINGS: u32 = 10;
 /// - a step that does not reduce the largest residual component is halved, up to
 ///   10 times; if none does, the iteration has stagnated;
 /// - with the default zero tolerance, a point is accepted when its residual is at the
-///   rounding floor `16 ε Σ|r|` and the step to it started within `√ε·Σ|r|` (so, Newton
-///   being quadratic, it is the attainable accuracy) or the Jacobian is near singular
+///   rounding floor `16 ε Σ|r|` and the step to it started within `√ε·Σ|r|/κ` (so, Newton
+///   being quadratic, the loops' curvature leaves less than the floor: [`polished`]), or the
+///   Jacobian is near singular
 ///   (κ ≥ ε^(-1/4), where a step from the floor would move along the singular direction
 ///   rather than polish), or no step lowers it;
 /// - with a stated tolerance, a point is accepted when its residual is at most the tolerance
@@ -153,9 +154,10 @@ const MAX_HALVINGS: u32 = 10;
 ///   cannot close there (a closed form knows), [`Error::NoConvergence`] where it says they
 ///   can; where it cannot say (`None`), [`Error::CannotAssemble`] if the Jacobian is
 ///   ill-conditioned (the iterates press against a toggle the loops cannot pass), else
-///   [`Error::NoConvergence`]. Running out of iterations is [`Error::CannotAssemble`] where
-///   `assembles()` says the loops cannot close, else [`Error::NoConvergence`]. It is called
-///   only then.
+///   [`Error::NoConvergence`]. Running out of iterations is decided the same way (a guess
+///   that Kantorovich certifies reaches the floor in a handful of steps, so iterates still
+///   outside every such ball after `max_iterations` are pressing against a toggle as surely
+///   as stalled ones). `assembles()` is called only then.
 ///
 /// With `keep_orientation`, the Jacobian's orientation (the sign of its determinant) must be
 /// the same at the solution as at the guess, else [`Error::OtherBranch`]: for a single loop
@@ -191,7 +193,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     let mut orientation = None;
     // The residual before the last step. Newton squares the relative error at each step, so
     // a residual at the floor is the attainable one only if the step to it started within
-    // √ε of the root; otherwise (a big step that landed near the floor, or no step at all,
+    // √ε/κ of the root; otherwise (a big step that landed near the floor, or no step at all,
     // as for a guess that is already a solution) a default solve takes one more step, which
     // polishes the result rather than stopping short of what the float type allows.
     let mut previous_residual = T::infinity();
@@ -231,13 +233,10 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 || (max_abs(&here.residual) <= options.tolerance
                     && kantorovich(&here, condition()) <= quarter)
         } else {
-            // Near a singular position (κ beyond ε^(-1/4)) the position is known only to
-            // about κ·ε whatever the residual, and a step from the floor there is no polish
-            // but a move of that size along the singular direction, onto whichever branch
-            // meets this one: there the floor is the stop.
-            let polished = previous_residual <= T::epsilon().sqrt() * here.scale
-                || condition() * T::epsilon().sqrt().sqrt() >= T::one();
-            weighted == T::zero() || (weighted <= floor && polished)
+            // At the floor after a step that started near enough (or near a singular
+            // position, where a step from the floor moves along the singular direction).
+            weighted == T::zero()
+                || (weighted <= floor && polished(previous_residual, here.scale, condition()))
         };
         if met {
             return accept(here, jacobian, x);
@@ -246,13 +245,22 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             if weighted <= floor {
                 return accept(here, jacobian, x);
             }
-            // Where a closed form says no assembly closes at this input, that is why.
+            // Where a closed form says no assembly closes at this input, that is why. Where
+            // the closed forms cannot say for the guess's assembly (some other assembly
+            // closes), it is decided as stagnation is: iterates that no root is certain to be
+            // near after this many steps (Newton from within Kantorovich's ball reaches the
+            // floor in a handful) are creeping along a toggle the loops cannot pass.
+            let stalled = Error::NoConvergence {
+                iterations,
+                residual_norm: max_abs(&here.residual),
+            };
             return Err(match assembles() {
+                Some(true) => stalled,
                 Some(false) => Error::CannotAssemble { input },
-                _ => Error::NoConvergence {
-                    iterations,
-                    residual_norm: max_abs(&here.residual),
-                },
+                None if kantorovich(&here, condition()) > quarter => {
+                    Error::CannotAssemble { input }
+                }
+                None => stalled,
             });
         }
         let step = jacobian.solve(here.residual);
@@ -319,6 +327,27 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         weighted = there_weighted;
         iterations += 1;
     }
+}
+
+/// Whether a residual at the rounding floor is the attainable one (for a default solve):
+/// the step to it started within `√ε/κ` of the root (relative to `scale`), or the Jacobian is
+/// near singular.
+///
+/// A Newton step from a residual `f` leaves the loops' curvature, about `κ²·f²/(2·c)` with
+/// `c` the shortest column (each loop is a sum of `r·e^{iθ}`, whose second derivative is as
+/// long as its first): from `f ≤ √ε·scale` alone that is `κ²·ρ·ε/2` of the scale, and the
+/// position's error κ times it: a slider-crank of κ 3 and aspect 3 stopped 61 units of
+/// rounding off (its closed form is 0.1 off), and its velocity, κ·ρ times that, past its
+/// estimate. From `κ·f ≤ √ε·scale` it is at most `ρ·ε/2`, under the floor for the
+/// mechanisms whose rates the estimate covers without widening (ρ below 16); beyond, the
+/// residual's test at the floor still bounds it. Near a singular position (κ beyond
+/// ε^(-1/4)) the position is known only to about κ·ε whatever the residual, and a step from
+/// the floor there is no polish but a move of that size along the singular direction, onto
+/// whichever branch meets this one: there the floor is the stop.
+#[inline(always)]
+fn polished<T: Real>(previous_residual: T, scale: T, condition: T) -> bool {
+    previous_residual * condition <= T::epsilon().sqrt() * scale
+        || condition * T::epsilon().sqrt().sqrt() >= T::one()
 }
 
 /// Whether a default solve (zero tolerance) was accepted above the rounding floor
@@ -417,9 +446,7 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
                         && kantorovich_aside(here.residual, here.jacobian, condition()) <= quarter)
             } else {
                 weighted == T::zero()
-                    || (weighted <= floor
-                        && (previous_residual <= T::epsilon().sqrt() * here.scale
-                            || condition() * T::epsilon().sqrt().sqrt() >= T::one()))
+                    || (weighted <= floor && polished(previous_residual, here.scale, condition()))
             };
             if met {
                 if keep_orientation && positive != started_positive {

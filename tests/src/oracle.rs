@@ -2095,9 +2095,12 @@ pub fn valid_dimensions(kind: Kind, dims: &[f64], eta: f64) -> Option<bool> {
 /// - every `Ok` is finite; its loops close to the rounding floor, `16·ε·Σ|r|` per loop; it is
 ///   on the requested branch (or on a branch the oracle cannot tell from it within the bound);
 ///   its position is within `32·ε·κ` of the truth (each unknown weighted by its Jacobian
-///   column, over the size), its rates within `16·ε·κ²·ρ` and its accelerations within
+///   column, over the size; for Newton, over the larger of the size and each loop's
+///   magnitudes at the truth, which its stop is derived from), its rates within `16·ε·κ²·ρ` and its accelerations within
 ///   `16·ε·κ³·ρ²` (over the rates' size); a tracked point within the first-order propagation
 ///   of those bounds through its vectors;
+/// - an `Ok` where the oracle finds no assembly only within rounding `16·ε` of a limit (by the
+///   reach's slack) or, from Newton, within its own residual of one (its backward error);
 /// - every `Err` is the right one: `CannotAssemble` only where the oracle says the loops do not
 ///   close, or within rounding `16·ε` of a limit (by the reach's slack); `Singular` only where
 ///   some position within the bound of the truth is at the documented threshold,
@@ -2708,7 +2711,7 @@ pub mod judge {
                 let (branches, _) = branch_signs(&self.model, &state);
                 if !self.unreachable_or_near_limit() {
                     v.fail(api, "Ok where the oracle has no position", format!("{q:?}"));
-                } else if self.near_limit() {
+                } else if self.near_limit() || (newton && self.within_backward_error(q)) {
                     // Within rounding of a limit, where the branches meet: either is right.
                 } else if self.accurate_elsewhere(q, &branches, reported_kappa) {
                     if !self.guess_near_none {
@@ -2742,7 +2745,7 @@ pub mod judge {
                 return;
             };
             let kappa = self.kappa(reported_kappa);
-            let bound = POSITION_FACTOR * self.eps * kappa;
+            let bound = POSITION_FACTOR * self.eps * kappa * self.newton_size(truth, newton);
             let error = position_error(&self.model, truth, q);
             let state = State::from_f64(&self.model, self.input, q);
             let (branches, _) = branch_signs(&self.model, &state);
@@ -2787,6 +2790,37 @@ pub mod judge {
                     format!("signs {branches:?}, asked {wanted:?}"),
                 );
             }
+        }
+
+        /// A Newton position's size over the mechanism's (at least 1): the contract's 32·ε·κ
+        /// is derived from Newton's stop (README, "Accuracy"; `mechgen::Accuracy`), a residual
+        /// up to 16·ε of each loop's own magnitudes, through an inverse Jacobian whose
+        /// column-scaled entries are at most κ: so it is relative to the larger of the
+        /// declared lengths' sum and each loop's magnitudes at the position, where a slide's
+        /// extension counts (an inverted slider-crank's slide can be 130 times its crank and
+        /// the loop twice the declared lengths). 1 for the closed forms, which are held to the
+        /// declared lengths.
+        fn newton_size(&self, truth: &Truth, newton: bool) -> f64 {
+            if !newton {
+                return 1.0;
+            }
+            self.model
+                .loop_magnitudes(&truth.state)
+                .iter()
+                .fold(self.size(), |m, r| m.max(r.to_f64()))
+                / self.size()
+        }
+
+        /// Whether a Newton position, where the oracle finds no assembly, is the exact one of
+        /// data within its own residual: its loops close to that residual (at most the floor
+        /// judged above), so it solves the mechanism with each loop's chord moved by that much,
+        /// and the reach's gap moves by at most the largest loop's relative residual times the
+        /// slack. Such an answer is past the limit by no more than its backward error, the
+        /// rounding the contract allows Newton's stop (README, "Accuracy": up to four times
+        /// `16·ε·Σ|r|` where no step lowers it), not by more than rounding.
+        fn within_backward_error(&self, q: &[f64]) -> bool {
+            let eta = relative_residual(&self.model, self.input, q).max(FACTOR * self.eps);
+            self.reach.is_some_and(|r| r.near_limit(eta))
         }
 
         /// Whether `q` is within the bound of the truth on `branches` (another branch than asked).
