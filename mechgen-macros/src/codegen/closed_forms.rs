@@ -88,20 +88,8 @@ impl Generator<'_> {
         let (scale, unscale) = (local("scale"), local("unscale"));
         let receiver = local("normalised");
         let name = &self.model.name;
-        let lengths = self
-            .model
-            .params
-            .iter()
-            .filter(|param| param.kind == Kind::Length)
-            .map(|param| &param.name);
-        let fields = self.model.params.iter().map(|param| {
-            let field = &param.name;
-            if param.kind == Kind::Length {
-                quote!(#field: self.#field * #scale)
-            } else {
-                quote!(#field: self.#field)
-            }
-        });
+        let lengths = self.length_params();
+        let fields = self.scaled_fields(&scale);
         let input = &self.model.input.name;
         let length_input = self.model.input.kind == Kind::Length;
         let scaled = |value: &Ident| {

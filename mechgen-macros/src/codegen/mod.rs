@@ -21,7 +21,7 @@ use std::collections::BTreeSet;
 use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
-use crate::model::{Model, Symbol, SymbolRef};
+use crate::model::{Kind, Model, Symbol, SymbolRef};
 use crate::symbolic::{Equations, ExprId, Var};
 use docs::doc;
 use emit::{Block, Context, Emitted, emit, local};
@@ -170,6 +170,33 @@ impl<'a> Generator<'a> {
                 self.model.params[i].name.clone()
             }
         }
+    }
+
+    /// The parameters that are lengths, which a mechanism scaled to its size multiplies.
+    fn length_params(&self) -> Vec<&Ident> {
+        self.model
+            .params
+            .iter()
+            .filter(|param| param.kind == Kind::Length)
+            .map(|param| &param.name)
+            .collect()
+    }
+
+    /// The fields of `self` scaled by `scale` (a power of two): its lengths times it, its
+    /// angles as they are.
+    fn scaled_fields(&self, scale: &Ident) -> Vec<TokenStream> {
+        self.model
+            .params
+            .iter()
+            .map(|param| {
+                let field = &param.name;
+                if param.kind == Kind::Length {
+                    quote!(#field: self.#field * #scale)
+                } else {
+                    quote!(#field: self.#field)
+                }
+            })
+            .collect()
     }
 
     /// Emits `outputs` with the `let`s that bind the parameters and unknowns they read.

@@ -11,7 +11,7 @@ use mechgen::grashof::{Class, Inversion, Special};
 use mechgen::{Accuracy, Branch, Error, MechanicalAdvantage};
 
 use crate::Mechanism;
-use crate::output::{self, fixed, say, tidy};
+use crate::output::{self, filled, fixed, say, tidy};
 use crate::six_bars::{self, StephensonDimensions};
 use crate::sweep::finite;
 
@@ -690,18 +690,12 @@ fn watt(args: &Args, linkage: mechanisms::WattSixBar<f64>) -> Result<(), String>
         })
         .collect();
     say!(
-        "Watt six-bar: four-bar {} {} {} {} mm; extension {} mm at {}° from the rocker; \
-         second coupler {} mm, second rocker {} mm from O6 = ({}, {}) mm",
-        tidy(d[0]),
-        tidy(d[1]),
-        tidy(d[2]),
-        tidy(d[3]),
-        tidy(d[4]),
-        tidy(d[5]),
-        tidy(d[6]),
-        tidy(d[7]),
-        tidy(d[8]),
-        tidy(d[9])
+        "{}",
+        filled(
+            "Watt six-bar: four-bar {} {} {} {} mm; extension {} mm at {}° from the rocker; \
+             second coupler {} mm, second rocker {} mm from O6 = ({}, {}) mm",
+            d
+        )
     );
     let all: Vec<&Solved<_>> = solved.iter().collect();
     nothing(&all, || {
@@ -746,18 +740,12 @@ fn stephenson(args: &Args, linkage: StephensonSixBar<f64>) -> Result<(), String>
     let theta2 = args.at.to_radians();
     let found = six_bars::stephenson_assemblies(&linkage, &StephensonDimensions::new(d), theta2);
     say!(
-        "Stephenson six-bar: ground {} mm, crank {} mm, link {} mm; ternary link B C {} mm, \
-         C D {} mm at {}°; rocker O4 C {} mm, output rocker {} mm from O6 = ({}, {}) mm",
-        tidy(d[0]),
-        tidy(d[1]),
-        tidy(d[2]),
-        tidy(d[3]),
-        tidy(d[4]),
-        tidy(d[5]),
-        tidy(d[6]),
-        tidy(d[7]),
-        tidy(d[8]),
-        tidy(d[9])
+        "{}",
+        filled(
+            "Stephenson six-bar: ground {} mm, crank {} mm, link {} mm; ternary link B C {} \
+             mm, C D {} mm at {}°; rocker O4 C {} mm, output rocker {} mm from O6 = ({}, {}) mm",
+            d
+        )
     );
     if found.is_empty() {
         return Err(cannot(

@@ -30,6 +30,19 @@ pub fn gone(error: io::Error) -> ! {
     std::process::exit(1);
 }
 
+/// `template` with each `{}` in turn replaced by the next of `values`, [`tidy`]: a
+/// mechanism's dimensions in its description.
+pub fn filled(template: &str, values: &[f64]) -> String {
+    let mut values = values.iter();
+    let mut parts = template.split("{}");
+    let mut text = parts.next().unwrap_or_default().to_string();
+    for part in parts {
+        text.push_str(&values.next().map_or_else(String::new, |v| tidy(*v)));
+        text.push_str(part);
+    }
+    text
+}
+
 /// A number as a person would write it: to 12 significant digits, without the last-digit
 /// noise of binary fractions (`30`, not `29.999999999999996`), in exponent form when very
 /// large or very small (`1e308`, not 309 digits).
@@ -82,5 +95,16 @@ mod tests {
         assert_eq!(tidy(100.81), "100.81");
         assert_eq!(degrees(-1e-15, 4), "0.0000");
         assert_eq!(fixed(-1e-9, 4), "0.0000");
+    }
+
+    #[test]
+    fn a_template_is_filled_with_tidy_numbers_in_turn() {
+        assert_eq!(
+            filled("{} {} mm at {}°", &[180.0, 0.1 + 0.2, 30.0]),
+            "180 0.3 mm at 30°"
+        );
+        // Too few numbers leave the rest empty; too many are not printed.
+        assert_eq!(filled("({}, {})", &[1.0]), "(1, )");
+        assert_eq!(filled("{}", &[1.0, 2.0]), "1");
     }
 }

@@ -33,7 +33,7 @@ use syn::ext::IdentExt;
 use super::Generator;
 use super::docs::doc;
 use super::emit::{Context, emit, local};
-use crate::model::{Kind, SymbolRef};
+use crate::model::SymbolRef;
 use crate::scene::{Order, Quantity, Scene};
 use crate::symbolic::{ExprId, Straight, Var};
 
@@ -132,20 +132,8 @@ impl Generator<'_> {
         let statements = block.statements.concat();
         let name = &self.model.name;
         let (scale, unscale) = (local("scale"), local("unscale"));
-        let lengths = self
-            .model
-            .params
-            .iter()
-            .filter(|param| param.kind == Kind::Length)
-            .map(|param| &param.name);
-        let scaled_fields = self.model.params.iter().map(|param| {
-            let field = &param.name;
-            if param.kind == Kind::Length {
-                quote!(#field: self.#field * #scale)
-            } else {
-                quote!(#field: self.#field)
-            }
-        });
+        let lengths = self.length_params();
+        let scaled_fields = self.scaled_fields(&scale);
         let values = &block.outputs;
         let checks = self.model.params.iter().map(|param| {
             let field = &param.name;

@@ -60,18 +60,12 @@ pub(super) fn watt(args: &Args) -> Result<Sweep<'_>, String> {
     let word = |b: Branch| if b == Branch::Open { "open" } else { "crossed" };
     Ok(Sweep {
         title: format!(
-            "Watt six-bar {} {} {} {} mm, extension {} mm at {}°, {} {} mm, O6 ({}, {}) mm, \
-             branches {},{}",
-            tidy(d[0]),
-            tidy(d[1]),
-            tidy(d[2]),
-            tidy(d[3]),
-            tidy(d[4]),
-            tidy(d[5]),
-            tidy(d[6]),
-            tidy(d[7]),
-            tidy(d[8]),
-            tidy(d[9]),
+            "{}{},{}",
+            filled(
+                "Watt six-bar {} {} {} {} mm, extension {} mm at {}°, {} {} mm, O6 ({}, {}) mm, \
+                 branches ",
+                d
+            ),
             word(on[0]),
             word(on[1])
         ),
@@ -228,19 +222,10 @@ pub(super) fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
     // Where the walk to the next sample starts: the last position solved.
     let mut last = ((start - shift).to_radians(), position);
     Ok(Sweep {
-        title: format!(
+        title: filled(
             "Stephenson six-bar {} {} {} mm, ternary {} {} mm at {}°, rockers {} {} mm, \
              O6 ({}, {}) mm",
-            tidy(d[0]),
-            tidy(d[1]),
-            tidy(d[2]),
-            tidy(d[3]),
-            tidy(d[4]),
-            tidy(d[5]),
-            tidy(d[6]),
-            tidy(d[7]),
-            tidy(d[8]),
-            tidy(d[9])
+            d,
         ),
         columns,
         groups,
