@@ -974,6 +974,463 @@ mod tests {
         assert!(common >= 3 * 360 * 4, "{common}");
     }
 
+    /// A four-bar of any lengths at `theta2`.
+    fn linkage(
+        [l1, l2, l3, l4]: [f64; 4],
+        theta2: f64,
+    ) -> impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, ()> {
+        move |&[theta3, theta4]: &[f64; 2]| {
+            let (s2, c2) = theta2.sin_cos();
+            let (s3, c3) = theta3.sin_cos();
+            let (s4, c4) = theta4.sin_cos();
+            Linearisation {
+                residual: [
+                    l2 * c2 + l3 * c3 - l4 * c4 - l1,
+                    l2 * s2 + l3 * s3 - l4 * s4,
+                ],
+                jacobian: [[-l3 * s3, l4 * s4], [l3 * c3, -l4 * c4]],
+                scale: l1 + l2 + l3 + l4,
+                weights: [1.0; 2],
+                payload: (),
+            }
+        }
+    }
+
+    /// Example 1's position by the closed form, on the branch nearest `near`.
+    fn closed_form(theta2: f64, near: [f64; 2]) -> [f64; 2] {
+        let k = crate::Vec2::new(80.0 * theta2.cos() - 180.0, 80.0 * theta2.sin());
+        let (w3, w4) = (crate::Vec2::new(200.0, 0.0), crate::Vec2::new(-150.0, 0.0));
+        let [open, crossed] = [1.0, -1.0].map(|sign| {
+            let (q3, q4, _, _) = crate::closed::two_angles(k, w3, w4, sign).unwrap();
+            [q3, q4]
+        });
+        // Angles a turn apart are one angle.
+        let distance = |q: [f64; 2]| 2.0 - (q[0] - near[0]).cos() - (q[1] - near[1]).cos();
+        if distance(open) < distance(crossed) {
+            open
+        } else {
+            crossed
+        }
+    }
+
+    #[test]
+    fn newton_solves_example_1_as_the_closed_form_does() {
+        let theta2 = 60f64.to_radians();
+        let guess = [15f64.to_radians(), 80f64.to_radians()];
+        let exact = closed_form(theta2, guess);
+        let scale = 610.0;
+        // To the rounding floor (one more step after landing there), then to 1e-4 mm (the
+        // seeds' tolerance: one step fewer), then to 1e-12 mm.
+        for (tolerance, iterations, within) in [(0.0, 4, 1e-15), (1e-4, 3, 1e-9), (1e-12, 4, 1e-15)]
+        {
+            let options = NewtonOptions::new(tolerance, 20);
+            let converged =
+                newton(theta2, guess, &options, true, || None, four_bar(theta2)).unwrap();
+            let solved = converged.solved;
+            assert_eq!(solved.iterations, iterations, "tolerance {tolerance}");
+            for (q, exact) in solved.value.iter().zip(exact) {
+                assert!(
+                    (q - exact).abs() <= within,
+                    "{:?} != {exact:?}",
+                    solved.value
+                );
+            }
+            assert!(solved.residual_norm <= tolerance.max(16.0 * f64::EPSILON * scale));
+            let [theta3, theta4] = solved.value;
+            let condition = 1.0 / (theta4 - theta3).sin().abs();
+            assert!((solved.condition - condition).abs() <= 1e-9 * condition);
+            // The evaluation handed back is the one at the solution (to the rounding of its
+            // turned sines and cosines).
+            let fresh = four_bar(theta2)(&solved.value).residual;
+            for (at, fresh) in converged.at.residual.iter().zip(fresh) {
+                assert!((at - fresh).abs() <= 1e-12, "{at} != {fresh}");
+            }
+            // The open branch's orientation.
+            assert_eq!(converged.jacobian.relative().signum(), -1.0);
+        }
+        // The crossed branch, from a guess near it.
+        let crossed = newton(
+            theta2,
+            [-1.2, -2.1],
+            &NewtonOptions::default(),
+            true,
+            || None,
+            four_bar(theta2),
+        )
+        .unwrap()
+        .solved
+        .value;
+        let exact = closed_form(theta2, crossed);
+        assert!((crossed[0] - exact[0]).abs() + (crossed[1] - exact[1]).abs() <= 4e-15);
+        assert!(exact[1] < 0.0);
+    }
+
+    #[test]
+    fn newton_rejects_what_it_cannot_use() {
+        let theta2 = 1.0;
+        let guess = [0.4, 1.2];
+        for tolerance in [-1.0, f64::NAN, f64::INFINITY] {
+            let options = NewtonOptions::new(tolerance, 20);
+            assert!(matches!(
+                newton(theta2, guess, &options, true, || None, four_bar(theta2)),
+                Err(Error::NonFinite {
+                    quantity: "Newton tolerance"
+                })
+            ));
+        }
+        for guess in [[f64::NAN, 1.2], [0.4, f64::INFINITY]] {
+            assert!(matches!(
+                newton(
+                    theta2,
+                    guess,
+                    &NewtonOptions::default(),
+                    true,
+                    || None,
+                    four_bar(theta2)
+                ),
+                Err(Error::NonFinite {
+                    quantity: "initial guess"
+                })
+            ));
+        }
+        // A non-finite residual or scale.
+        let mut nan = |_: &[f64; 2]| Linearisation {
+            residual: [f64::NAN, 0.0],
+            jacobian: [[1.0, 0.0], [0.0, 1.0]],
+            scale: 1.0,
+            weights: [1.0; 2],
+            payload: (),
+        };
+        assert!(matches!(
+            newton(
+                theta2,
+                guess,
+                &NewtonOptions::default(),
+                true,
+                || None,
+                &mut nan
+            ),
+            Err(Error::NonFinite {
+                quantity: "loop residual"
+            })
+        ));
+        let infinite_scale = |_: &[f64; 2]| Linearisation {
+            residual: [1.0, 0.0],
+            jacobian: [[1.0, 0.0], [0.0, 1.0]],
+            scale: f64::INFINITY,
+            weights: [1.0; 2],
+            payload: (),
+        };
+        assert!(matches!(
+            newton(
+                theta2,
+                guess,
+                &NewtonOptions::default(),
+                true,
+                || None,
+                infinite_scale
+            ),
+            Err(Error::NonFinite {
+                quantity: "loop residual"
+            })
+        ));
+        // A singular Jacobian at the guess (θ3 = θ4: the coupler and rocker in line).
+        assert!(matches!(
+            newton(
+                theta2,
+                [0.5, 0.5],
+                &NewtonOptions::default(),
+                true,
+                || None,
+                four_bar(theta2)
+            ),
+            Err(Error::Singular { .. })
+        ));
+    }
+
+    #[test]
+    fn newton_stops_at_its_cap_and_says_why() {
+        let theta2 = 60f64.to_radians();
+        let far = [15f64.to_radians(), 80f64.to_radians()];
+        let at_guess = four_bar(theta2)(&far).residual;
+        let none = NewtonOptions::new(0.0, 0);
+        assert_eq!(
+            newton(theta2, far, &none, true, || None, four_bar(theta2)).map(|c| c.solved),
+            Err(Error::NoConvergence {
+                iterations: 0,
+                residual_norm: max_abs(&at_guess)
+            })
+        );
+        assert_eq!(
+            newton(theta2, far, &none, true, || Some(false), four_bar(theta2)).map(|c| c.solved),
+            Err(Error::CannotAssemble { input: theta2 })
+        );
+        assert!(matches!(
+            newton(theta2, far, &none, true, || Some(true), four_bar(theta2)),
+            Err(Error::NoConvergence { iterations: 0, .. })
+        ));
+        // A solution already, with no update allowed: accepted as it is.
+        let solution = newton(
+            theta2,
+            far,
+            &NewtonOptions::default(),
+            true,
+            || None,
+            four_bar(theta2),
+        )
+        .unwrap()
+        .solved
+        .value;
+        let accepted = newton(theta2, solution, &none, true, || None, four_bar(theta2)).unwrap();
+        assert_eq!(accepted.solved.iterations, 0);
+        assert_eq!(accepted.solved.value, solution);
+        // Loops that cannot close (a ground of 10 with links of 1, 2 and 2): Newton stalls,
+        // or runs out of updates, short of a root.
+        let apart = [10.0, 1.0, 2.0, 2.0];
+        let two = NewtonOptions::new(0.0, 2);
+        let capped = newton(0.0, [0.3, 0.5], &two, true, || None, linkage(apart, 0.0));
+        match capped {
+            Err(Error::NoConvergence {
+                iterations: 2,
+                residual_norm,
+            }) => assert!(
+                (residual_norm - 5.118575524573101).abs() < 1e-9,
+                "{residual_norm}"
+            ),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            newton(
+                0.0,
+                [0.3, 0.5],
+                &two,
+                true,
+                || Some(false),
+                linkage(apart, 0.0)
+            )
+            .map(|c| c.solved),
+            Err(Error::CannotAssemble { input: 0.0 })
+        );
+        let options = NewtonOptions::default();
+        for (assembles, cannot) in [(None, true), (Some(false), true), (Some(true), false)] {
+            let stalled = newton(
+                0.0,
+                [0.3, 0.5],
+                &options,
+                true,
+                || assembles,
+                linkage(apart, 0.0),
+            );
+            match stalled {
+                Err(Error::CannotAssemble { input }) if cannot => assert_eq!(input, 0.0),
+                Err(Error::NoConvergence {
+                    iterations,
+                    residual_norm,
+                }) if !cannot => {
+                    assert!(iterations > 0 && iterations < 50);
+                    assert!(residual_norm > 4.0);
+                }
+                other => panic!("{assembles:?}: {other:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn newton_keeps_to_the_branch_of_its_guess_when_asked() {
+        let theta2 = 60f64.to_radians();
+        let guess = [-3.0, -2.6];
+        let options = NewtonOptions::default();
+        assert!(matches!(
+            newton(theta2, guess, &options, true, || None, four_bar(theta2)),
+            Err(Error::OtherBranch)
+        ));
+        let other = newton(theta2, guess, &options, false, || None, four_bar(theta2)).unwrap();
+        let exact = closed_form(theta2, other.solved.value);
+        let [theta3, theta4] = other.solved.value;
+        let wrapped = |q: f64, exact: f64| (q - exact).sin().abs();
+        assert!(wrapped(theta3, exact[0]) + wrapped(theta4, exact[1]) < 1e-14);
+        assert!(
+            newton_common(
+                guess,
+                &options,
+                true,
+                four_bar_started(theta2, guess),
+                Some,
+                || None
+            )
+            .is_none()
+        );
+    }
+
+    #[test]
+    fn a_stated_tolerance_needs_a_root_nearby() {
+        // The loops cannot close, and the residual never gets within 6 mm: a tolerance of
+        // 10 mm would accept it but for Kantorovich's test.
+        let apart = [10.0, 1.0, 2.0, 2.0];
+        let loose = NewtonOptions::new(10.0, 50);
+        assert!(newton(0.0, [0.3, 0.5], &loose, true, || None, linkage(apart, 0.0)).is_err());
+        // Kantorovich's h, from the Jacobian's columns at a unit scale: κ²·‖f‖·max/min.
+        let at = Linearisation {
+            residual: [3.0f64, 4.0],
+            jacobian: [[2.0, 0.0], [0.0, 1.0]],
+            scale: 0.0,
+            weights: [1.0; 2],
+            payload: (),
+        };
+        // Scaled by 1/4: columns 1/2 and 1/4, residual 5/4: h = κ²·(5/4)·(1/2)/(1/16).
+        assert_eq!(kantorovich(&at, 1.0), 10.0);
+        assert_eq!(kantorovich(&at, 2.0), 40.0);
+        assert_eq!(kantorovich_aside(at.residual, at.jacobian, 2.0), 40.0);
+        let tiny = Linearisation {
+            residual: [3e-300, 4e-300],
+            jacobian: [[2e-300, 0.0], [0.0, 1e-300]],
+            ..at
+        };
+        assert!((kantorovich(&tiny, 1.0) - 10.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_default_solve_is_stagnated_only_above_the_rounding_floor() {
+        let theta2 = 60f64.to_radians();
+        let guess = [15f64.to_radians(), 80f64.to_radians()];
+        let default = NewtonOptions::default();
+        let mut converged =
+            newton(theta2, guess, &default, true, || None, four_bar(theta2)).unwrap();
+        assert!(!stagnated(&converged, &default));
+        let floor = 16.0 * f64::EPSILON * converged.at.scale;
+        converged.at.residual = [floor, -floor];
+        assert!(!stagnated(&converged, &default));
+        converged.at.residual = [0.0, -2.0 * floor];
+        assert!(stagnated(&converged, &default));
+        assert!(!stagnated(&converged, &NewtonOptions::new(1e-4, 50)));
+        converged.at.weights = [1.0, 0.25];
+        assert!(!stagnated(&converged, &default));
+    }
+
+    #[test]
+    fn norms_weights_and_finiteness() {
+        assert_eq!(weighted_norm(&[1.0, -3.0], &[2.0, 0.5]), 2.0);
+        assert_eq!(weighted_norm(&[-1.0, 3.0], &[0.5, 2.0]), 6.0);
+        assert!(weighted_norm(&[f64::NAN, 3.0], &[1.0, 1.0]).is_nan());
+        assert!(weighted_norm(&[3.0, f64::NAN], &[1.0, 1.0]).is_nan());
+        assert_eq!(max_abs(&[1.0, -3.0, 2.0]), 3.0);
+        assert!(max_abs(&[1.0, f64::NAN, 2.0]).is_nan());
+        assert!(max_abs(&[f64::NAN, 1.0]).is_nan());
+        assert_eq!(loop_weight(10.0, 4.0), 2.5);
+        assert_eq!(loop_weight(10.0, 0.0), 1.0);
+        assert_eq!(loop_weight(10.0, -1.0), 1.0);
+        assert!(all_finite::<f64>(&[]));
+        assert!(all_finite(&[1.0, -2.0]));
+        // A sum that overflows from finite values: each is looked at.
+        assert!(all_finite(&[f64::MAX, f64::MAX]));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(!all_finite(&[1.0, bad]));
+            assert!(!all_finite(&[bad]));
+            assert!(!each_finite(&[1.0, bad]));
+        }
+        assert!(each_finite(&[1.0, f64::MAX]));
+        assert_eq!(check_finite(&[(1.0, "a"), (2.0, "b")]), Ok(()));
+        assert_eq!(
+            check_finite(&[(1.0, "a"), (f64::NAN, "b"), (f64::INFINITY, "c")]),
+            Err(Error::NonFinite { quantity: "b" })
+        );
+        let names = ["a", "b", "c"];
+        assert_eq!(check_all_finite([1.0, 2.0, 3.0], &names), Ok(()));
+        assert_eq!(check_all_finite::<f64, 0>([], &[]), Ok(()));
+        assert_eq!(check_all_finite([f64::MAX, f64::MAX, 0.0], &names), Ok(()));
+        assert_eq!(
+            check_all_finite([1.0, f64::INFINITY, f64::NAN], &names),
+            Err(Error::NonFinite { quantity: "b" })
+        );
+        assert_eq!(
+            blame_non_finite([f64::NAN, 1.0, 1.0], &names),
+            Err(Error::NonFinite { quantity: "a" })
+        );
+        assert_eq!(finite([1.0, 2.0], "rates"), Ok([1.0, 2.0]));
+        assert_eq!(
+            finite([1.0, f64::NAN], "rates"),
+            Err(Error::NonFinite { quantity: "rates" })
+        );
+    }
+
+    #[test]
+    fn options_and_solutions_carry_what_they_were_given() {
+        let default = NewtonOptions::<f64>::default();
+        assert_eq!(default, NewtonOptions::new(0.0, 50));
+        assert_eq!(default.accuracy, Accuracy::required());
+        let loose = Accuracy {
+            position: 1.0,
+            velocity: 2.0,
+            acceleration: 3.0,
+        };
+        let options = NewtonOptions::new(1e-4, 7).with_accuracy(loose);
+        assert_eq!((options.tolerance, options.max_iterations), (1e-4, 7));
+        assert_eq!(options.accuracy, loose);
+        let solved = Solved {
+            value: 2,
+            iterations: 3,
+            residual_norm: 0.5,
+            condition: 4.0,
+        };
+        assert_eq!(
+            solved.map(|v| v * 10),
+            Solved {
+                value: 20,
+                iterations: 3,
+                residual_norm: 0.5,
+                condition: 4.0
+            }
+        );
+    }
+
+    #[test]
+    fn rotations_and_sines_are_good_to_rounding() {
+        let limit = TURN_LIMIT;
+        for angle in [0.3f64, -2.0, 3.1, 1e-3] {
+            let (sin, cos) = angle.sin_cos();
+            for step in [limit, -limit, 0.5 * limit, 1e-7, 0.0] {
+                let (s, c) = rotate(sin, cos, step);
+                let (want_s, want_c) = (angle + step).sin_cos();
+                assert!((s - want_s).abs() <= 4.0 * f64::EPSILON, "{angle} + {step}");
+                assert!((c - want_c).abs() <= 4.0 * f64::EPSILON, "{angle} + {step}");
+            }
+            let mut turning = Turning::new();
+            assert_eq!(turning.sin_cos(angle), (sin, cos));
+            let (s, c) = turning.sin_cos(angle + 0.5 * limit);
+            assert_eq!((s, c), rotate(sin, cos, (angle + 0.5 * limit) - angle));
+            // Farther than a turn: afresh.
+            assert_eq!(
+                turning.sin_cos(angle + 2.0 * limit),
+                (angle + 2.0 * limit).sin_cos()
+            );
+            for x in [angle, 100.0 * angle] {
+                let (s, c) = sin_cos(x);
+                assert!((s - x.sin()).abs() <= 2.0 * f64::EPSILON);
+                assert!((c - x.cos()).abs() <= 2.0 * f64::EPSILON);
+            }
+        }
+        // Beyond the fast one's limit, and NaN: the platform's.
+        assert_eq!(sin_cos(1e300), 1e300f64.sin_cos());
+        assert!(sin_cos(f64::NAN).0.is_nan());
+        assert_eq!(fresh_sin_cos([1e300, 1.0]), platform_sin_cos([1e300, 1.0]));
+        let (sines, cosines) = fresh_sin_cos([0.3, -2.0]);
+        assert!((sines[1] - (-2f64).sin()).abs() <= 2.0 * f64::EPSILON);
+        assert!((cosines[0] - 0.3f64.cos()).abs() <= 2.0 * f64::EPSILON);
+        assert_eq!(
+            Turnings::<f64, 2>::default().sin_cos([0.3, -2.0]),
+            (sines, cosines)
+        );
+        assert_eq!(Turning::<f64>::default().sin_cos(0.3), 0.3f64.sin_cos());
+        assert_eq!(
+            turned([0.0], [0.0], [1.0], [limit]),
+            Some(([limit.sin()], [limit.cos()])).map(|_| {
+                let (s, c) = rotate(0.0, 1.0, limit);
+                ([s], [c])
+            })
+        );
+        assert_eq!(turned([0.0], [0.0], [1.0], [2.0 * limit]), None);
+    }
+
     #[test]
     fn the_common_path_leaves_the_unusual_to_newton() {
         let options = NewtonOptions::default();
