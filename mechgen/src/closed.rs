@@ -706,6 +706,49 @@ mod tests {
     }
 
     #[test]
+    fn a_line_meets_a_circle_without_cancellation() {
+        // The point K + l·(1, 0), K = (−3/8, 1/2) (|K| = 5/8 exactly), on a circle of radius
+        // 5/8 − 2⁻⁴⁰: l = 3/8 ± √(r² − 1/4), one root about 1.5e-12 beside a foot of 3/8,
+        // the other twice the foot; each to a few units of rounding, where the difference
+        // that cancels would keep only five digits of the small one. Mirrored (the foot
+        // behind the line's start), the roots are negated.
+        let r = 0.625 - 2f64.powi(-40);
+        let h = (r * r - 0.25).sqrt();
+        let (large, small) = (
+            0.375 + h,
+            2f64.powi(-40) * (1.25 - 2f64.powi(-40)) / (0.375 + h),
+        );
+        for (mirror, sign, root) in [
+            (1.0, 1.0, large),
+            (1.0, -1.0, small),
+            (-1.0, -1.0, -large),
+            (-1.0, 1.0, -small),
+        ] {
+            let (l, _) = line_meets_circle(v(-0.375 * mirror, 0.5), v(1.0, 0.0), r, sign).unwrap();
+            assert!(
+                (l - root).abs() <= 8.0 * f64::EPSILON * root.abs(),
+                "{l} != {root}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_line_touches_a_circle_within_rounding_of_its_size_only() {
+        // The line y = 5 + δ and the circle of radius 5, seen from (−2, 5 + δ): a tangency
+        // for δ within 8ε of 5 + |K| (about 83ε, 21 units of rounding of 5), else apart.
+        let ulp = 4.0 * f64::EPSILON;
+        for (ulps, touches) in [(1.0, true), (10.0, true), (30.0, false)] {
+            let k = v(-2.0, 5.0 + ulps * ulp);
+            let met = line_meets_circle(k, v(1.0, 0.0), 5.0, 1.0);
+            match met {
+                Ok((l, _)) if touches => assert_near(l, 2.0),
+                Err(Failure::CannotClose) if !touches => {}
+                other => panic!("{ulps} units: {other:?}"),
+            }
+        }
+    }
+
+    #[test]
     fn two_angles_on_both_branches() {
         let (w1, w2) = (v(2.0, 1.0), v(1.5, -2.0));
         let (q1, q2) = (0.8, -0.5);
