@@ -831,6 +831,14 @@ mod tests {
     }
 
     #[test]
+    fn two_angles_over_a_chord_of_a_power_of_two() {
+        // Links of 5 over a chord of 8 (1/2 at unit scale, exactly): they meet at (4, ±3).
+        let (q1, q2, d1, d2) = two_angles(v(-8.0, 0.0), v(5.0, 0.0), v(5.0, 0.0), 1.0).unwrap();
+        assert_direction(d1, q1, 3f64.atan2(4.0));
+        assert_direction(d2, q2, (-3f64).atan2(4.0));
+    }
+
+    #[test]
     fn two_angles_meet_at_a_tangency_and_fail_beyond_it() {
         // Links of 2 and 3 over a chord of 5: the circles touch, both angles zero.
         let (w1, w2) = (v(2.0, 0.0), v(3.0, 0.0));
