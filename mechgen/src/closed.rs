@@ -839,6 +839,26 @@ mod tests {
     }
 
     #[test]
+    fn two_angles_meet_inside_at_a_tangency() {
+        // A chord |r1 − r2| long, turned: the smaller circle touches the larger from inside,
+        // so the long link lies along the chord and the short one back along it. The
+        // residual guard's sum is far from its difference here.
+        for (angle, r1, r2, along) in [
+            (0.5, 3.0, 2.0, 1.0),
+            (0.5, 2.0, 3.0, -1.0),
+            (2.1, 3.7, 2.3, 1.0),
+            (-1.3, 2.3, 3.7, -1.0),
+        ] {
+            let unit = turned(angle, v(1.0, 0.0));
+            let k = scaled(unit, -(r1 - r2) * along);
+            let (_, _, d1, d2) = two_angles(k, v(r1, 0.0), v(r2, 0.0), 1.0).unwrap();
+            for (got, want) in [(d1, scaled(unit, along)), (d2, scaled(unit, -along))] {
+                assert!((got - want).norm() < 1e-7, "{got:?} != {want:?}");
+            }
+        }
+    }
+
+    #[test]
     fn two_angles_meet_at_a_tangency_and_fail_beyond_it() {
         // Links of 2 and 3 over a chord of 5: the circles touch, both angles zero.
         let (w1, w2) = (v(2.0, 0.0), v(3.0, 0.0));
