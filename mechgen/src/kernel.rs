@@ -411,6 +411,11 @@ mod tests {
     fn outputs_are_finite_only_when_every_one_is() {
         assert!(outputs_finite(&[1.0, -2.0, 3.0e300]));
         assert!(outputs_finite::<f64, 0>(&[]));
+        // Five values: the even-placed and the odd-placed in two sums; large values of
+        // opposite signs in the two sums add to zero.
+        assert!(outputs_finite(&[1.0, 2.0, 3.0, 4.0, 5.0]));
+        assert!(!outputs_finite(&[1.0, 2.0, 3.0, 4.0, f64::NAN]));
+        assert!(outputs_finite(&[f64::MAX, -f64::MAX]));
         for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
             assert!(!outputs_finite(&[1.0, bad, 2.0]));
             assert!(!outputs_finite(&[bad]));
