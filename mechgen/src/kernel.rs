@@ -402,6 +402,23 @@ mod tests {
     }
 
     #[test]
+    fn the_zero_vector_has_atan2s_angle() {
+        assert_eq!(unit_angle(0.0f64, 0.0).to_bits(), 0f64.atan2(0.0).to_bits());
+        assert_eq!(
+            unit_angle(-0.0f64, 0.0).to_bits(),
+            (-0f64).atan2(0.0).to_bits()
+        );
+    }
+
+    #[test]
+    fn the_squared_condition_test_fails_at_the_threshold_itself() {
+        // |det|·inverse_norms = 0.5/2 = 1/4, the threshold, exactly: singular either way.
+        assert!(inverse_determinant(0.5, 0.5, 0.25).is_err());
+        assert!(lanes::inverse_determinant_squared(0.5f64, 4.0, 0.25).is_nan());
+        assert_eq!(lanes::inverse_determinant_squared(0.5f64, 4.0, 0.2499), 2.0);
+    }
+
+    #[test]
     fn lane_branch_roots_are_the_checked_ones_or_nan() {
         assert_eq!(lanes::branch_root(13.0, 4.0, -1.0), -3.0);
         assert!(lanes::branch_root(4.0f64, 5.0, 1.0).is_nan());
