@@ -114,7 +114,9 @@ report() {
         echo "|---|---:|---:|---:|---:|---:|"
         for file in "${run_files[@]}"; do
             stem=$(basename "$file" .rs)
-            caught=$( (outcome "$stem" caught; outcome "$stem" previously_caught) | grep -c . || true)
+            # An iterated run lists the unviable among the previously caught.
+            caught=$( (outcome "$stem" caught; outcome "$stem" previously_caught) | sort -u |
+                grep -vxF -f <(outcome "$stem" unviable; echo) | grep -c . || true)
             missed=$(outcome "$stem" missed | grep -c . || true)
             unviable=$(outcome "$stem" unviable | grep -c . || true)
             timeout=$(outcome "$stem" timeout | grep -c . || true)
