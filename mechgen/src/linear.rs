@@ -509,6 +509,20 @@ mod tests {
     }
 
     #[test]
+    fn lu_pivots_on_the_first_of_equal_candidates() {
+        // Column 0 has 1 in rows 0 and 1: row 0 stays; then column 1 below it has −2 and 2
+        // (after elimination): row 1 stays.
+        let a = [[1.0, 1.0, 0.0], [1.0, -1.0, 1.0], [0.0, 2.0, 1.0]];
+        let (_, pivots, _, _) = factor_lu(a).unwrap();
+        assert_eq!(pivots, [0, 1, 2]);
+        let x = [1.0, 2.0, -1.0];
+        assert_close(solve_lu(a, multiply(&a, &x)).unwrap().0, x);
+        // A larger entry below is taken.
+        let (_, pivots, _, _) = factor_lu([[1.0, 0.0], [-2.0, 1.0]]).unwrap();
+        assert_eq!(pivots, [1, 1]);
+    }
+
+    #[test]
     fn lu_pivots_past_a_zero_leading_entry() {
         let a = [
             [0.0, 1.0, 2.0, 0.0],
