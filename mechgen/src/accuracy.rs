@@ -490,6 +490,23 @@ mod tests {
                 required: required.acceleration
             })
         );
+        // Too near for a velocity as well.
+        let nearer = Accuracy::estimate(1e7, 1.0);
+        assert_eq!(
+            rates_accuracy(
+                1e7,
+                &jacobian,
+                10.0,
+                [true, true],
+                Order::Velocity,
+                &required
+            ),
+            Err(Error::Inaccurate {
+                order: Order::Velocity,
+                estimate: nearer.velocity,
+                required: required.velocity
+            })
+        );
         assert_eq!(
             rates_accuracy_at(kappa, Order::Velocity, &required),
             Ok(estimate)
