@@ -421,6 +421,9 @@ mod tests {
         assert!(ordinary(&jacobian, 15.9, [true, true]));
         assert!(!ordinary(&jacobian, 16.0, [true, true]));
         assert!(ordinary(&jacobian, 16.0, [true, false]));
+        // The first column, 5 long, up to a size of 15.9·5.
+        assert!(ordinary(&jacobian, 79.0, [true, false]));
+        assert!(!ordinary(&jacobian, 80.0, [true, false]));
         assert!(ordinary(&jacobian, 1e3, [false, false]));
         assert!(!ordinary(&jacobian, 1e300, [false, false]));
         assert!(!ordinary(&jacobian, f64::NAN, [false, false]));
