@@ -513,6 +513,66 @@ mod tests {
         }
     }
 
+    /// `y² = (1 − x²)(4 − x²)` for `y`, on the branch of `y`'s sign: it cannot be assembled
+    /// for `1 < |x| < 2`, a gap in the motion with a solution on the branch either side.
+    struct Gap;
+
+    impl Kinematics<f64, 1> for Gap {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            _options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            let square = (1.0 - input * input) * (4.0 - input * input);
+            if square < 0.0 {
+                return Err(Error::CannotAssemble { input });
+            }
+            Ok(Solved {
+                value: [square.sqrt().copysign(guess[0])],
+                iterations: 1,
+                residual_norm: 0.0,
+                condition: 1.0,
+            })
+        }
+
+        fn slope(&self, input: f64, [y]: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            if y == 0.0 {
+                return Err(Error::Singular {
+                    determinant: 0.0,
+                    relative_determinant: 0.0,
+                });
+            }
+            Ok([(4.0 * input * input - 10.0) * input / (2.0 * y)])
+        }
+
+        fn same_branch(&self, _: f64, [a]: [f64; 1], _: f64, [b]: [f64; 1]) -> bool {
+            (a < 0.0) == (b < 0.0)
+        }
+    }
+
+    #[test]
+    fn a_sweep_does_not_step_over_a_gap_in_the_motion() {
+        // One step from 0 to 3, where the branch goes on past the gap: walked in pieces of at
+        // most one unit, the sweep stops at the gap's edge.
+        let (samples, stop) = sweep(&Gap, 0.0, 1.0, 3.0, 1);
+        assert_eq!(
+            samples,
+            [Sample {
+                input: 0.0,
+                position: [2.0]
+            }]
+        );
+        match stop {
+            Some(Stop::Toggle {
+                last_input: 0.0,
+                next_input: 3.0,
+                error: Error::CannotAssemble { input },
+            }) => assert!(input > 1.0 && input < 2.0, "{input}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
     fn sweep<M: Kinematics<f64, 1>>(
         mechanism: &M,
         start: f64,
