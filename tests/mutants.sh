@@ -108,7 +108,9 @@ report() {
         echo "body of the runtime) is built and tested against \`cargo test -p mechgen\`: the"
         echo "runtime's unit tests and doctests, a few seconds a mutant. *Caught*: a test failed."
         echo "*Missed*: every test passed (a survivor). *Unviable*: the mutant does not compile."
-        echo "*Timeout*: the tests ran past the limit (a mutant that hangs a solver)."
+        echo "*Timeout*: the tests ran past the limit (a mutant that hangs a solver). A file's"
+        echo "counts may add up \`--iterate\` runs, which test again only the mutants not yet"
+        echo "caught: the counts are of the tests at the commit above."
         echo
         echo "| file | mutants | caught | missed | unviable | timeout |"
         echo "|---|---:|---:|---:|---:|---:|"
