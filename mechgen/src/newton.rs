@@ -1236,6 +1236,71 @@ mod tests {
     }
 
     #[test]
+    fn a_step_that_overflows_is_an_error_saying_why() {
+        // A finite residual, a Jacobian that factors, and a step of 1e318.
+        let runaway = |_: &[f64; 2]| Linearisation {
+            residual: [1e308, 1e308],
+            jacobian: [[1e-10, 0.0], [0.0, 1e-10]],
+            scale: 1.0,
+            weights: [1.0; 2],
+            payload: (),
+        };
+        let options = NewtonOptions::default();
+        assert_eq!(
+            newton(2.0, [0.0; 2], &options, true, || None, runaway).map(|c| c.solved),
+            Err(Error::NonFinite {
+                quantity: "Newton step"
+            })
+        );
+        assert_eq!(
+            newton(2.0, [0.0; 2], &options, true, || Some(false), runaway).map(|c| c.solved),
+            Err(Error::CannotAssemble { input: 2.0 })
+        );
+        assert_eq!(
+            newton(2.0, [0.0; 2], &options, true, || Some(true), runaway).map(|c| c.solved),
+            Err(Error::NonFinite {
+                quantity: "Newton step"
+            })
+        );
+    }
+
+    #[test]
+    fn a_small_linkage_that_cannot_close_stalls_short_of_a_root() {
+        // The linkage of `newton_stops_at_its_cap_and_says_why` a tenth the size: its
+        // residual stalls near 0.5, far above the rounding floor (a few 1e-15).
+        let apart = [1.0, 0.1, 0.2, 0.2];
+        let options = NewtonOptions::default();
+        assert_eq!(
+            newton(
+                0.0,
+                [0.3, 0.5],
+                &options,
+                true,
+                || None,
+                linkage(apart, 0.0)
+            )
+            .map(|c| c.solved),
+            Err(Error::CannotAssemble { input: 0.0 })
+        );
+        match newton(
+            0.0,
+            [0.3, 0.5],
+            &options,
+            true,
+            || Some(true),
+            linkage(apart, 0.0),
+        ) {
+            Err(Error::NoConvergence { residual_norm, .. }) => {
+                assert!(
+                    residual_norm > 0.4 && residual_norm < 0.6,
+                    "{residual_norm}"
+                )
+            }
+            other => panic!("{:?}", other.map(|c| c.solved)),
+        }
+    }
+
+    #[test]
     fn newton_keeps_to_the_branch_of_its_guess_when_asked() {
         let theta2 = 60f64.to_radians();
         let guess = [-3.0, -2.6];
