@@ -1265,6 +1265,44 @@ mod tests {
     }
 
     #[test]
+    fn a_residual_no_step_lowers_is_a_stall_judged_by_kantorovich() {
+        // The same residual everywhere: no step lowers it. Small beside the Jacobian
+        // (Kantorovich's h = 1e-3): no convergence; large (h = 10): taken for a toggle.
+        let flat = |size: f64| {
+            move |_: &[f64; 2]| Linearisation {
+                residual: [size, 0.0],
+                jacobian: [[1.0, 0.0], [0.0, 1.0]],
+                scale: 1.0,
+                weights: [1.0; 2],
+                payload: (),
+            }
+        };
+        let options = NewtonOptions::default();
+        assert_eq!(
+            newton(0.5, [0.0; 2], &options, true, || None, flat(1e-3)).map(|c| c.solved),
+            Err(Error::NoConvergence {
+                iterations: 0,
+                residual_norm: 1e-3
+            })
+        );
+        assert_eq!(
+            newton(0.5, [0.0; 2], &options, true, || None, flat(10.0)).map(|c| c.solved),
+            Err(Error::CannotAssemble { input: 0.5 })
+        );
+        assert_eq!(
+            newton(0.5, [0.0; 2], &options, true, || Some(false), flat(1e-3)).map(|c| c.solved),
+            Err(Error::CannotAssemble { input: 0.5 })
+        );
+        assert_eq!(
+            newton(0.5, [0.0; 2], &options, true, || Some(true), flat(10.0)).map(|c| c.solved),
+            Err(Error::NoConvergence {
+                iterations: 0,
+                residual_norm: 10.0
+            })
+        );
+    }
+
+    #[test]
     fn a_small_linkage_that_cannot_close_stalls_short_of_a_root() {
         // The linkage of `newton_stops_at_its_cap_and_says_why` a tenth the size: its
         // residual stalls near 0.5, far above the rounding floor (a few 1e-15).
