@@ -1289,6 +1289,15 @@ mod tests {
             newton(0.5, [0.0; 2], &options, true, || None, flat(10.0)).map(|c| c.solved),
             Err(Error::CannotAssemble { input: 0.5 })
         );
+        // h = 1/4 exactly (here h is the residual): still no convergence.
+        assert_eq!(
+            newton(0.5, [0.0; 2], &options, true, || None, flat(0.25)).map(|c| c.solved),
+            Err(Error::NoConvergence {
+                iterations: 0,
+                residual_norm: 0.25
+            })
+        );
+        assert_eq!(kantorovich(&flat(0.25)(&[0.0; 2]), 1.0), 0.25);
         assert_eq!(
             newton(0.5, [0.0; 2], &options, true, || Some(false), flat(1e-3)).map(|c| c.solved),
             Err(Error::CannotAssemble { input: 0.5 })
