@@ -1568,6 +1568,31 @@ mod tests {
     }
 
     #[test]
+    fn the_common_path_leaves_a_step_that_does_not_lower_the_residual_to_newton() {
+        // The residual grows on both components over the first full step, then vanishes:
+        // the common path must not take that step.
+        let rising = |x: &[f64; 2]| {
+            let residual = match x[0] {
+                0.0 => [1.0, 1.0],
+                -1.0 => [2.0, 2.0],
+                _ => [0.0, 0.0],
+            };
+            Linearisation {
+                residual,
+                jacobian: [[1.0, 0.0], [0.0, 1.0]],
+                scale: 1.0,
+                weights: [1.0; 2],
+                payload: (),
+            }
+        };
+        let options = NewtonOptions::default();
+        assert!(newton_common([0.0; 2], &options, false, rising, Some, || None).is_none());
+        // Newton itself halves that step instead, to a point the residual is lower at.
+        let halved = newton(0.0, [0.0; 2], &options, false, || None, rising).unwrap();
+        assert_eq!(halved.solved.value, [-0.5, -0.5]);
+    }
+
+    #[test]
     fn turnings_rotate_as_a_turning_does() {
         let mut turnings = Turnings::<f64, 2>::new();
         let mut turning = [Turning::<f64>::new(), Turning::new()];
