@@ -1543,6 +1543,47 @@ mod tests {
         assert_eq!(turned([0.0], [0.0], [1.0], [2.0 * limit]), None);
     }
 
+    /// `evaluate` with both components weighted 1/2.
+    fn halved(
+        mut evaluate: impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, [f64; 4]>,
+    ) -> impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, [f64; 4]> {
+        move |x: &[f64; 2]| Linearisation {
+            weights: [0.5, 0.5],
+            ..evaluate(x)
+        }
+    }
+
+    #[test]
+    fn the_common_path_reads_the_residual_weighted() {
+        // Example 1 with its two components weighted 1/2 (as a small loop's beside a large
+        // one): the common path solves it as Newton does, to the bit.
+        let theta2 = 60f64.to_radians();
+        for offset in [1e-6, 1e-4] {
+            let guess = [0.3762517082634387 + offset, 1.2590395150231335 - offset];
+            for options in [NewtonOptions::default(), NewtonOptions::new(1e-9, 50)] {
+                let safeguarded = newton(
+                    theta2,
+                    guess,
+                    &options,
+                    true,
+                    || None,
+                    halved(four_bar(theta2)),
+                )
+                .unwrap();
+                let quick = newton_common(
+                    guess,
+                    &options,
+                    true,
+                    halved(four_bar_started(theta2, guess)),
+                    Some,
+                    || None,
+                )
+                .expect("the common path");
+                assert_eq!(bits(&quick), bits(&safeguarded));
+            }
+        }
+    }
+
     #[test]
     fn the_common_path_leaves_the_unusual_to_newton() {
         let options = NewtonOptions::default();
@@ -1587,6 +1628,18 @@ mod tests {
         };
         let options = NewtonOptions::default();
         assert!(newton_common([0.0; 2], &options, false, rising, Some, || None).is_none());
+        // Nor one that leaves it as it was.
+        let level = |x: &[f64; 2]| Linearisation {
+            residual: if x[0] < -1.5 { [0.0; 2] } else { [1.0, 1.0] },
+            ..rising(&[0.0; 2])
+        };
+        assert!(newton_common([0.0; 2], &options, false, level, Some, || None).is_none());
+        // Read weighted: a rise from 4·1 to 4·2.
+        let heavy = |x: &[f64; 2]| Linearisation {
+            weights: [4.0; 2],
+            ..rising(x)
+        };
+        assert!(newton_common([0.0; 2], &options, false, heavy, Some, || None).is_none());
         // Newton itself halves that step instead, to a point the residual is lower at.
         let halved = newton(0.0, [0.0; 2], &options, false, || None, rising).unwrap();
         assert_eq!(halved.solved.value, [-0.5, -0.5]);
