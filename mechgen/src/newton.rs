@@ -1543,6 +1543,38 @@ mod tests {
         assert_eq!(turned([0.0], [0.0], [1.0], [2.0 * limit]), None);
     }
 
+    #[test]
+    fn the_common_path_accepts_a_guess_that_is_a_solution_on_either_branch() {
+        // Met at the guess (a tolerance of 1e-4): no update, on the branch of the guess,
+        // whichever orientation that branch has.
+        let theta2 = 60f64.to_radians();
+        let options = NewtonOptions::new(1e-4, 20);
+        for guess in [[0.4, 1.2], [-1.2, -2.1]] {
+            let solution = newton(
+                theta2,
+                guess,
+                &NewtonOptions::default(),
+                true,
+                || None,
+                four_bar(theta2),
+            )
+            .unwrap()
+            .solved
+            .value;
+            let quick = newton_common(
+                solution,
+                &options,
+                true,
+                four_bar_started(theta2, solution),
+                Some,
+                || None,
+            )
+            .expect("the common path");
+            assert_eq!(quick.solved.iterations, 0);
+            assert_eq!(quick.solved.value, solution);
+        }
+    }
+
     /// `evaluate` with both components weighted 1/2.
     fn halved(
         mut evaluate: impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, [f64; 4]>,
