@@ -1425,6 +1425,7 @@ mod tests {
         assert_eq!(weighted_norm(&[-1.0, 3.0], &[0.5, 2.0]), 6.0);
         assert!(weighted_norm(&[f64::NAN, 3.0], &[1.0, 1.0]).is_nan());
         assert!(weighted_norm(&[3.0, f64::NAN], &[1.0, 1.0]).is_nan());
+        assert_eq!(weighted_norm(&[f64::INFINITY, 1.0], &[1.0, 1.0]), f64::INFINITY);
         assert_eq!(max_abs(&[1.0, -3.0, 2.0]), 3.0);
         assert!(max_abs(&[1.0, f64::NAN, 2.0]).is_nan());
         assert!(max_abs(&[f64::NAN, 1.0]).is_nan());
