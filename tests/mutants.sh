@@ -161,12 +161,14 @@ report() {
         # moved; either way the explanation should go.
         local stale=()
         while IFS= read -r line; do
+            # Only for the files run: the others' survivors are not known.
+            printf '%s\n' "${run_files[@]}" | grep -qxF -- "${line%%:*}" || continue
             printf '%s\n' "${survivors[@]}" | grep -qxF -- "$line" || stale+=("$line")
         done < <(grep -E '^[^# ]' "$EXPLAINED")
         if [ "${#stale[@]}" -gt 0 ]; then
             echo
             echo "Stale explanations in \`$EXPLAINED\` (no such survivor):"
-            printf -- '- \`%s\`\n' "${stale[@]}"
+            printf -- '- `%s`\n' "${stale[@]}"
         fi
     } > "$REPORT"
     echo "wrote $REPORT ($unexplained unexplained survivors)"
