@@ -1522,6 +1522,13 @@ mod tests {
                 assert!((c - x.cos()).abs() <= 2.0 * f64::EPSILON);
             }
         }
+        // From zero, the turned sine is the step's own, to rounding of itself (the series'
+        // fifth-order term is some 30 units of it at the largest step).
+        for step in [limit, -limit, 0.75 * limit, 0.3 * limit] {
+            let (s, c) = rotate(0.0, 1.0, step);
+            assert!((s - step.sin()).abs() <= 2.0 * f64::EPSILON * step.abs(), "{step}");
+            assert!((c - step.cos()).abs() <= 2.0 * f64::EPSILON, "{step}");
+        }
         // Beyond the fast one's limit, and NaN: the platform's.
         assert_eq!(sin_cos(1e300), 1e300f64.sin_cos());
         assert!(sin_cos(f64::NAN).0.is_nan());
