@@ -1425,7 +1425,10 @@ mod tests {
         assert_eq!(weighted_norm(&[-1.0, 3.0], &[0.5, 2.0]), 6.0);
         assert!(weighted_norm(&[f64::NAN, 3.0], &[1.0, 1.0]).is_nan());
         assert!(weighted_norm(&[3.0, f64::NAN], &[1.0, 1.0]).is_nan());
-        assert_eq!(weighted_norm(&[f64::INFINITY, 1.0], &[1.0, 1.0]), f64::INFINITY);
+        assert_eq!(
+            weighted_norm(&[f64::INFINITY, 1.0], &[1.0, 1.0]),
+            f64::INFINITY
+        );
         assert_eq!(max_abs(&[1.0, -3.0, 2.0]), 3.0);
         assert!(max_abs(&[1.0, f64::NAN, 2.0]).is_nan());
         assert!(max_abs(&[f64::NAN, 1.0]).is_nan());
@@ -1526,7 +1529,10 @@ mod tests {
         // fifth-order term is some 30 units of it at the largest step).
         for step in [limit, -limit, 0.75 * limit, 0.3 * limit] {
             let (s, c) = rotate(0.0, 1.0, step);
-            assert!((s - step.sin()).abs() <= 2.0 * f64::EPSILON * step.abs(), "{step}");
+            assert!(
+                (s - step.sin()).abs() <= 2.0 * f64::EPSILON * step.abs(),
+                "{step}"
+            );
             assert!((c - step.cos()).abs() <= 2.0 * f64::EPSILON, "{step}");
         }
         // Beyond the fast one's limit, and NaN: the platform's.
