@@ -1539,6 +1539,10 @@ mod tests {
         assert_eq!(sin_cos(1e300), 1e300f64.sin_cos());
         assert!(sin_cos(f64::NAN).0.is_nan());
         assert_eq!(fresh_sin_cos([1e300, 1.0]), platform_sin_cos([1e300, 1.0]));
+        assert_eq!(
+            fresh_sin_cos([1e300, -1e300]),
+            platform_sin_cos([1e300, -1e300])
+        );
         let (sines, cosines) = fresh_sin_cos([0.3, -2.0]);
         assert!((sines[1] - (-2f64).sin()).abs() <= 2.0 * f64::EPSILON);
         assert!((cosines[0] - 0.3f64.cos()).abs() <= 2.0 * f64::EPSILON);
