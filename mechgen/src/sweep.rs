@@ -573,6 +573,48 @@ mod tests {
         }
     }
 
+    /// [`Circle`], but converging on the other branch for inputs just past 1 (up to
+    /// 1 + 1e-7), where a toggle's fringe can send Newton.
+    struct Fringe;
+
+    impl Kinematics<f64, 1> for Fringe {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            if input > 1.0 && input <= 1.0 + 1e-7 {
+                return Err(Error::OtherBranch);
+            }
+            Circle.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Circle.slope(input, position)
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            Circle.same_branch(a, p, b, q)
+        }
+    }
+
+    #[test]
+    fn a_toggle_is_told_by_most_of_what_lies_beyond_it() {
+        // Beyond the stuck point, the nearest two solves land on the other branch and the
+        // farther ones cannot assemble: more failures, so a toggle.
+        let (samples, stop) = sweep(&Fringe, 0.0, 1.0, 0.1, 15);
+        assert_eq!(samples.len(), 10);
+        match stop {
+            Some(Stop::Toggle {
+                last_input: 0.9,
+                next_input: 1.0,
+                error: Error::CannotAssemble { input },
+            }) => assert!(input > 1.0 + 1e-7 && input < 1.0 + 1e-5, "{input}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
     fn sweep<M: Kinematics<f64, 1>>(
         mechanism: &M,
         start: f64,
