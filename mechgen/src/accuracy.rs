@@ -305,3 +305,262 @@ pub fn rates_accuracy_at<T: Real>(
     estimate.within(&rates_only(required), highest)?;
     Ok(estimate)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const E: f64 = f64::EPSILON;
+
+    #[test]
+    fn estimates_grow_with_the_condition_and_the_aspect() {
+        let at_10 = Accuracy::estimate(10.0, 1.0);
+        assert_eq!(at_10.position, 32.0 * E * 10.0);
+        assert_eq!(at_10.velocity, E * 10.0 * (64.0 + 40.0));
+        assert_eq!(at_10.acceleration, E * 10.0 * (256.0 + 100.0));
+        // An aspect of 32, twice the ordinary: the velocity's twice, the acceleration's four
+        // times; 16 and below, no change.
+        let shrunk = Accuracy::estimate(10.0, 32.0);
+        assert_eq!(shrunk.position, at_10.position);
+        assert_eq!(shrunk.velocity, 2.0 * at_10.velocity);
+        assert_eq!(shrunk.acceleration, 4.0 * at_10.acceleration);
+        assert_eq!(Accuracy::estimate(10.0, 16.0), at_10);
+        // A condition below 1 is 1.
+        assert_eq!(Accuracy::estimate(0.5, 1.0), Accuracy::estimate(1.0, 1.0));
+        // A vector shrunk to √ε of the size, or an undefined aspect: rates undetermined.
+        for aspect in [1.0 / E.sqrt(), f64::NAN] {
+            let lost = Accuracy::estimate(10.0, aspect);
+            assert_eq!(lost.position, at_10.position);
+            assert!(lost.velocity.is_infinite() && lost.acceleration.is_infinite());
+        }
+        assert!(
+            Accuracy::estimate(10.0, 0.5 / E.sqrt())
+                .velocity
+                .is_finite()
+        );
+    }
+
+    #[test]
+    fn required_accuracy_is_a_share_of_the_digits_per_order() {
+        let required = Accuracy::<f64>::required();
+        assert_eq!(required.position, E.sqrt());
+        assert!((required.velocity - E.cbrt()).abs() <= 2.0 * E * E.cbrt());
+        assert_eq!(required.acceleration, E.sqrt().sqrt());
+    }
+
+    #[test]
+    fn within_checks_each_order_up_to_the_highest_inclusively() {
+        let required = Accuracy {
+            position: 1.0,
+            velocity: 2.0,
+            acceleration: 3.0,
+        };
+        assert_eq!(required.within(&required, Order::Acceleration), Ok(()));
+        for (order, estimate) in [
+            (
+                Order::Position,
+                Accuracy {
+                    position: 1.5,
+                    ..required
+                },
+            ),
+            (
+                Order::Velocity,
+                Accuracy {
+                    velocity: 2.5,
+                    ..required
+                },
+            ),
+            (
+                Order::Acceleration,
+                Accuracy {
+                    acceleration: f64::NAN,
+                    ..required
+                },
+            ),
+        ] {
+            let error = estimate.within(&required, Order::Acceleration).unwrap_err();
+            match error {
+                Error::Inaccurate {
+                    order: got,
+                    estimate: _,
+                    required: limit,
+                } => {
+                    assert_eq!(got, order);
+                    assert_eq!(limit, [1.0, 2.0, 3.0][order as usize]);
+                }
+                other => panic!("{other:?}"),
+            }
+        }
+        // Orders above the highest are not looked at.
+        let fast = Accuracy {
+            velocity: 2.5,
+            acceleration: 9.0,
+            ..required
+        };
+        assert_eq!(fast.within(&required, Order::Position), Ok(()));
+        let fast = Accuracy {
+            acceleration: 9.0,
+            ..required
+        };
+        assert_eq!(fast.within(&required, Order::Velocity), Ok(()));
+    }
+
+    #[test]
+    fn the_aspect_is_the_size_over_the_shortest_angle_column() {
+        // Columns (3, 4) and (0, 1): 5 and 1 long.
+        let jacobian = [[3.0, 0.0], [4.0, 1.0]];
+        assert_eq!(aspect(&jacobian, 10.0, [true, true]), 10.0);
+        assert_eq!(aspect(&jacobian, 10.0, [true, false]), 2.0);
+        assert_eq!(aspect(&jacobian, 10.0, [false, false]), 1.0);
+        assert_eq!(aspect(&jacobian, -10.0, [true, false]), 2.0);
+        assert_eq!(aspect(&jacobian, 0.0, [true, true]), 1.0);
+        assert_eq!(aspect(&jacobian, f64::INFINITY, [true, true]), 1.0);
+        // At any scale.
+        let big = jacobian.map(|row| row.map(|v| v * 1e300));
+        assert!((aspect(&big, 1e301, [true, false]) - 2.0).abs() < 1e-15);
+        // Ordinary: every angle's column at least size/15.9.
+        assert!(ordinary(&jacobian, 10.0, [true, true]));
+        assert!(ordinary(&jacobian, 15.9, [true, true]));
+        assert!(!ordinary(&jacobian, 16.0, [true, true]));
+        assert!(ordinary(&jacobian, 16.0, [true, false]));
+        // The first column, 5 long, up to a size of 15.9·5.
+        assert!(ordinary(&jacobian, 79.0, [true, false]));
+        assert!(!ordinary(&jacobian, 80.0, [true, false]));
+        assert!(ordinary(&jacobian, 1e3, [false, false]));
+        assert!(!ordinary(&jacobian, 1e300, [false, false]));
+        assert!(!ordinary(&jacobian, f64::NAN, [false, false]));
+        assert!(!ordinary(&jacobian, 1e-300, [false, false]));
+        let three = [[3.0, 0.0, 0.0], [4.0, 1.0, 0.0], [0.0, 0.0, 0.5]];
+        assert!(!ordinary(&three, 10.0, [false, false, true]));
+        assert!(ordinary(&three, 7.9, [false, false, true]));
+    }
+
+    #[test]
+    fn rates_are_estimated_and_checked_on_either_path() {
+        let jacobian = [[3.0, 0.0], [4.0, 1.0]];
+        let required = Accuracy::<f64>::required();
+        // Ordinary: the estimate of an aspect of 1.
+        assert_eq!(
+            rates_accuracy(
+                10.0,
+                &jacobian,
+                10.0,
+                [true, true],
+                Order::Acceleration,
+                &required
+            ),
+            Ok(Accuracy::estimate(10.0, 1.0))
+        );
+        // An aspect of 64: shrunk by 4.
+        assert_eq!(
+            rates_accuracy(
+                10.0,
+                &jacobian,
+                64.0,
+                [true, true],
+                Order::Acceleration,
+                &required
+            ),
+            Ok(Accuracy::estimate(10.0, 64.0))
+        );
+        // Too near a singular position for an acceleration, not for a velocity.
+        let kappa = 1e4;
+        let estimate = Accuracy::estimate(kappa, 1.0);
+        assert!(
+            estimate.velocity < required.velocity && estimate.acceleration > required.acceleration
+        );
+        assert_eq!(
+            rates_accuracy(
+                kappa,
+                &jacobian,
+                10.0,
+                [true, true],
+                Order::Velocity,
+                &required
+            ),
+            Ok(estimate)
+        );
+        assert_eq!(
+            rates_accuracy(
+                kappa,
+                &jacobian,
+                10.0,
+                [true, true],
+                Order::Acceleration,
+                &required
+            ),
+            Err(Error::Inaccurate {
+                order: Order::Acceleration,
+                estimate: estimate.acceleration,
+                required: required.acceleration
+            })
+        );
+        // Too near for a velocity as well.
+        let nearer = Accuracy::estimate(1e7, 1.0);
+        assert_eq!(
+            rates_accuracy(
+                1e7,
+                &jacobian,
+                10.0,
+                [true, true],
+                Order::Velocity,
+                &required
+            ),
+            Err(Error::Inaccurate {
+                order: Order::Velocity,
+                estimate: nearer.velocity,
+                required: required.velocity
+            })
+        );
+        assert_eq!(
+            rates_accuracy_at(kappa, Order::Velocity, &required),
+            Ok(estimate)
+        );
+        assert!(rates_accuracy_at(kappa, Order::Acceleration, &required).is_err());
+        // The position is not judged here, however far off.
+        let strict = Accuracy {
+            position: 0.0,
+            ..required
+        };
+        assert_eq!(
+            rates_accuracy_at(10.0, Order::Acceleration, &strict),
+            Ok(Accuracy::estimate(10.0, 1.0))
+        );
+        assert_eq!(
+            rates_accuracy(
+                10.0,
+                &jacobian,
+                64.0,
+                [true, true],
+                Order::Acceleration,
+                &strict
+            ),
+            Ok(Accuracy::estimate(10.0, 64.0))
+        );
+    }
+
+    #[test]
+    fn thresholds_are_where_the_estimates_reach_the_requirement() {
+        let required = Accuracy::<f64>::required();
+        // ε·κ·(64 + 4κ) = r at κ = (−64 + √(64² + 16r/ε))/8.
+        let kappa = (-64.0 + (64.0f64 * 64.0 + 16.0 * required.velocity / E).sqrt()) / 8.0;
+        let threshold = rate_threshold(Order::Velocity, &required);
+        assert!(
+            (threshold * kappa - 1.0).abs() < 1e-9,
+            "{threshold} vs {}",
+            1.0 / kappa
+        );
+        let acceleration = rate_threshold(Order::Acceleration, &required);
+        assert!(acceleration > threshold);
+        let estimate = Accuracy::estimate(1.0 / acceleration, 1.0);
+        assert!((estimate.acceleration / required.acceleration - 1.0).abs() < 1e-9);
+        // A requirement no condition up to 1/√ε exceeds: √ε.
+        let loose = Accuracy {
+            position: 1.0,
+            velocity: 1e9,
+            acceleration: 1e12,
+        };
+        assert_eq!(rate_threshold(Order::Acceleration, &loose), E.sqrt());
+    }
+}

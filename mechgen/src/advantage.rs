@@ -77,3 +77,70 @@ impl<T: Real> MechanicalAdvantage<T> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use MechanicalAdvantage::{Finite, Unbounded};
+
+    #[test]
+    fn the_advantage_is_the_ratio_of_the_rates_with_its_sign() {
+        assert_eq!(MechanicalAdvantage::from_rates(10.0, 4.0), Ok(Finite(2.5)));
+        assert_eq!(
+            MechanicalAdvantage::from_rates(-10.0, 4.0),
+            Ok(Finite(-2.5))
+        );
+        assert_eq!(
+            MechanicalAdvantage::from_rates(10.0, -4.0),
+            Ok(Finite(-2.5))
+        );
+        assert_eq!(MechanicalAdvantage::from_rates(0.0, -4.0), Ok(Finite(0.0)));
+        assert_eq!(Finite(2.5).finite(), Some(2.5));
+        assert_eq!(Unbounded::<f64>.finite(), None);
+    }
+
+    #[test]
+    fn an_output_stationary_to_rounding_is_unbounded() {
+        // At most 4ε of the input rate: stationary; 8ε: a finite ratio of 1/(8ε).
+        let e = f64::EPSILON;
+        for input in [1.0, -3.0] {
+            assert_eq!(
+                MechanicalAdvantage::from_rates(input, 4.0 * e * input),
+                Ok(Unbounded)
+            );
+            assert_eq!(
+                MechanicalAdvantage::from_rates(input, -4.0 * e * input),
+                Ok(Unbounded)
+            );
+            assert_eq!(
+                MechanicalAdvantage::from_rates(input, 8.0 * e * input),
+                Ok(Finite(1.0 / (8.0 * e)))
+            );
+        }
+        assert_eq!(MechanicalAdvantage::from_rates(2.0, 0.0), Ok(Unbounded));
+    }
+
+    #[test]
+    fn rates_that_say_nothing_are_errors_naming_them() {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(
+                MechanicalAdvantage::from_rates(bad, 1.0),
+                Err(Error::NonFinite {
+                    quantity: "input rate"
+                })
+            );
+            assert_eq!(
+                MechanicalAdvantage::from_rates(1.0, bad),
+                Err(Error::NonFinite {
+                    quantity: "output rate"
+                })
+            );
+        }
+        assert_eq!(
+            MechanicalAdvantage::from_rates(0.0, 0.0),
+            Err(Error::NonFinite {
+                quantity: "mechanical advantage"
+            })
+        );
+    }
+}

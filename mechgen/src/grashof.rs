@@ -252,3 +252,192 @@ fn power_of_two<T: Real>(k: i32) -> T {
     let biased = u64::from((k + 1023).clamp(1, 2046).unsigned_abs());
     T::constant(f64::from_bits(biased << 52))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inversion(ground: f64, input: f64, coupler: f64, output: f64) -> (Class, Inversion) {
+        let g = classify(ground, input, coupler, output);
+        (g.class, g.inversion)
+    }
+
+    #[test]
+    fn each_inversion_and_what_turns_fully() {
+        use Inversion::*;
+        for (links, class, expected, input, output) in [
+            (
+                [180.0, 80.0, 200.0, 150.0],
+                Class::Grashof,
+                CrankRocker,
+                true,
+                false,
+            ),
+            (
+                [180.0, 150.0, 200.0, 80.0],
+                Class::Grashof,
+                RockerCrank,
+                false,
+                true,
+            ),
+            (
+                [80.0, 180.0, 200.0, 150.0],
+                Class::Grashof,
+                DoubleCrank,
+                true,
+                true,
+            ),
+            (
+                [180.0, 150.0, 80.0, 200.0],
+                Class::Grashof,
+                DoubleRocker,
+                false,
+                false,
+            ),
+            (
+                [100.0, 120.0, 90.0, 80.0],
+                Class::NonGrashof,
+                TripleRocker,
+                false,
+                false,
+            ),
+            ([1.0, 3.0, 6.0, 2.0], Class::Flat, Immobile, false, false),
+            (
+                [1.0, 3.0, 7.0, 2.0],
+                Class::CannotClose,
+                Immobile,
+                false,
+                false,
+            ),
+            // s + l = p + q: the change point, with the class I inversions.
+            (
+                [2.0, 1.0, 4.0, 3.0],
+                Class::ChangePoint,
+                CrankRocker,
+                true,
+                false,
+            ),
+            (
+                [1.0, 2.0, 4.0, 3.0],
+                Class::ChangePoint,
+                DoubleCrank,
+                true,
+                true,
+            ),
+        ] {
+            let [ground, crank, coupler, rocker] = links;
+            let g = classify(ground, crank, coupler, rocker);
+            assert_eq!((g.class, g.inversion), (class, expected), "{links:?}");
+            assert_eq!(g.input_turns_fully(), input, "{links:?}");
+            assert_eq!(g.output_turns_fully(), output, "{links:?}");
+        }
+    }
+
+    #[test]
+    fn every_link_of_the_shortest_length_counts_as_shortest() {
+        // Equal cranks: a double-crank parallelogram; ground and coupler the shortest: the
+        // ground's double-crank too; equal cranks of a kite.
+        let g = classify(200.0, 80.0, 200.0, 80.0);
+        assert_eq!(
+            (g.class, g.inversion, g.special),
+            (
+                Class::ChangePoint,
+                Inversion::DoubleCrank,
+                Some(Special::Parallelogram)
+            )
+        );
+        assert_eq!(
+            inversion(80.0, 200.0, 80.0, 200.0).1,
+            Inversion::DoubleCrank
+        );
+        // Coupler and output equally shortest.
+        assert_eq!(
+            inversion(200.0, 200.0, 80.0, 80.0).1,
+            Inversion::RockerCrank
+        );
+    }
+
+    #[test]
+    fn parallelograms_and_kites() {
+        let special = |links: [f64; 4]| classify(links[0], links[1], links[2], links[3]).special;
+        assert_eq!(
+            special([200.0, 80.0, 200.0, 80.0]),
+            Some(Special::Parallelogram)
+        );
+        assert_eq!(
+            special([100.0, 100.0, 100.0, 100.0]),
+            Some(Special::Parallelogram)
+        );
+        // Ground = input and coupler = output; ground = output and input = coupler.
+        assert_eq!(special([100.0, 100.0, 200.0, 200.0]), Some(Special::Kite));
+        assert_eq!(special([100.0, 200.0, 200.0, 100.0]), Some(Special::Kite));
+        // One pair equal is neither.
+        assert_eq!(special([100.0, 150.0, 200.0, 100.0]), None);
+        assert_eq!(special([100.0, 100.0, 200.0, 150.0]), None);
+        assert_eq!(special([200.0, 80.0, 200.0, 90.0]), None);
+        assert_eq!(special([180.0, 80.0, 200.0, 150.0]), None);
+    }
+
+    #[test]
+    fn equality_is_decided_within_the_tolerance_of_the_total_inclusively() {
+        // Normalised already (the longest in [1, 2)), and every sum exact: with totals of 4,
+        // margins of 1/4.
+        let tolerance = 1.0 / 16.0;
+        let classify = |links: [f64; 4], tolerance: f64| {
+            classify_with_tolerance(links[0], links[1], links[2], links[3], tolerance).class
+        };
+        // s + l − (p + q) = 1/4 = the margin: a change point; past it, non-Grashof.
+        let excess = [0.625, 0.875, 1.5, 1.0];
+        assert_eq!(classify(excess, tolerance), Class::ChangePoint);
+        assert_eq!(classify(excess, tolerance / 2.0), Class::NonGrashof);
+        // s + l − (p + q) = −1/4: a change point; past it, Grashof.
+        let short = [0.375, 1.0, 1.5, 1.125];
+        assert_eq!(classify(short, tolerance), Class::ChangePoint);
+        assert_eq!(classify(short, tolerance / 2.0), Class::Grashof);
+        // With a total of 2, a margin of 1/8.
+        // l − (s + p + q) = 1/8 = the margin: flat; past it, no closing at all.
+        let over = [1.0625, 0.3125, 0.3125, 0.3125];
+        assert_eq!(classify(over, tolerance), Class::Flat);
+        assert_eq!(classify(over, tolerance / 2.0), Class::CannotClose);
+        // l − (s + p + q) = −1/8, doubled by the normalisation as the total is: flat;
+        // with less tolerance, a mechanism.
+        let under = [0.9375, 0.375, 0.375, 0.3125];
+        assert_eq!(classify(under, tolerance), Class::Flat);
+        assert_eq!(classify(under, tolerance / 2.0), Class::NonGrashof);
+        // Lengths equal within the margin are equal: a parallelogram and its inversion.
+        // (Normalised: 1, 1/4, 7/8, 1/4, a total of 19/8: a margin of 0.148 at 1/16.)
+        let g = classify_with_tolerance(2.0, 0.5, 1.75, 0.5, tolerance);
+        assert_eq!(g.special, Some(Special::Parallelogram));
+        let g = classify_with_tolerance(2.0, 0.5, 1.75, 0.5, tolerance / 2.0);
+        assert_eq!(g.special, None);
+        assert_eq!(default_tolerance::<f32>(), 64.0 * f32::EPSILON);
+    }
+
+    #[test]
+    fn normalising_scales_by_the_power_of_two_of_the_longest() {
+        assert_eq!(normalised([3.0, -5.0]), [0.75, -1.25]);
+        assert_eq!(normalised([1.0, 0.5]), [1.0, 0.5]);
+        assert_eq!(normalised([1.999, 0.5]), [1.999, 0.5]);
+        assert_eq!(normalised([2.0, 0.5]), [1.0, 0.25]);
+        assert_eq!(
+            normalised([2f64.powi(-1070), -2f64.powi(-1072)]),
+            [1.0, -0.25]
+        );
+        assert_eq!(
+            normalised([1e300, 3e299]),
+            [1e300, 3e299].map(|l| l * 2f64.powi(-996))
+        );
+        for unchanged in [[0.0, 0.0], [f64::INFINITY, 1.0], [f64::NAN, f64::NAN]] {
+            let scaled = normalised(unchanged);
+            for (got, want) in scaled.iter().zip(unchanged) {
+                assert!(got == &want || (got.is_nan() && want.is_nan()));
+            }
+        }
+        assert_eq!(power_of_two::<f64>(10), 1024.0);
+        assert_eq!(power_of_two::<f64>(-3), 0.125);
+        assert_eq!(power_of_two::<f64>(0), 1.0);
+        assert_eq!(power_of_two::<f64>(5000), 2f64.powi(1023));
+        assert_eq!(power_of_two::<f64>(-5000), 2f64.powi(-1022));
+        assert_eq!(power_of_two::<f32>(-126), f32::MIN_POSITIVE);
+    }
+}

@@ -273,9 +273,195 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_failure_is_blamed_on_the_first_argument_that_is_not_finite() {
+        let singular = Error::Singular {
+            determinant: 0.0,
+            relative_determinant: 0.0,
+        };
+        assert_eq!(blame([(1.0, "a"), (2.0, "b")], singular), singular);
+        assert_eq!(
+            blame(
+                [(1.0, "a"), (f64::NAN, "b"), (f64::INFINITY, "c")],
+                singular
+            ),
+            Error::NonFinite { quantity: "b" }
+        );
+        assert_eq!(all_finite([1.0, -2.0, 0.0], "rates"), Ok([1.0, -2.0, 0.0]));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(
+                all_finite([1.0, bad], "rates"),
+                Err(Error::NonFinite { quantity: "rates" })
+            );
+        }
+    }
+
+    #[test]
+    fn branch_roots_close_at_a_tangency_within_rounding_only() {
+        assert_eq!(branch_root(13.0, 4.0, -1.0), Ok(-3.0));
+        assert_eq!(branch_root(4.0, 4.0, 1.0), Ok(0.0));
+        // Below zero by 16ε of plus + |minus| (here 8): a tangency; by more, no root.
+        let e = f64::EPSILON;
+        assert_eq!(branch_root(4.0, 4.0 + 64.0 * e, 1.0), Ok(0.0));
+        assert_eq!(branch_root(4.0 - 64.0 * e, 4.0 + 64.0 * e, 1.0), Ok(0.0));
+        assert_eq!(
+            branch_root(4.0 - 128.0 * e, 4.0 + 128.0 * e, 1.0),
+            Err(Failure::CannotClose)
+        );
+        assert_eq!(branch_root(-1.0, 1.0, 1.0), Err(Failure::CannotClose));
+        assert_eq!(branch_root(1.0, f64::NAN, 1.0), Err(Failure::CannotClose));
+    }
+
+    #[test]
+    fn triangle_roots_close_at_a_tangency_within_rounding_only() {
+        let e = f64::EPSILON;
+        // Sides 2 and 3 over a span of 5 (sum 5), or of 1 (difference 1): touching circles.
+        assert_eq!(triangle_root(5.0, 1.0, 5.0, 1.0), Ok(0.0));
+        assert_eq!(triangle_root(5.0, -1.0, 1.0, -1.0), Ok(0.0));
+        // Within 8ε of sum + span (here 10) beyond either: still touching; farther, not.
+        assert_eq!(triangle_root(5.0, 1.0, 5.0 + 64.0 * e, 1.0), Ok(0.0));
+        assert_eq!(
+            triangle_root(5.0, 1.0, 5.0 + 96.0 * e, 1.0),
+            Err(Failure::CannotClose)
+        );
+        assert_eq!(triangle_root(5.0, 1.0, 1.0 - 32.0 * e, 1.0), Ok(0.0));
+        assert_eq!(
+            triangle_root(5.0, 1.0, 1.0 - 128.0 * e, 1.0),
+            Err(Failure::CannotClose)
+        );
+        assert_eq!(triangle_root(5.0, 1.0, 6.0, 1.0), Err(Failure::CannotClose));
+        assert_eq!(triangle_root(5.0, 1.0, 0.5, 1.0), Err(Failure::CannotClose));
+        // Sides 5 and 3 over a span of 4: a right triangle, twice its area 12, on each side.
+        assert_eq!(triangle_root(8.0, 2.0, 4.0, -1.0), Ok(-12.0));
+        assert_eq!(triangle_root(8.0, -2.0, 4.0, 1.0), Ok(12.0));
+    }
+
+    #[test]
+    fn lengths_are_scaled_by_the_power_of_two_of_the_longest() {
+        assert_eq!(length_scale(&[3.0, -5.0, 1.0]), (0.125, 8.0));
+        assert_eq!(length_scale(&[0.25f64]), (2.0, 0.5));
+        assert_eq!(length_scale::<f64>(&[]), (1.0, 1.0));
+        assert_eq!(length_scale(&[0.0, 0.0]), (1.0, 1.0));
+        assert_eq!(length_scale(&[1.0, f64::INFINITY]), (1.0, 1.0));
+        assert_eq!(inverse(4.0), Ok(0.25));
+        assert_eq!(inverse(0.0f64), Err(Failure::Degenerate));
+    }
+
+    #[test]
+    fn determinants_at_or_below_the_threshold_are_singular() {
+        // Relative determinant 0.5·0.25 = 0.125 against thresholds on either side of it.
+        assert_eq!(inverse_determinant(0.5, 0.25, 0.1), Ok(2.0));
+        assert_eq!(inverse_determinant(-0.5, 0.25, 0.1), Ok(-2.0));
+        for threshold in [0.125f64, 0.2] {
+            assert_eq!(
+                inverse_determinant(-0.5, 0.25, threshold),
+                Err(Error::Singular {
+                    determinant: -0.5,
+                    relative_determinant: 0.125
+                })
+            );
+            assert!(lanes::inverse_determinant(-0.5, 0.25, threshold).is_nan());
+        }
+        assert_eq!(lanes::inverse_determinant(-0.5, 0.25, 0.1), -2.0);
+        assert!(inverse_determinant(f64::NAN, 1.0, 0.1).is_err());
+    }
+
+    #[test]
+    fn rate_determinants_are_singular_then_inaccurate_then_solved() {
+        let threshold = 1e-4;
+        assert_eq!(
+            rates_inverse_determinant(-0.5, 0.25, threshold, Order::Velocity),
+            Ok(-2.0)
+        );
+        // Between √ε and the threshold: inaccurate, with the estimates at both.
+        let relative = 1e-6;
+        for order in [Order::Position, Order::Velocity, Order::Acceleration] {
+            let at = |relative: f64| {
+                let estimate = Accuracy::estimate(1.0 / relative, 1.0);
+                match order {
+                    Order::Position => estimate.position,
+                    Order::Velocity => estimate.velocity,
+                    Order::Acceleration => estimate.acceleration,
+                }
+            };
+            assert_eq!(
+                rates_inverse_determinant(-relative * 4.0, 0.25, threshold, order),
+                Err(Error::Inaccurate {
+                    order,
+                    estimate: at(relative),
+                    required: at(threshold),
+                })
+            );
+        }
+        // The three estimates differ, so each order reads its own.
+        let estimate = Accuracy::<f64>::estimate(1e6, 1.0);
+        assert!(estimate.position < estimate.velocity);
+        assert!(estimate.velocity < estimate.acceleration);
+        // At or below √ε: singular.
+        let sqrt_epsilon = f64::EPSILON.sqrt();
+        assert_eq!(
+            rates_inverse_determinant(sqrt_epsilon, 1.0, threshold, Order::Velocity),
+            Err(Error::Singular {
+                determinant: sqrt_epsilon,
+                relative_determinant: sqrt_epsilon
+            })
+        );
+        assert!(matches!(
+            rates_inverse_determinant(f64::NAN, 1.0, threshold, Order::Velocity),
+            Err(Error::Singular { .. })
+        ));
+        // At the threshold itself: not solved.
+        assert!(rates_inverse_determinant(threshold, 1.0, threshold, Order::Velocity).is_err());
+    }
+
+    #[test]
+    fn unit_angles_are_atan2_in_every_quadrant() {
+        for degrees in (-179..=180)
+            .step_by(7)
+            .chain([0, 45, 90, 135, 180, -45, -90, -135])
+        {
+            let angle = f64::from(degrees).to_radians();
+            let (y, x) = angle.sin_cos();
+            let got = unit_angle(y, x);
+            assert!(
+                (got - y.atan2(x)).abs() <= 4.0 * f64::EPSILON,
+                "{degrees}°: {got} != {}",
+                y.atan2(x)
+            );
+        }
+    }
+
+    #[test]
+    fn the_zero_vector_has_atan2s_angle() {
+        assert_eq!(unit_angle(0.0f64, 0.0).to_bits(), 0f64.atan2(0.0).to_bits());
+        assert_eq!(
+            unit_angle(-0.0f64, 0.0).to_bits(),
+            (-0f64).atan2(0.0).to_bits()
+        );
+    }
+
+    #[test]
+    fn the_squared_condition_test_fails_at_the_threshold_itself() {
+        // |det|·inverse_norms = 0.5/2 = 1/4, the threshold, exactly: singular either way.
+        assert!(inverse_determinant(0.5, 0.5, 0.25).is_err());
+        assert!(lanes::inverse_determinant_squared(0.5f64, 4.0, 0.25).is_nan());
+        assert_eq!(lanes::inverse_determinant_squared(0.5f64, 4.0, 0.2499), 2.0);
+    }
+
+    #[test]
+    fn lane_branch_roots_are_the_checked_ones_or_nan() {
+        assert_eq!(lanes::branch_root(13.0, 4.0, -1.0), -3.0);
+        assert!(lanes::branch_root(4.0f64, 5.0, 1.0).is_nan());
+    }
+
+    #[test]
     fn outputs_are_finite_only_when_every_one_is() {
         assert!(outputs_finite(&[1.0, -2.0, 3.0e300]));
         assert!(outputs_finite::<f64, 0>(&[]));
+        // Five values: the even-placed and the odd-placed in two sums; large values of
+        // opposite signs in the two sums add to zero.
+        assert!(outputs_finite(&[1.0, 2.0, 3.0, 4.0, 5.0]));
+        assert!(!outputs_finite(&[1.0, 2.0, 3.0, 4.0, f64::NAN]));
+        assert!(outputs_finite(&[f64::MAX, -f64::MAX]));
         for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
             assert!(!outputs_finite(&[1.0, bad, 2.0]));
             assert!(!outputs_finite(&[bad]));

@@ -459,8 +459,9 @@ mod tests {
     #[test]
     fn solve2_recovers_known_solution() {
         let a = [[3.0, 1.0], [-2.0, 4.0]];
-        let x = [0.5, -1.5];
-        assert_close(solve2(a, multiply(&a, &x)).unwrap().0, x);
+        for x in [[0.5, -1.5], [2.0, 0.25]] {
+            assert_close(solve2(a, multiply(&a, &x)).unwrap().0, x);
+        }
     }
 
     #[test]
@@ -508,6 +509,20 @@ mod tests {
     }
 
     #[test]
+    fn lu_pivots_on_the_first_of_equal_candidates() {
+        // Column 0 has 1 in rows 0 and 1: row 0 stays; then column 1 below it has −2 and 2
+        // (after elimination): row 1 stays.
+        let a = [[1.0, 1.0, 0.0], [1.0, -1.0, 1.0], [0.0, 2.0, 1.0]];
+        let (_, pivots, _, _) = factor_lu(a).unwrap();
+        assert_eq!(pivots, [0, 1, 2]);
+        let x = [1.0, 2.0, -1.0];
+        assert_close(solve_lu(a, multiply(&a, &x)).unwrap().0, x);
+        // A larger entry below is taken.
+        let (_, pivots, _, _) = factor_lu([[1.0, 0.0], [-2.0, 1.0]]).unwrap();
+        assert_eq!(pivots, [1, 1]);
+    }
+
+    #[test]
     fn lu_pivots_past_a_zero_leading_entry() {
         let a = [
             [0.0, 1.0, 2.0, 0.0],
@@ -542,6 +557,168 @@ mod tests {
             solve_lu(dependent, [1.0; 3]),
             Err(Error::Singular { .. })
         ));
+    }
+
+    /// `a`'s factors, its relative determinant and its solutions of two right-hand sides, bit
+    /// for bit.
+    fn bits<const N: usize>(factored: &Factored<f64, N>) -> ([u64; N], [u64; N], u64) {
+        let mut b = [1.0; N];
+        b[0] = -2.0;
+        (
+            factored.solve(b).map(f64::to_bits),
+            factored.solve([0.5; N]).map(f64::to_bits),
+            factored.relative().to_bits(),
+        )
+    }
+
+    #[test]
+    fn every_solver_returns_the_signed_relative_determinant() {
+        // det 14 over column norms √13·√17.
+        let a = [[3.0, 1.0], [-2.0, 4.0]];
+        let relative = 14.0 / 221f64.sqrt();
+        let b = [1.0, 1.0];
+        assert_eq!(solve2(a, b).unwrap().1, relative);
+        assert!((solve_lu(a, b).unwrap().1 - relative).abs() < 1e-15);
+        assert_eq!(Factored::new(a).unwrap().relative(), relative);
+        let swapped = [[1.0, 3.0], [4.0, -2.0]];
+        assert_eq!(solve2(swapped, b).unwrap().1, -relative);
+        // det 25 over column norms √5·√26·√5.25.
+        let relative3 = 25.0 / 682.5f64.sqrt();
+        assert!((solve_lu(A3, [1.0; 3]).unwrap().1 - relative3).abs() < 1e-15);
+        assert!((Factored::new(A3).unwrap().relative() - relative3).abs() < 1e-15);
+        assert!((condition(A3) - 1.0 / relative3).abs() < 1e-13);
+        assert_eq!(orientation(A3), Some(true));
+        assert_eq!(orientation([A3[1], A3[0], A3[2]]), Some(false));
+        assert_eq!(orientation(swapped), Some(false));
+        assert_eq!(orientation([[1.0, 2.0], [2.0, 4.0]]), None);
+        assert_eq!(condition([[1.0, 0.0], [0.0, 0.0]]), f64::INFINITY);
+        assert_eq!(condition([[f64::NAN, 0.0], [0.0, 1.0]]), f64::INFINITY);
+    }
+
+    #[test]
+    fn singular_means_a_relative_determinant_at_or_below_the_square_root_of_epsilon() {
+        // Columns of norm 1 (to rounding) whose determinant is √ε = 2⁻²⁶, then 2⁻²⁵.
+        let at = [[1.0, 1.0], [0.0, f64::EPSILON.sqrt()]];
+        let above = [[1.0, 1.0], [0.0, 2.0 * f64::EPSILON.sqrt()]];
+        let singular = Err(Error::Singular {
+            determinant: f64::EPSILON.sqrt(),
+            relative_determinant: f64::EPSILON.sqrt(),
+        });
+        assert_eq!(solve2(at, [1.0, 1.0]).map(|(_, r)| r), singular);
+        assert_eq!(Factored::new(at).map(|f| f.relative()), singular);
+        let twice = 2.0 * f64::EPSILON.sqrt();
+        assert!((solve2(above, [1.0, 1.0]).unwrap().1 - twice).abs() <= 1e-12 * twice);
+        assert!(Factored::new(above).is_ok());
+        let at3 = [
+            [1.0, 1.0, 0.0],
+            [0.0, f64::EPSILON.sqrt(), 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        assert!(matches!(
+            solve_lu(at3, [1.0; 3]),
+            Err(Error::Singular { .. })
+        ));
+        let above3 = [
+            [1.0, 1.0, 0.0],
+            [0.0, 2.0 * f64::EPSILON.sqrt(), 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        assert!((solve_lu(above3, [1.0; 3]).unwrap().1 - twice).abs() <= 1e-12 * twice);
+    }
+
+    #[test]
+    fn scaled_and_unscaled_systems_solve_alike() {
+        // Entries whose squares overflow, underflow, or neither: the same solution, scaled.
+        let a = [[3.0, 1.0], [-2.0, 4.0]];
+        let x = [0.5, -1.5];
+        let b = multiply(&a, &x);
+        for scale in [2f64.powi(600), 2f64.powi(-600), 1.0] {
+            let scaled_a = a.map(|row| row.map(|v| v * scale));
+            let (solved, relative) = solve2(scaled_a, b.map(|v| v * scale)).unwrap();
+            assert_close(solved, x);
+            assert!((relative - 14.0 / 221f64.sqrt()).abs() < 1e-15);
+            let factored = Factored::new(scaled_a).unwrap();
+            assert_close(factored.solve(b.map(|v| v * scale)), x);
+            assert!((factored.relative() - 14.0 / 221f64.sqrt()).abs() < 1e-15);
+            let (solved, _) = solve_lu(scaled_a, b.map(|v| v * scale)).unwrap();
+            assert_close(solved, x);
+        }
+        // Columns of very different sizes (an angle's column beside a length's).
+        let mixed = [[2f64.powi(600), 1.0], [0.0, 1.0]];
+        let (solved, relative) = solve2(mixed, [2f64.powi(600), 1.0]).unwrap();
+        assert_eq!(solved, [1.0 - 2f64.powi(-600), 1.0]);
+        assert!((relative - 0.5f64.sqrt()).abs() < 1e-15);
+        let columns = [
+            [2f64.powi(600), 0.0, 0.0],
+            [0.0, 2f64.powi(-600), 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let (solved, relative) = solve_lu(columns, [2f64.powi(600), 2f64.powi(-600), 3.0]).unwrap();
+        assert_eq!((solved, relative), ([1.0, 1.0, 3.0], 1.0));
+    }
+
+    #[test]
+    fn non_finite_right_hand_sides_and_zero_columns_are_errors() {
+        let a = [[3.0, 1.0], [-2.0, 4.0]];
+        assert_eq!(
+            solve2(a, [1.0, f64::INFINITY]),
+            Err(Error::NonFinite {
+                quantity: "linear system"
+            })
+        );
+        let zero_column = [[1.0, 0.0, 2.0], [3.0, 0.0, 4.0], [5.0, 0.0, 6.0]];
+        assert_eq!(
+            solve_lu(zero_column, [1.0; 3]).map(|(_, r)| r),
+            Err(Error::Singular {
+                determinant: 0.0,
+                relative_determinant: 0.0
+            })
+        );
+        let infinite = [[1.0, 0.0, 2.0], [3.0, f64::INFINITY, 4.0], [5.0, 0.0, 6.0]];
+        assert_eq!(
+            solve_lu(infinite, [1.0; 3]).map(|(_, r)| r),
+            Err(Error::NonFinite {
+                quantity: "linear system"
+            })
+        );
+    }
+
+    #[test]
+    fn quick_factors_are_new_factors_or_none() {
+        for a in [
+            [[3.0f64, 1.0], [-2.0, 4.0]],
+            [[1.0, 3.0], [4.0, -2.0]],
+            [[0.0, 1.0], [2.0, 3.0]],
+        ] {
+            let quick = Factored::quick(a).expect("regular and unscaled");
+            let new = Factored::new(a).unwrap();
+            assert_eq!(quick.positive(), new.relative() > 0.0);
+            assert_eq!(quick.relative().to_bits(), new.relative().to_bits());
+            assert_eq!(
+                quick.solve([1.0, -2.0]).map(f64::to_bits),
+                new.solve([1.0, -2.0]).map(f64::to_bits)
+            );
+            assert_eq!(bits(&quick.finish()), bits(&new));
+        }
+        // Larger matrices are `new`'s, and a singular one is none.
+        let quick = Factored::quick(A3).unwrap();
+        assert_eq!(bits(&quick.finish()), bits(&Factored::new(A3).unwrap()));
+        assert_eq!(quick.relative(), Factored::new(A3).unwrap().relative());
+        assert!(Factored::quick([[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 1.0]]).is_none());
+        // Near singular (relative determinant 2√ε and below), in need of scaling, or not
+        // finite: left to `new`.
+        let e = f64::EPSILON.sqrt();
+        for a in [
+            [[1.0, 1.0], [0.0, 2.0 * e]],
+            [[1.0, 1.0], [0.0, e]],
+            [[1.0, 2.0], [2.0, 4.0]],
+            [[2f64.powi(600), 0.0], [0.0, 1.0]],
+            [[2f64.powi(-600), 0.0], [0.0, 1.0]],
+            [[f64::NAN, 0.0], [0.0, 1.0]],
+        ] {
+            assert!(Factored::quick(a).is_none(), "{a:?}");
+        }
+        assert!(Factored::quick([[1.0, 1.0], [0.0, 4.0 * e]]).is_some());
     }
 
     #[test]

@@ -1001,6 +1001,666 @@ mod tests {
         assert!(common >= 3 * 360 * 4, "{common}");
     }
 
+    /// A four-bar of any lengths at `theta2`.
+    fn linkage(
+        [l1, l2, l3, l4]: [f64; 4],
+        theta2: f64,
+    ) -> impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, ()> {
+        move |&[theta3, theta4]: &[f64; 2]| {
+            let (s2, c2) = theta2.sin_cos();
+            let (s3, c3) = theta3.sin_cos();
+            let (s4, c4) = theta4.sin_cos();
+            Linearisation {
+                residual: [
+                    l2 * c2 + l3 * c3 - l4 * c4 - l1,
+                    l2 * s2 + l3 * s3 - l4 * s4,
+                ],
+                jacobian: [[-l3 * s3, l4 * s4], [l3 * c3, -l4 * c4]],
+                scale: l1 + l2 + l3 + l4,
+                weights: [1.0; 2],
+                payload: (),
+            }
+        }
+    }
+
+    /// Example 1's position by the closed form, on the branch nearest `near`.
+    fn closed_form(theta2: f64, near: [f64; 2]) -> [f64; 2] {
+        let k = crate::Vec2::new(80.0 * theta2.cos() - 180.0, 80.0 * theta2.sin());
+        let (w3, w4) = (crate::Vec2::new(200.0, 0.0), crate::Vec2::new(-150.0, 0.0));
+        let [open, crossed] = [1.0, -1.0].map(|sign| {
+            let (q3, q4, _, _) = crate::closed::two_angles(k, w3, w4, sign).unwrap();
+            [q3, q4]
+        });
+        // Angles a turn apart are one angle.
+        let distance = |q: [f64; 2]| 2.0 - (q[0] - near[0]).cos() - (q[1] - near[1]).cos();
+        if distance(open) < distance(crossed) {
+            open
+        } else {
+            crossed
+        }
+    }
+
+    #[test]
+    fn newton_solves_example_1_as_the_closed_form_does() {
+        let theta2 = 60f64.to_radians();
+        let guess = [15f64.to_radians(), 80f64.to_radians()];
+        let exact = closed_form(theta2, guess);
+        let scale = 610.0;
+        // To the rounding floor (one more step after landing there), then to 1e-4 mm (the
+        // seeds' tolerance: one step fewer), then to 1e-12 mm.
+        for (tolerance, iterations, within) in [(0.0, 4, 1e-15), (1e-4, 3, 1e-9), (1e-12, 4, 1e-15)]
+        {
+            let options = NewtonOptions::new(tolerance, 20);
+            let converged =
+                newton(theta2, guess, &options, true, || None, four_bar(theta2)).unwrap();
+            let solved = converged.solved;
+            assert_eq!(solved.iterations, iterations, "tolerance {tolerance}");
+            for (q, exact) in solved.value.iter().zip(exact) {
+                assert!(
+                    (q - exact).abs() <= within,
+                    "{:?} != {exact:?}",
+                    solved.value
+                );
+            }
+            assert!(solved.residual_norm <= tolerance.max(16.0 * f64::EPSILON * scale));
+            let [theta3, theta4] = solved.value;
+            let condition = 1.0 / (theta4 - theta3).sin().abs();
+            assert!((solved.condition - condition).abs() <= 1e-9 * condition);
+            // The evaluation handed back is the one at the solution (to the rounding of its
+            // turned sines and cosines).
+            let fresh = four_bar(theta2)(&solved.value).residual;
+            for (at, fresh) in converged.at.residual.iter().zip(fresh) {
+                assert!((at - fresh).abs() <= 1e-12, "{at} != {fresh}");
+            }
+            // The open branch's orientation.
+            assert_eq!(converged.jacobian.relative().signum(), -1.0);
+        }
+        // The crossed branch, from a guess near it.
+        let crossed = newton(
+            theta2,
+            [-1.2, -2.1],
+            &NewtonOptions::default(),
+            true,
+            || None,
+            four_bar(theta2),
+        )
+        .unwrap()
+        .solved
+        .value;
+        let exact = closed_form(theta2, crossed);
+        assert!((crossed[0] - exact[0]).abs() + (crossed[1] - exact[1]).abs() <= 4e-15);
+        assert!(exact[1] < 0.0);
+    }
+
+    #[test]
+    fn newton_rejects_what_it_cannot_use() {
+        let theta2 = 1.0;
+        let guess = [0.4, 1.2];
+        for tolerance in [-1.0, f64::NAN, f64::INFINITY] {
+            let options = NewtonOptions::new(tolerance, 20);
+            assert!(matches!(
+                newton(theta2, guess, &options, true, || None, four_bar(theta2)),
+                Err(Error::NonFinite {
+                    quantity: "Newton tolerance"
+                })
+            ));
+        }
+        for guess in [[f64::NAN, 1.2], [0.4, f64::INFINITY]] {
+            assert!(matches!(
+                newton(
+                    theta2,
+                    guess,
+                    &NewtonOptions::default(),
+                    true,
+                    || None,
+                    four_bar(theta2)
+                ),
+                Err(Error::NonFinite {
+                    quantity: "initial guess"
+                })
+            ));
+        }
+        // A non-finite residual or scale.
+        let mut nan = |_: &[f64; 2]| Linearisation {
+            residual: [f64::NAN, 0.0],
+            jacobian: [[1.0, 0.0], [0.0, 1.0]],
+            scale: 1.0,
+            weights: [1.0; 2],
+            payload: (),
+        };
+        assert!(matches!(
+            newton(
+                theta2,
+                guess,
+                &NewtonOptions::default(),
+                true,
+                || None,
+                &mut nan
+            ),
+            Err(Error::NonFinite {
+                quantity: "loop residual"
+            })
+        ));
+        let infinite_scale = |_: &[f64; 2]| Linearisation {
+            residual: [1.0, 0.0],
+            jacobian: [[1.0, 0.0], [0.0, 1.0]],
+            scale: f64::INFINITY,
+            weights: [1.0; 2],
+            payload: (),
+        };
+        assert!(matches!(
+            newton(
+                theta2,
+                guess,
+                &NewtonOptions::default(),
+                true,
+                || None,
+                infinite_scale
+            ),
+            Err(Error::NonFinite {
+                quantity: "loop residual"
+            })
+        ));
+        // A singular Jacobian at the guess (θ3 = θ4: the coupler and rocker in line).
+        assert!(matches!(
+            newton(
+                theta2,
+                [0.5, 0.5],
+                &NewtonOptions::default(),
+                true,
+                || None,
+                four_bar(theta2)
+            ),
+            Err(Error::Singular { .. })
+        ));
+    }
+
+    #[test]
+    fn newton_stops_at_its_cap_and_says_why() {
+        let theta2 = 60f64.to_radians();
+        let far = [15f64.to_radians(), 80f64.to_radians()];
+        let at_guess = four_bar(theta2)(&far).residual;
+        let none = NewtonOptions::new(0.0, 0);
+        assert_eq!(
+            newton(theta2, far, &none, true, || None, four_bar(theta2)).map(|c| c.solved),
+            Err(Error::NoConvergence {
+                iterations: 0,
+                residual_norm: max_abs(&at_guess)
+            })
+        );
+        assert_eq!(
+            newton(theta2, far, &none, true, || Some(false), four_bar(theta2)).map(|c| c.solved),
+            Err(Error::CannotAssemble { input: theta2 })
+        );
+        assert!(matches!(
+            newton(theta2, far, &none, true, || Some(true), four_bar(theta2)),
+            Err(Error::NoConvergence { iterations: 0, .. })
+        ));
+        // A solution already, with no update allowed: accepted as it is.
+        let solution = newton(
+            theta2,
+            far,
+            &NewtonOptions::default(),
+            true,
+            || None,
+            four_bar(theta2),
+        )
+        .unwrap()
+        .solved
+        .value;
+        let accepted = newton(theta2, solution, &none, true, || None, four_bar(theta2)).unwrap();
+        assert_eq!(accepted.solved.iterations, 0);
+        assert_eq!(accepted.solved.value, solution);
+        // Loops that cannot close (a ground of 10 with links of 1, 2 and 2): Newton stalls,
+        // or runs out of updates, short of a root.
+        let apart = [10.0, 1.0, 2.0, 2.0];
+        let two = NewtonOptions::new(0.0, 2);
+        let capped = newton(0.0, [0.3, 0.5], &two, true, || None, linkage(apart, 0.0));
+        match capped {
+            Err(Error::NoConvergence {
+                iterations: 2,
+                residual_norm,
+            }) => assert!(
+                (residual_norm - 5.118575524573101).abs() < 1e-9,
+                "{residual_norm}"
+            ),
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            newton(
+                0.0,
+                [0.3, 0.5],
+                &two,
+                true,
+                || Some(false),
+                linkage(apart, 0.0)
+            )
+            .map(|c| c.solved),
+            Err(Error::CannotAssemble { input: 0.0 })
+        );
+        let options = NewtonOptions::default();
+        for (assembles, cannot) in [(None, true), (Some(false), true), (Some(true), false)] {
+            let stalled = newton(
+                0.0,
+                [0.3, 0.5],
+                &options,
+                true,
+                || assembles,
+                linkage(apart, 0.0),
+            );
+            match stalled {
+                Err(Error::CannotAssemble { input }) if cannot => assert_eq!(input, 0.0),
+                Err(Error::NoConvergence {
+                    iterations,
+                    residual_norm,
+                }) if !cannot => {
+                    assert!(iterations > 0 && iterations < 50);
+                    assert!(residual_norm > 4.0);
+                }
+                other => panic!("{assembles:?}: {other:?}"),
+            }
+        }
+    }
+
+    #[test]
+    fn a_step_that_overflows_is_an_error_saying_why() {
+        // A finite residual, a Jacobian that factors, and a step of 1e318.
+        let runaway = |_: &[f64; 2]| Linearisation {
+            residual: [1e308, 1e308],
+            jacobian: [[1e-10, 0.0], [0.0, 1e-10]],
+            scale: 1.0,
+            weights: [1.0; 2],
+            payload: (),
+        };
+        let options = NewtonOptions::default();
+        assert_eq!(
+            newton(2.0, [0.0; 2], &options, true, || None, runaway).map(|c| c.solved),
+            Err(Error::NonFinite {
+                quantity: "Newton step"
+            })
+        );
+        assert_eq!(
+            newton(2.0, [0.0; 2], &options, true, || Some(false), runaway).map(|c| c.solved),
+            Err(Error::CannotAssemble { input: 2.0 })
+        );
+        assert_eq!(
+            newton(2.0, [0.0; 2], &options, true, || Some(true), runaway).map(|c| c.solved),
+            Err(Error::NonFinite {
+                quantity: "Newton step"
+            })
+        );
+    }
+
+    #[test]
+    fn a_residual_no_step_lowers_is_a_stall_judged_by_kantorovich() {
+        // The same residual everywhere: no step lowers it. Small beside the Jacobian
+        // (Kantorovich's h = 1e-3): no convergence; large (h = 10): taken for a toggle.
+        let flat = |size: f64| {
+            move |_: &[f64; 2]| Linearisation {
+                residual: [size, 0.0],
+                jacobian: [[1.0, 0.0], [0.0, 1.0]],
+                scale: 1.0,
+                weights: [1.0; 2],
+                payload: (),
+            }
+        };
+        let options = NewtonOptions::default();
+        assert_eq!(
+            newton(0.5, [0.0; 2], &options, true, || None, flat(1e-3)).map(|c| c.solved),
+            Err(Error::NoConvergence {
+                iterations: 0,
+                residual_norm: 1e-3
+            })
+        );
+        assert_eq!(
+            newton(0.5, [0.0; 2], &options, true, || None, flat(10.0)).map(|c| c.solved),
+            Err(Error::CannotAssemble { input: 0.5 })
+        );
+        // h = 1/4 exactly (here h is the residual): still no convergence.
+        assert_eq!(
+            newton(0.5, [0.0; 2], &options, true, || None, flat(0.25)).map(|c| c.solved),
+            Err(Error::NoConvergence {
+                iterations: 0,
+                residual_norm: 0.25
+            })
+        );
+        assert_eq!(kantorovich(&flat(0.25)(&[0.0; 2]), 1.0), 0.25);
+        assert_eq!(
+            newton(0.5, [0.0; 2], &options, true, || Some(false), flat(1e-3)).map(|c| c.solved),
+            Err(Error::CannotAssemble { input: 0.5 })
+        );
+        assert_eq!(
+            newton(0.5, [0.0; 2], &options, true, || Some(true), flat(10.0)).map(|c| c.solved),
+            Err(Error::NoConvergence {
+                iterations: 0,
+                residual_norm: 10.0
+            })
+        );
+    }
+
+    #[test]
+    fn a_small_linkage_that_cannot_close_stalls_short_of_a_root() {
+        // The linkage of `newton_stops_at_its_cap_and_says_why` a tenth the size: its
+        // residual stalls near 0.5, far above the rounding floor (a few 1e-15).
+        let apart = [1.0, 0.1, 0.2, 0.2];
+        let options = NewtonOptions::default();
+        assert_eq!(
+            newton(
+                0.0,
+                [0.3, 0.5],
+                &options,
+                true,
+                || None,
+                linkage(apart, 0.0)
+            )
+            .map(|c| c.solved),
+            Err(Error::CannotAssemble { input: 0.0 })
+        );
+        match newton(
+            0.0,
+            [0.3, 0.5],
+            &options,
+            true,
+            || Some(true),
+            linkage(apart, 0.0),
+        ) {
+            Err(Error::NoConvergence { residual_norm, .. }) => {
+                assert!(
+                    residual_norm > 0.4 && residual_norm < 0.6,
+                    "{residual_norm}"
+                )
+            }
+            other => panic!("{:?}", other.map(|c| c.solved)),
+        }
+    }
+
+    #[test]
+    fn newton_keeps_to_the_branch_of_its_guess_when_asked() {
+        let theta2 = 60f64.to_radians();
+        let guess = [-3.0, -2.6];
+        let options = NewtonOptions::default();
+        assert!(matches!(
+            newton(theta2, guess, &options, true, || None, four_bar(theta2)),
+            Err(Error::OtherBranch)
+        ));
+        let other = newton(theta2, guess, &options, false, || None, four_bar(theta2)).unwrap();
+        let exact = closed_form(theta2, other.solved.value);
+        let [theta3, theta4] = other.solved.value;
+        let wrapped = |q: f64, exact: f64| (q - exact).sin().abs();
+        assert!(wrapped(theta3, exact[0]) + wrapped(theta4, exact[1]) < 1e-14);
+        assert!(
+            newton_common(
+                guess,
+                &options,
+                true,
+                four_bar_started(theta2, guess),
+                Some,
+                || None
+            )
+            .is_none()
+        );
+    }
+
+    #[test]
+    fn a_stated_tolerance_needs_a_root_nearby() {
+        // The loops cannot close, and the residual never gets within 6 mm: a tolerance of
+        // 10 mm would accept it but for Kantorovich's test.
+        let apart = [10.0, 1.0, 2.0, 2.0];
+        let loose = NewtonOptions::new(10.0, 50);
+        assert!(newton(0.0, [0.3, 0.5], &loose, true, || None, linkage(apart, 0.0)).is_err());
+        // Kantorovich's h, from the Jacobian's columns at a unit scale: κ²·‖f‖·max/min.
+        let at = Linearisation {
+            residual: [3.0f64, 4.0],
+            jacobian: [[2.0, 0.0], [0.0, 1.0]],
+            scale: 0.0,
+            weights: [1.0; 2],
+            payload: (),
+        };
+        // Scaled by 1/4: columns 1/2 and 1/4, residual 5/4: h = κ²·(5/4)·(1/2)/(1/16).
+        assert_eq!(kantorovich(&at, 1.0), 10.0);
+        assert_eq!(kantorovich(&at, 2.0), 40.0);
+        assert_eq!(kantorovich_aside(at.residual, at.jacobian, 2.0), 40.0);
+        let tiny = Linearisation {
+            residual: [3e-300, 4e-300],
+            jacobian: [[2e-300, 0.0], [0.0, 1e-300]],
+            ..at
+        };
+        assert!((kantorovich(&tiny, 1.0) - 10.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_default_solve_is_stagnated_only_above_the_rounding_floor() {
+        let theta2 = 60f64.to_radians();
+        let guess = [15f64.to_radians(), 80f64.to_radians()];
+        let default = NewtonOptions::default();
+        let mut converged =
+            newton(theta2, guess, &default, true, || None, four_bar(theta2)).unwrap();
+        assert!(!stagnated(&converged, &default));
+        let floor = 16.0 * f64::EPSILON * converged.at.scale;
+        converged.at.residual = [floor, -floor];
+        assert!(!stagnated(&converged, &default));
+        converged.at.residual = [0.0, -2.0 * floor];
+        assert!(stagnated(&converged, &default));
+        assert!(!stagnated(&converged, &NewtonOptions::new(1e-4, 50)));
+        converged.at.weights = [1.0, 0.25];
+        assert!(!stagnated(&converged, &default));
+    }
+
+    #[test]
+    fn norms_weights_and_finiteness() {
+        assert_eq!(weighted_norm(&[1.0, -3.0], &[2.0, 0.5]), 2.0);
+        assert_eq!(weighted_norm(&[-1.0, 3.0], &[0.5, 2.0]), 6.0);
+        assert!(weighted_norm(&[f64::NAN, 3.0], &[1.0, 1.0]).is_nan());
+        assert!(weighted_norm(&[3.0, f64::NAN], &[1.0, 1.0]).is_nan());
+        assert_eq!(
+            weighted_norm(&[f64::INFINITY, 1.0], &[1.0, 1.0]),
+            f64::INFINITY
+        );
+        assert_eq!(max_abs(&[1.0, -3.0, 2.0]), 3.0);
+        assert!(max_abs(&[1.0, f64::NAN, 2.0]).is_nan());
+        assert!(max_abs(&[f64::NAN, 1.0]).is_nan());
+        assert_eq!(loop_weight(10.0, 4.0), 2.5);
+        assert_eq!(loop_weight(10.0, 0.0), 1.0);
+        assert_eq!(loop_weight(10.0, -1.0), 1.0);
+        assert!(all_finite::<f64>(&[]));
+        assert!(all_finite(&[1.0, -2.0]));
+        // A sum that overflows from finite values: each is looked at.
+        assert!(all_finite(&[f64::MAX, f64::MAX]));
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(!all_finite(&[1.0, bad]));
+            assert!(!all_finite(&[bad]));
+            assert!(!each_finite(&[1.0, bad]));
+        }
+        assert!(each_finite(&[1.0, f64::MAX]));
+        assert_eq!(check_finite(&[(1.0, "a"), (2.0, "b")]), Ok(()));
+        assert_eq!(
+            check_finite(&[(1.0, "a"), (f64::NAN, "b"), (f64::INFINITY, "c")]),
+            Err(Error::NonFinite { quantity: "b" })
+        );
+        let names = ["a", "b", "c"];
+        assert_eq!(check_all_finite([1.0, 2.0, 3.0], &names), Ok(()));
+        assert_eq!(check_all_finite::<f64, 0>([], &[]), Ok(()));
+        assert_eq!(check_all_finite([f64::MAX, f64::MAX, 0.0], &names), Ok(()));
+        assert_eq!(
+            check_all_finite([1.0, f64::INFINITY, f64::NAN], &names),
+            Err(Error::NonFinite { quantity: "b" })
+        );
+        assert_eq!(
+            blame_non_finite([f64::NAN, 1.0, 1.0], &names),
+            Err(Error::NonFinite { quantity: "a" })
+        );
+        assert_eq!(finite([1.0, 2.0], "rates"), Ok([1.0, 2.0]));
+        assert_eq!(
+            finite([1.0, f64::NAN], "rates"),
+            Err(Error::NonFinite { quantity: "rates" })
+        );
+    }
+
+    #[test]
+    fn options_and_solutions_carry_what_they_were_given() {
+        let default = NewtonOptions::<f64>::default();
+        assert_eq!(default, NewtonOptions::new(0.0, 50));
+        assert_eq!(default.accuracy, Accuracy::required());
+        let loose = Accuracy {
+            position: 1.0,
+            velocity: 2.0,
+            acceleration: 3.0,
+        };
+        let options = NewtonOptions::new(1e-4, 7).with_accuracy(loose);
+        assert_eq!((options.tolerance, options.max_iterations), (1e-4, 7));
+        assert_eq!(options.accuracy, loose);
+        let solved = Solved {
+            value: 2,
+            iterations: 3,
+            residual_norm: 0.5,
+            condition: 4.0,
+        };
+        assert_eq!(
+            solved.map(|v| v * 10),
+            Solved {
+                value: 20,
+                iterations: 3,
+                residual_norm: 0.5,
+                condition: 4.0
+            }
+        );
+    }
+
+    #[test]
+    fn rotations_and_sines_are_good_to_rounding() {
+        let limit = TURN_LIMIT;
+        for angle in [0.3f64, -2.0, 3.1, 1e-3] {
+            let (sin, cos) = angle.sin_cos();
+            for step in [limit, -limit, 0.5 * limit, 1e-7, 0.0] {
+                let (s, c) = rotate(sin, cos, step);
+                let (want_s, want_c) = (angle + step).sin_cos();
+                assert!((s - want_s).abs() <= 4.0 * f64::EPSILON, "{angle} + {step}");
+                assert!((c - want_c).abs() <= 4.0 * f64::EPSILON, "{angle} + {step}");
+            }
+            let mut turning = Turning::new();
+            assert_eq!(turning.sin_cos(angle), (sin, cos));
+            let (s, c) = turning.sin_cos(angle + 0.5 * limit);
+            assert_eq!((s, c), rotate(sin, cos, (angle + 0.5 * limit) - angle));
+            // Farther than a turn: afresh.
+            assert_eq!(
+                turning.sin_cos(angle + 2.0 * limit),
+                (angle + 2.0 * limit).sin_cos()
+            );
+            for x in [angle, 100.0 * angle] {
+                let (s, c) = sin_cos(x);
+                assert!((s - x.sin()).abs() <= 2.0 * f64::EPSILON);
+                assert!((c - x.cos()).abs() <= 2.0 * f64::EPSILON);
+            }
+        }
+        // From zero, the turned sine is the step's own, to rounding of itself (the series'
+        // fifth-order term is some 30 units of it at the largest step).
+        for step in [limit, -limit, 0.75 * limit, 0.3 * limit] {
+            let (s, c) = rotate(0.0, 1.0, step);
+            assert!(
+                (s - step.sin()).abs() <= 2.0 * f64::EPSILON * step.abs(),
+                "{step}"
+            );
+            assert!((c - step.cos()).abs() <= 2.0 * f64::EPSILON, "{step}");
+        }
+        // Beyond the fast one's limit, and NaN: the platform's.
+        assert_eq!(sin_cos(1e300), 1e300f64.sin_cos());
+        assert!(sin_cos(f64::NAN).0.is_nan());
+        assert_eq!(fresh_sin_cos([1e300, 1.0]), platform_sin_cos([1e300, 1.0]));
+        assert_eq!(
+            fresh_sin_cos([1e300, -1e300]),
+            platform_sin_cos([1e300, -1e300])
+        );
+        let (sines, cosines) = fresh_sin_cos([0.3, -2.0]);
+        assert!((sines[1] - (-2f64).sin()).abs() <= 2.0 * f64::EPSILON);
+        assert!((cosines[0] - 0.3f64.cos()).abs() <= 2.0 * f64::EPSILON);
+        assert_eq!(
+            Turnings::<f64, 2>::default().sin_cos([0.3, -2.0]),
+            (sines, cosines)
+        );
+        assert_eq!(Turning::<f64>::default().sin_cos(0.3), 0.3f64.sin_cos());
+        assert_eq!(
+            turned([0.0], [0.0], [1.0], [limit]),
+            Some(([limit.sin()], [limit.cos()])).map(|_| {
+                let (s, c) = rotate(0.0, 1.0, limit);
+                ([s], [c])
+            })
+        );
+        assert_eq!(turned([0.0], [0.0], [1.0], [2.0 * limit]), None);
+    }
+
+    #[test]
+    fn the_common_path_accepts_a_guess_that_is_a_solution_on_either_branch() {
+        // Met at the guess (a tolerance of 1e-4): no update, on the branch of the guess,
+        // whichever orientation that branch has.
+        let theta2 = 60f64.to_radians();
+        let options = NewtonOptions::new(1e-4, 20);
+        for guess in [[0.4, 1.2], [-1.2, -2.1]] {
+            let solution = newton(
+                theta2,
+                guess,
+                &NewtonOptions::default(),
+                true,
+                || None,
+                four_bar(theta2),
+            )
+            .unwrap()
+            .solved
+            .value;
+            let quick = newton_common(
+                solution,
+                &options,
+                true,
+                four_bar_started(theta2, solution),
+                Some,
+                || None,
+            )
+            .expect("the common path");
+            assert_eq!(quick.solved.iterations, 0);
+            assert_eq!(quick.solved.value, solution);
+        }
+    }
+
+    /// `evaluate` with both components weighted 1/2.
+    fn halved(
+        mut evaluate: impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, [f64; 4]>,
+    ) -> impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, [f64; 4]> {
+        move |x: &[f64; 2]| Linearisation {
+            weights: [0.5, 0.5],
+            ..evaluate(x)
+        }
+    }
+
+    #[test]
+    fn the_common_path_reads_the_residual_weighted() {
+        // Example 1 with its two components weighted 1/2 (as a small loop's beside a large
+        // one): the common path solves it as Newton does, to the bit.
+        let theta2 = 60f64.to_radians();
+        for offset in [1e-6, 1e-4] {
+            let guess = [0.3762517082634387 + offset, 1.2590395150231335 - offset];
+            for options in [NewtonOptions::default(), NewtonOptions::new(1e-9, 50)] {
+                let safeguarded = newton(
+                    theta2,
+                    guess,
+                    &options,
+                    true,
+                    || None,
+                    halved(four_bar(theta2)),
+                )
+                .unwrap();
+                let quick = newton_common(
+                    guess,
+                    &options,
+                    true,
+                    halved(four_bar_started(theta2, guess)),
+                    Some,
+                    || None,
+                )
+                .expect("the common path");
+                assert_eq!(bits(&quick), bits(&safeguarded));
+            }
+        }
+    }
+
     #[test]
     fn the_common_path_leaves_the_unusual_to_newton() {
         let options = NewtonOptions::default();
@@ -1023,6 +1683,43 @@ mod tests {
         );
         let none = NewtonOptions::new(0.0, 0);
         assert!(newton_common([0.4, 1.2], &none, true, four_bar(1.0), Some, fallback).is_none());
+    }
+
+    #[test]
+    fn the_common_path_leaves_a_step_that_does_not_lower_the_residual_to_newton() {
+        // The residual grows on both components over the first full step, then vanishes:
+        // the common path must not take that step.
+        let rising = |x: &[f64; 2]| {
+            let residual = match x[0] {
+                0.0 => [1.0, 1.0],
+                -1.0 => [2.0, 2.0],
+                _ => [0.0, 0.0],
+            };
+            Linearisation {
+                residual,
+                jacobian: [[1.0, 0.0], [0.0, 1.0]],
+                scale: 1.0,
+                weights: [1.0; 2],
+                payload: (),
+            }
+        };
+        let options = NewtonOptions::default();
+        assert!(newton_common([0.0; 2], &options, false, rising, Some, || None).is_none());
+        // Nor one that leaves it as it was.
+        let level = |x: &[f64; 2]| Linearisation {
+            residual: if x[0] < -1.5 { [0.0; 2] } else { [1.0, 1.0] },
+            ..rising(&[0.0; 2])
+        };
+        assert!(newton_common([0.0; 2], &options, false, level, Some, || None).is_none());
+        // Read weighted: a rise from 4·1 to 4·2.
+        let heavy = |x: &[f64; 2]| Linearisation {
+            weights: [4.0; 2],
+            ..rising(x)
+        };
+        assert!(newton_common([0.0; 2], &options, false, heavy, Some, || None).is_none());
+        // Newton itself halves that step instead, to a point the residual is lower at.
+        let halved = newton(0.0, [0.0; 2], &options, false, || None, rising).unwrap();
+        assert_eq!(halved.solved.value, [-0.5, -0.5]);
     }
 
     #[test]

@@ -414,6 +414,8 @@ impl<T: Real, M: Kinematics<T, N>, const N: usize> Iterator for Sweep<'_, T, M, 
 mod tests {
     use super::*;
     use crate::Solved;
+    use std::vec;
+    use std::vec::Vec;
 
     /// `q = input`, on one branch, everywhere.
     struct Line;
@@ -440,6 +442,324 @@ mod tests {
         fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
             true
         }
+    }
+
+    /// `x² + y² = 1` for `y`, on the branch of `y`'s sign: toggles at `x = ±1`, beyond
+    /// which it cannot be assembled.
+    struct Circle;
+
+    impl Kinematics<f64, 1> for Circle {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            _options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            if input.abs() > 1.0 {
+                return Err(Error::CannotAssemble { input });
+            }
+            Ok(Solved {
+                value: [(1.0 - input * input).sqrt().copysign(guess[0])],
+                iterations: 1,
+                residual_norm: 0.0,
+                condition: 1.0,
+            })
+        }
+
+        fn slope(&self, input: f64, [y]: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            if y == 0.0 {
+                return Err(Error::Singular {
+                    determinant: 0.0,
+                    relative_determinant: 0.0,
+                });
+            }
+            Ok([-input / y])
+        }
+
+        fn same_branch(&self, _: f64, [a]: [f64; 1], _: f64, [b]: [f64; 1]) -> bool {
+            (a < 0.0) == (b < 0.0)
+        }
+    }
+
+    /// `y² = x²` for `y`, on the branch of `y`'s sign: the branches `y = x` and `y = −x`
+    /// cross at the change point `x = 0`.
+    struct Cross;
+
+    impl Kinematics<f64, 1> for Cross {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            _options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            Ok(Solved {
+                value: [input.abs().copysign(guess[0])],
+                iterations: 1,
+                residual_norm: 0.0,
+                condition: 1.0,
+            })
+        }
+
+        fn slope(&self, input: f64, [y]: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Ok([if (y < 0.0) == (input < 0.0) {
+                1.0
+            } else {
+                -1.0
+            }])
+        }
+
+        fn same_branch(&self, _: f64, [a]: [f64; 1], _: f64, [b]: [f64; 1]) -> bool {
+            (a < 0.0) == (b < 0.0)
+        }
+    }
+
+    /// `y² = (1 − x²)(4 − x²)` for `y`, on the branch of `y`'s sign: it cannot be assembled
+    /// for `1 < |x| < 2`, a gap in the motion with a solution on the branch either side.
+    struct Gap;
+
+    impl Kinematics<f64, 1> for Gap {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            _options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            let square = (1.0 - input * input) * (4.0 - input * input);
+            if square < 0.0 {
+                return Err(Error::CannotAssemble { input });
+            }
+            Ok(Solved {
+                value: [square.sqrt().copysign(guess[0])],
+                iterations: 1,
+                residual_norm: 0.0,
+                condition: 1.0,
+            })
+        }
+
+        fn slope(&self, input: f64, [y]: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            if y == 0.0 {
+                return Err(Error::Singular {
+                    determinant: 0.0,
+                    relative_determinant: 0.0,
+                });
+            }
+            Ok([(4.0 * input * input - 10.0) * input / (2.0 * y)])
+        }
+
+        fn same_branch(&self, _: f64, [a]: [f64; 1], _: f64, [b]: [f64; 1]) -> bool {
+            (a < 0.0) == (b < 0.0)
+        }
+    }
+
+    #[test]
+    fn a_sweep_does_not_step_over_a_gap_in_the_motion() {
+        // One step from 0 to 3, where the branch goes on past the gap: walked in pieces of at
+        // most one unit, the sweep stops at the gap's edge.
+        let (samples, stop) = sweep(&Gap, 0.0, 1.0, 3.0, 1);
+        assert_eq!(
+            samples,
+            [Sample {
+                input: 0.0,
+                position: [2.0]
+            }]
+        );
+        match stop {
+            Some(Stop::Toggle {
+                last_input: 0.0,
+                next_input: 3.0,
+                error: Error::CannotAssemble { input },
+            }) => assert!(input > 1.0 && input < 2.0, "{input}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// [`Circle`], but converging on the other branch for inputs just past 1 (up to
+    /// 1 + 1e-7), where a toggle's fringe can send Newton.
+    struct Fringe;
+
+    impl Kinematics<f64, 1> for Fringe {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            if input > 1.0 && input <= 1.0 + 1e-7 {
+                return Err(Error::OtherBranch);
+            }
+            Circle.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Circle.slope(input, position)
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            Circle.same_branch(a, p, b, q)
+        }
+    }
+
+    #[test]
+    fn a_toggle_is_told_by_most_of_what_lies_beyond_it() {
+        // Beyond the stuck point, the nearest two solves land on the other branch and the
+        // farther ones cannot assemble: more failures, so a toggle.
+        let (samples, stop) = sweep(&Fringe, 0.0, 1.0, 0.1, 15);
+        assert_eq!(samples.len(), 10);
+        match stop {
+            Some(Stop::Toggle {
+                last_input: 0.9,
+                next_input: 1.0,
+                error: Error::CannotAssemble { input },
+            }) => assert!(input > 1.0 + 1e-7 && input < 1.0 + 1e-5, "{input}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    fn sweep<M: Kinematics<f64, 1>>(
+        mechanism: &M,
+        start: f64,
+        position: f64,
+        step: f64,
+        steps: u32,
+    ) -> (Vec<Sample<f64, 1>>, Option<Stop<f64>>) {
+        let mut samples = Vec::new();
+        for result in Sweep::new(
+            mechanism,
+            start,
+            [position],
+            step,
+            steps,
+            NewtonOptions::default(),
+        ) {
+            match result {
+                Ok(sample) => samples.push(sample),
+                Err(stop) => return (samples, Some(stop)),
+            }
+        }
+        (samples, None)
+    }
+
+    #[test]
+    fn a_sweep_follows_its_branch_to_a_toggle_and_says_where() {
+        let (samples, stop) = sweep(&Circle, 0.0, 1.0, 0.1, 15);
+        assert_eq!(samples.len(), 10);
+        for (k, sample) in samples.iter().enumerate() {
+            let x = 0.1 * k as f64;
+            assert_eq!(sample.input, x);
+            assert!((sample.position[0] - (1.0 - x * x).sqrt()).abs() <= 1e-15);
+        }
+        // Stuck just short of x = 1, the first solve beyond (√ε past it) cannot assemble.
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 0.9,
+                next_input: 1.0,
+                error: Error::CannotAssemble {
+                    input: 1.0000000149009793
+                }
+            })
+        );
+        // Backwards, on the other branch.
+        let (samples, stop) = sweep(&Circle, 0.0, -1.0, -0.25, 6);
+        let positions: Vec<f64> = samples.iter().map(|s| s.position[0]).collect();
+        assert_eq!(
+            positions,
+            [
+                -1.0,
+                -(0.9375f64.sqrt()),
+                -(0.75f64.sqrt()),
+                -(0.4375f64.sqrt())
+            ]
+        );
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: -0.75,
+                next_input: -1.0,
+                error: Error::CannotAssemble {
+                    input: -1.0000000149009338
+                }
+            })
+        );
+        // One step far beyond: walked in pieces, stuck at the same toggle.
+        let (samples, stop) = sweep(&Circle, 0.0, 1.0, 1e6, 2);
+        assert_eq!(samples.len(), 1);
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 0.0,
+                next_input: 1e6,
+                error: Error::CannotAssemble {
+                    input: 1.0000030670198612
+                }
+            })
+        );
+    }
+
+    #[test]
+    fn a_sweep_stops_where_its_branch_meets_the_other() {
+        let (samples, stop) = sweep(&Cross, -1.0, 1.0, 0.3, 8);
+        let inputs: Vec<f64> = samples.iter().map(|s| s.input).collect();
+        assert_eq!(inputs, [-1.0, -0.7, -0.4, -1.0 + 0.3 * 3.0]);
+        assert!(samples.iter().all(|s| s.position[0] == -s.input));
+        assert_eq!(
+            stop,
+            Some(Stop::BranchChange {
+                last_input: -1.0 + 0.3 * 3.0,
+                next_input: -1.0 + 0.3 * 4.0
+            })
+        );
+        let (samples, stop) = sweep(&Cross, 1.0, 1.0, -0.5, 4);
+        assert_eq!(samples.len(), 3);
+        assert_eq!(
+            stop,
+            Some(Stop::BranchChange {
+                last_input: 0.0,
+                next_input: -0.5
+            })
+        );
+    }
+
+    #[test]
+    fn a_sweep_that_cannot_start_or_go_on_says_why() {
+        assert_eq!(
+            sweep(&Circle, 2.0, 1.0, 0.1, 3),
+            (
+                vec![],
+                Some(Stop::Toggle {
+                    last_input: 2.0,
+                    next_input: 2.0,
+                    error: Error::CannotAssemble { input: 2.0 }
+                })
+            )
+        );
+        let (samples, stop) = sweep(&Circle, 0.0, 1.0, f64::NAN, 2);
+        assert_eq!(samples.len(), 1);
+        match stop {
+            Some(Stop::Toggle {
+                last_input: 0.0,
+                next_input,
+                error:
+                    Error::NonFinite {
+                        quantity: "sweep input",
+                    },
+            }) => assert!(next_input.is_nan()),
+            other => panic!("{other:?}"),
+        }
+        // A zero step: the start, again and again.
+        let (samples, stop) = sweep(&Circle, 0.5, 1.0, 0.0, 3);
+        assert_eq!(stop, None);
+        assert_eq!(samples.len(), 4);
+        assert!(
+            samples
+                .iter()
+                .all(|s| s.input == 0.5 && s.position == [0.75f64.sqrt()])
+        );
+        let mut counted = Sweep::new(&Line, 0.0, [0.0], 1.0, 3, NewtonOptions::default());
+        assert_eq!(counted.size_hint(), (0, Some(4)));
+        counted.next();
+        assert_eq!(counted.size_hint(), (0, Some(3)));
+        assert_eq!(counted.count(), 3);
     }
 
     /// The last two of `u32::MAX + 1` samples, then the end: no overflow of the index.
