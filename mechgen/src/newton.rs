@@ -129,6 +129,12 @@ const STAGNATION_FLOOR: f64 = 4.0;
 /// How many times a Newton step is halved, at most, looking for a smaller residual.
 const MAX_HALVINGS: u32 = 10;
 
+/// The fewest iterations after which running out of them, with no root certain to be near,
+/// says the iterates are creeping along a toggle (Newton from within Kantorovich's ball
+/// reaches the floor in far fewer): below it, a cap the caller set low says nothing of the
+/// loops, and the answer is [`Error::NoConvergence`].
+const CREEPING: u32 = 16;
+
 /// Solves `f(x) = 0` by a safeguarded Newton-Raphson from `guess`.
 ///
 /// `linearise` evaluates the residual and Jacobian; each Jacobian is factored once
@@ -156,8 +162,8 @@ const MAX_HALVINGS: u32 = 10;
 ///   ill-conditioned (the iterates press against a toggle the loops cannot pass), else
 ///   [`Error::NoConvergence`]. Running out of iterations is decided the same way (a guess
 ///   that Kantorovich certifies reaches the floor in a handful of steps, so iterates still
-///   outside every such ball after `max_iterations` are pressing against a toggle as surely
-///   as stalled ones). `assembles()` is called only then.
+///   outside every such ball after `max_iterations`, if that is at least 16, are pressing
+///   against a toggle as surely as stalled ones). `assembles()` is called only then.
 ///
 /// With `keep_orientation`, the Jacobian's orientation (the sign of its determinant) must be
 /// the same at the solution as at the guess, else [`Error::OtherBranch`]: for a single loop
@@ -257,7 +263,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             return Err(match assembles() {
                 Some(true) => stalled,
                 Some(false) => Error::CannotAssemble { input },
-                None if kantorovich(&here, condition()) > quarter => {
+                None if iterations >= CREEPING && kantorovich(&here, condition()) > quarter => {
                     Error::CannotAssemble { input }
                 }
                 None => stalled,
