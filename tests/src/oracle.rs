@@ -2595,6 +2595,9 @@ pub mod judge {
         others: Vec<Truth>,
         eps: f64,
         input: f64,
+        /// The input's rate and acceleration.
+        omega: f64,
+        alpha: f64,
         /// Whether Newton's guess was near no solution at the input (an unreachable input's
         /// guess, from the mirrored one): its branch is then undefined, and any accurate
         /// solution is right.
@@ -2928,9 +2931,26 @@ pub mod judge {
             unknowns || self.size() * fastest > largest
         }
 
+        /// Whether, within rounding of a limit (where the oracle has no truth to size the rates
+        /// by, and `Ok` and `CannotAssemble` are both right), rates as large as a toggle's at
+        /// the float's resolution may overflow: κ up to 1/ε there, and an acceleration grows
+        /// as κ^1.5 of the size times the input's spin (edge run case 376075: an f32 four-bar
+        /// of size 1e34, 2e-7 rad inside a limit, whose coupler point's acceleration is 3e41).
+        fn rates_unbounded_near_limit(&self, size: f64) -> bool {
+            let largest = if self.eps > 1e-10 {
+                f64::from(f32::MAX)
+            } else {
+                f64::MAX
+            } / 16.0;
+            let spin = 1.0 + self.omega.abs() + self.omega * self.omega + self.alpha.abs();
+            self.truth.is_none() && self.near_limit() && size * spin / self.eps.powf(1.5) > largest
+        }
+
         /// Judges an error.
         fn error(&self, v: &mut Verdict, api: Api, e: &Error<f64>, newton_outside_basin: bool) {
-            if matches!(e, Error::NonFinite { .. }) && self.rates_unrepresentable() {
+            if matches!(e, Error::NonFinite { .. })
+                && (self.rates_unrepresentable() || self.rates_unbounded_near_limit(self.size()))
+            {
                 return;
             }
             let documented_newton = matches!(
@@ -3109,7 +3129,7 @@ pub mod judge {
                             d = d.wrapped();
                         }
                         let error = d.abs().to_f64() * t.columns[*index] / scale;
-                                        let bound = if *level == 0 { POSITION_FACTOR } else { FACTOR }
+                        let bound = if *level == 0 { POSITION_FACTOR } else { FACTOR }
                             * self.eps
                             * kappa.powi(*level as i32 + 1)
                             * rho.powi(*level as i32);
@@ -3172,6 +3192,8 @@ pub mod judge {
                 others: o.others,
                 eps,
                 input,
+                omega: case.omega,
+                alpha: case.alpha,
             },
             None => {
                 let model = Model::new(case.kind, p);
@@ -3193,6 +3215,8 @@ pub mod judge {
                     others: Vec::new(),
                     eps,
                     input,
+                    omega: case.omega,
+                    alpha: case.alpha,
                 }
             }
         }
@@ -3471,11 +3495,38 @@ pub mod judge {
             // Rates of lengths (scaled or not) near the float's largest overflow: `NonFinite`
             // is then the answer (the truth is not representable), whatever the factor.
             // Near a toggle the rates grow with κ and the accelerations with κ³.
+            // The true rates say it where the oracle has them: a short link's angular rate is
+            // the long one's over the ratio, whatever κ (edge run case 43536: a slider-crank
+            // whose rod is 1e6 times shorter than its crank, κ 5, its slider's acceleration
+            // 1.6e9 times the size).
             let kappa = e.truth.as_ref().map_or(1.0, |t| t.condition.max(1.0));
-            let largest = e.size() * factor.max(1.0) * kappa.powi(3);
+            let by_kappa = e.size()
+                * kappa.powi(3)
+                * (1.0 + case.omega.abs() + case.omega.powi(2) + case.alpha.abs());
+            let by_truth = e.truth.as_ref().map_or(0.0, |t| {
+                let size = e.size();
+                let speed = t
+                    .velocity
+                    .as_ref()
+                    .map_or(0.0, |w| rate_size(t, w, size, 0.0));
+                let acceleration = t
+                    .acceleration
+                    .as_ref()
+                    .map_or(0.0, |w| rate_size(t, w, size, 0.0));
+                // A point's acceleration sums every link's `|r|·(ω² + |α|)`.
+                let spin = |w: f64, a: f64| (w * w + a.abs()).max(w.abs());
+                let mut fastest = spin(t.omega, t.alpha);
+                if let (Some(w), Some(a)) = (&t.velocity, &t.acceleration) {
+                    for (w, a) in w.iter().zip(a) {
+                        fastest = fastest.max(spin(w.to_f64(), a.to_f64()));
+                    }
+                }
+                speed.max(acceleration).max(size * fastest)
+            });
+            let largest = by_kappa.max(by_truth) * factor.max(1.0);
             let rates_overflow = (before == "NonFinite" || again.outcome == "NonFinite")
-                && largest * (1.0 + case.omega.abs() + case.omega.powi(2) + case.alpha.abs())
-                    > T::max_value().to_f64().unwrap_or(f64::MAX) / 64.0;
+                && (largest > T::max_value().to_f64().unwrap_or(f64::MAX) / 64.0
+                    || e.rates_unbounded_near_limit(e.size() * factor.max(1.0)));
             let excused = rates_overflow
                 || (!exact && (e.near_limit() || e.singular_allowed() || at_the_threshold));
             if !excused {
@@ -4258,10 +4309,21 @@ mod tests {
     /// which judged a correct rate of 1e-308 wrong by half its size).
     #[test]
     fn subnormals_convert_exactly() {
-        for x in [9.99963012973789e-309, 1e-310, -7e-315, 3e-320, 5e-324, 2.5e-308, 1.0] {
+        for x in [
+            9.99963012973789e-309,
+            1e-310,
+            -7e-315,
+            3e-320,
+            5e-324,
+            2.5e-308,
+            1.0,
+        ] {
             assert_eq!(Big::from_f64(x).to_f64(), x);
         }
-        assert_eq!((Big::from_f64(1e-310) * Big::from_f64(2.0)).to_f64(), 2e-310);
+        assert_eq!(
+            (Big::from_f64(1e-310) * Big::from_f64(2.0)).to_f64(),
+            2e-310
+        );
     }
 
     fn params(names: &[&str], values: &[f64]) -> Params {
