@@ -101,6 +101,36 @@ pub fn unscaled<T: Real, const N: usize>(
     crate::newton::finite(values, quantity)
 }
 
+/// `values` with each length among them (where `lengths` is true) multiplied by `scale`: a
+/// Newton guess in the units of the mechanism scaled by [`length_scale`].
+#[inline(always)]
+pub fn scaled<T: Real, const N: usize>(values: [T; N], lengths: [bool; N], scale: T) -> [T; N] {
+    let mut values = values;
+    for (value, length) in values.iter_mut().zip(lengths) {
+        if length {
+            *value = *value * scale;
+        }
+    }
+    values
+}
+
+/// `error` from Newton on the mechanism scaled by [`length_scale`], in the mechanism's own
+/// units: a residual times `unscale`, and the input it names the caller's own.
+#[cold]
+pub fn newton_at_scale<T: Real>(error: Error<T>, unscale: T, input: T) -> Error<T> {
+    match error {
+        Error::CannotAssemble { .. } => Error::CannotAssemble { input },
+        Error::NoConvergence {
+            iterations,
+            residual_norm,
+        } => Error::NoConvergence {
+            iterations,
+            residual_norm: residual_norm * unscale,
+        },
+        other => other,
+    }
+}
+
 /// `error` from a computation at the input scaled by [`length_scale`], with the input it
 /// names (where it cannot assemble) the caller's own.
 #[cold]

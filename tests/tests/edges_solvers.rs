@@ -2,7 +2,9 @@
 //! the range of motion, thin triangles, scales from 1e-300 to 1e300, non-finite values
 //! inside `Ok`, and Newton stopping short of the attainable accuracy.
 
-use mechanisms::{FourBar, FourBarUnknowns, SliderCrank};
+use mechanisms::{
+    FourBar, FourBarUnknowns, SliderCrank, StephensonSixBar, StephensonSixBarUnknowns,
+};
 use mechgen::{Branch, Error, NewtonOptions, Real};
 
 const BRANCHES: [Branch; 2] = [Branch::Open, Branch::Crossed];
@@ -270,16 +272,24 @@ fn newton_running_away_beyond_the_range_cannot_assemble() {
     );
 }
 
-/// Lengths whose sum overflows: Newton returned its guess, untouched, as Ok.
+/// Lengths whose sum overflows: Newton returned its guess, untouched, as Ok (then, checking
+/// its numbers, NonFinite). It now solves on the mechanism scaled by a power of two, so it
+/// answers as for the same linkage at unit size: the same angles, bit for bit.
 #[test]
-fn newton_says_when_its_numbers_overflow() {
-    let linkage = FourBar::new(5e307, 6e307, 6e307, 3e307).unwrap();
+fn newton_solves_where_the_lengths_sum_beyond_the_float() {
     let guess = FourBarUnknowns {
         theta3: 1.0,
         theta4: 2.0,
     };
-    let got = linkage.position(0.5, &guess, &NewtonOptions::default());
-    assert!(matches!(got, Err(Error::NonFinite { .. })), "{got:?}");
+    let solve = |factor: f64| {
+        FourBar::new(5.0 * factor, 6.0 * factor, 6.0 * factor, 3.0 * factor)
+            .unwrap()
+            .position(0.5, &guess, &NewtonOptions::default())
+            .map(|s| s.value)
+    };
+    let huge = solve(2f64.powi(1020));
+    assert_eq!(huge, solve(1.0));
+    assert_eq!(huge, solve(2f64.powi(-1060)));
 }
 
 /// Newton by default goes to the attainable accuracy, and a solve restarted from its own
@@ -564,4 +574,100 @@ fn a_far_coupler_point_does_not_refuse_the_rates() {
         .motion(60f64.to_radians(), Branch::Open, 10.0, 0.0)
         .unwrap();
     assert!((motion.position.theta4 - 72.1377f64.to_radians()).abs() < 1e-5);
+}
+
+/// Newton (`position`, `motion_near`, the reduced iteration of the Stephenson six-bar) solves
+/// on the mechanism scaled by a power of two, as the closed forms do: the same bits at every
+/// size. In f32 at 2^120 a four-bar's `motion_near` was NonFinite (its right-hand side,
+/// lengths times ω², overflowed though the angular accelerations are 36 rad/s²), and the edge
+/// run's case 646633, a Stephenson six-bar in f32, was Ok at one size and Inaccurate at
+/// another.
+#[test]
+fn newton_gives_the_same_bits_at_every_scale() {
+    let four_bar = |factor: f32| {
+        let linkage =
+            FourBar::<f32>::new(1.8 * factor, 0.8 * factor, 2.0 * factor, 1.5 * factor).unwrap();
+        let guess = FourBarUnknowns {
+            theta3: 0.4,
+            theta4: 1.2,
+        };
+        let options = NewtonOptions::default();
+        let p = linkage.position(1.0, &guess, &options).unwrap();
+        let m = linkage
+            .motion_near(1.0, &guess, &options, 10.0, 2.0)
+            .unwrap();
+        let v = m.value;
+        assert_eq!(p.residual_norm / factor, m.residual_norm / factor);
+        [
+            p.value.theta3,
+            p.value.theta4,
+            v.position.theta3,
+            v.velocity.theta3,
+            v.velocity.theta4,
+            v.acceleration.theta3,
+            v.acceleration.theta4,
+        ]
+        .map(f32::to_bits)
+    };
+    let unit = four_bar(1.0);
+    for power in [-120, -60, 60, 120] {
+        assert_eq!(four_bar(2f32.powi(power)), unit, "four-bar × 2^{power}");
+    }
+    // A slider: its length and rates scaled exactly, its angle the same bits.
+    let slider = |factor: f64| {
+        let linkage = SliderCrank::new(40.0 * factor, 120.0 * factor, 5.0 * factor).unwrap();
+        let guess = linkage.assemble(0.7, Branch::Open).unwrap();
+        let guess = mechanisms::SliderCrankUnknowns {
+            theta3: guess.theta3 + 1e-3,
+            d: guess.d * 1.001,
+        };
+        let m = linkage
+            .motion_near(0.7, &guess, &NewtonOptions::default(), 3.0, -1.0)
+            .unwrap()
+            .value;
+        (
+            [m.position.theta3, m.velocity.theta3, m.acceleration.theta3].map(f64::to_bits),
+            [m.position.d, m.velocity.d, m.acceleration.d].map(|d| d / factor),
+        )
+    };
+    let unit = slider(1.0);
+    for power in [-1000, -500, 500, 1000] {
+        assert_eq!(slider(2f64.powi(power)), unit, "slider-crank × 2^{power}");
+    }
+    // The Stephenson six-bar's reduced iteration.
+    let stephenson = |factor: f64| {
+        let l = |x: f64| x * factor;
+        let linkage = StephensonSixBar::new(
+            l(100.0),
+            l(20.0),
+            l(117.0),
+            [l(60.0), l(63.0)],
+            -0.97,
+            l(52.0),
+            l(85.0),
+            (l(189.0), l(-26.0)),
+        )
+        .unwrap();
+        let guess = StephensonSixBarUnknowns {
+            theta3: -0.25,
+            theta4: 0.63,
+            theta5: 1.43,
+            theta6: 1.46,
+        };
+        let m = linkage
+            .motion_near(0.0, &guess, &NewtonOptions::default(), 5.0, 1.0)
+            .unwrap()
+            .value;
+        [
+            m.position.theta3,
+            m.position.theta6,
+            m.velocity.theta5,
+            m.acceleration.theta6,
+        ]
+        .map(f64::to_bits)
+    };
+    let unit = stephenson(1.0);
+    for power in [-1000, -300, 300, 1000] {
+        assert_eq!(stephenson(2f64.powi(power)), unit, "Stephenson × 2^{power}");
+    }
 }

@@ -7,8 +7,9 @@ use syn::ext::IdentExt;
 
 use super::docs::doc;
 use super::emit::{Block, Emitted, local};
+use super::normalise::Normalised;
 use super::{Bindings, Generator, arg};
-use crate::model::{Kind, SymbolRef};
+use crate::model::SymbolRef;
 use crate::symbolic::{Case, ExprId, Node, Step, Var};
 
 impl Generator<'_> {
@@ -79,63 +80,6 @@ impl Generator<'_> {
                 #solve
                 ::core::result::Result::Ok(#ty { #(#names),* })
             }
-        }
-    }
-
-    /// How a closed-form function computes on the mechanism scaled by a power of two, so
-    /// that it gives the same bits at every size (see [`Normalised`]).
-    fn normalised(&self) -> Normalised {
-        let (scale, unscale) = (local("scale"), local("unscale"));
-        let receiver = local("normalised");
-        let name = &self.model.name;
-        let lengths = self.length_params();
-        let fields = self.scaled_fields(&scale);
-        let input = &self.model.input.name;
-        let length_input = self.model.input.kind == Kind::Length;
-        let scaled = |value: &Ident| {
-            if length_input {
-                quote!(#value * #scale)
-            } else {
-                quote!(#value)
-            }
-        };
-        Normalised {
-            prologue: quote! {
-                let (#scale, #unscale) = ::mechgen::__private::length_scale(&[#(self.#lengths),*]);
-                let #receiver = #name { #(#fields),* };
-            },
-            receiver,
-            input: scaled(input),
-            input_dot: scaled(&self.input_dot),
-            input_ddot: scaled(&self.input_ddot),
-            restore: length_input.then(|| {
-                let error = arg("failure");
-                quote!(.map_err(|#error| ::mechgen::__private::at_input(#error, #input)))
-            }),
-        }
-    }
-
-    /// `values` (an unknowns struct) back in the mechanism's units: its lengths times
-    /// `unscale`, checked finite as `quantity`. The struct itself where there are no lengths.
-    fn unscaled_unknowns(&self, values: &Ident, quantity: &str) -> TokenStream {
-        let ty = &self.unknowns_type;
-        let lengths: Vec<bool> = self
-            .model
-            .unknowns
-            .iter()
-            .map(|unknown| unknown.kind == Kind::Length)
-            .collect();
-        if !lengths.contains(&true) {
-            return quote!(#values);
-        }
-        let unscale = local("unscale");
-        quote! {
-            #ty::from_array(::mechgen::__private::unscaled(
-                #values.to_array(),
-                [#(#lengths),*],
-                #unscale,
-                #quantity,
-            )?)
         }
     }
 
@@ -484,23 +428,6 @@ impl Generator<'_> {
             })
             .collect()
     }
-}
-
-/// A closed-form function's way to compute on its mechanism scaled by a power of two (the
-/// longest length brought into `[1/2, 1)`): exactly, so that the same mechanism at any size,
-/// scaled by a power of two, gives the same bits, and no product of lengths overflows or
-/// leaves the float's normal range.
-struct Normalised {
-    /// Binds `scale`, `unscale` and the scaled copy of the mechanism.
-    prologue: TokenStream,
-    /// The scaled copy.
-    receiver: Ident,
-    /// The input, and its rate and acceleration, as the scaled copy takes them.
-    input: TokenStream,
-    input_dot: TokenStream,
-    input_ddot: TokenStream,
-    /// Gives back an error the input of the caller's units, where the input is a length.
-    restore: Option<TokenStream>,
 }
 
 /// A closed-form case's complex coefficients, in the order its runtime solver takes them.

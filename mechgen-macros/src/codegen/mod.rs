@@ -10,6 +10,7 @@ mod docs;
 mod emit;
 mod evaluators;
 mod newton;
+mod normalise;
 mod points;
 mod rates;
 mod reduced;

@@ -10,6 +10,7 @@ use syn::ext::IdentExt;
 
 use super::docs::doc;
 use super::emit::{Block, Emitted, local, reachable};
+use super::normalise::NewtonEntry;
 use super::{Bindings, Generator, arg, matrix};
 use crate::model::SymbolRef;
 use crate::symbolic::{ExprId, Node, Var};
@@ -46,7 +47,7 @@ impl Generator<'_> {
             ..
         } = self.linearisation(&x, &guess);
         let (doc, signature) = if public {
-            let doc = doc(&format!(
+            let public_doc = doc(&format!(
                 "Solves the loops for the unknowns at `{input}` by a safeguarded Newton-Raphson \
                  from `guess` (see `mechgen::__private::newton`: halved steps, a certified root, \
                  stagnation reported).{branch_doc}\n\n\
@@ -54,7 +55,13 @@ impl Generator<'_> {
                  [`mechgen::Error::CannotAssemble`] where the iterates press against a toggle \
                  the loops cannot pass; no convergence within `options.max_iterations`."
             ));
-            (doc, quote!(pub fn position))
+            let wrapper = self.normalised_newton(NewtonEntry::Position, public_doc);
+            let inner = NewtonEntry::Position.inner();
+            let doc = doc(
+                "[`Self::position`] on the mechanism scaled by a power of two (see \
+                 `normalised_newton` in the generator).",
+            );
+            (quote!(#wrapper #doc), quote!(#[inline(always)] fn #inner))
         } else {
             let fallback = self.fallback_name();
             let doc = doc(
@@ -349,10 +356,12 @@ impl Generator<'_> {
                 )?;
                 #rates_body
         };
+        let wrapper = self.normalised_newton(NewtonEntry::MotionNear, docs);
+        let inner = NewtonEntry::MotionNear.inner();
         let hot = self.motion_near_item(
-            quote!(pub fn motion_near),
-            docs,
-            quote!(#[allow(unused_variables)]),
+            quote!(fn #inner),
+            normalised_motion_near_doc(),
+            quote!(#[allow(unused_variables)] #[inline(always)]),
             self.check_finite_with_rates(),
             body,
         );
@@ -368,7 +377,7 @@ impl Generator<'_> {
             TokenStream::new(),
             aside_body,
         );
-        quote!(#hot #cold)
+        quote!(#wrapper #hot #cold)
     }
 
     /// The `motion_near` item around its body: the signature, the check of the arguments
@@ -391,7 +400,16 @@ impl Generator<'_> {
             #check
             ::mechgen::__private::check_all_finite([#input_dot, #input_ddot], &[#dot_label, #ddot_label])?;
         };
-        self.motion_near_item(quote!(pub fn motion_near), docs, attrs, check, body)
+        let wrapper = self.normalised_newton(NewtonEntry::MotionNear, docs);
+        let inner = NewtonEntry::MotionNear.inner();
+        let solve = self.motion_near_item(
+            quote!(fn #inner),
+            normalised_motion_near_doc(),
+            quote!(#attrs #[inline(always)]),
+            check,
+            body,
+        );
+        quote!(#wrapper #solve)
     }
 
     /// An item with `motion_near`'s signature, named and scoped by `name` (`pub fn
@@ -695,4 +713,12 @@ fn trig_names(
         named.push((id, name.clone(), stage));
         Some(name)
     })
+}
+
+/// The docs of the function under `motion_near`.
+fn normalised_motion_near_doc() -> TokenStream {
+    doc(
+        "[`Self::motion_near`] on the mechanism scaled by a power of two (see \
+         `normalised_newton` in the generator).",
+    )
 }

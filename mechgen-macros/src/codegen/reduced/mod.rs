@@ -37,6 +37,7 @@ use syn::ext::IdentExt;
 
 use super::docs::doc;
 use super::emit::local;
+use super::normalise::NewtonEntry;
 use super::{Generator, arg};
 use crate::symbolic::{ExprId, Reduction, Step};
 use blocks::{block_solve, block_solver};
@@ -93,9 +94,17 @@ impl Generator<'_> {
                 quote!(#factored.relative()),
             )
         };
+        let wrapper = self.normalised_newton(NewtonEntry::Position, doc);
+        let inner = NewtonEntry::Position.inner();
+        let inner_doc = super::docs::doc(
+            "[`Self::position`] on the mechanism scaled by a power of two (see \
+             `normalised_newton` in the generator).",
+        );
         quote! {
-            #doc
-            pub fn position(
+            #wrapper
+            #inner_doc
+            #[inline(always)]
+            fn #inner(
                 &self,
                 #input: T,
                 #guess: &#unknowns,

@@ -1,0 +1,205 @@
+//! Computing on the mechanism scaled by a power of two: the closed forms and Newton take
+//! the caller's mechanism, scale every length (and a length input, its rates, a guess's
+//! lengths and a tolerance) so that the longest is about 1, solve, and scale the lengths they
+//! found back. Scaling by a power of two is exact, so the same mechanism at any size gives
+//! the same bits, and no square or product of lengths overflows or underflows.
+
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
+
+use super::emit::local;
+use super::{Generator, arg};
+use crate::model::Kind;
+
+/// A function's way to compute on its mechanism scaled by a power of two (the
+/// longest length brought into `[1/2, 1)`): exactly, so that the same mechanism at any size,
+/// scaled by a power of two, gives the same bits, and no product of lengths overflows or
+/// leaves the float's normal range.
+pub(super) struct Normalised {
+    /// Binds `scale`, `unscale` and the scaled copy of the mechanism.
+    pub(super) prologue: TokenStream,
+    /// The scaled copy.
+    pub(super) receiver: Ident,
+    /// The input, and its rate and acceleration, as the scaled copy takes them.
+    pub(super) input: TokenStream,
+    pub(super) input_dot: TokenStream,
+    pub(super) input_ddot: TokenStream,
+    /// Gives back an error the input of the caller's units, where the input is a length.
+    pub(super) restore: Option<TokenStream>,
+}
+
+impl Generator<'_> {
+    /// How a function computes on the mechanism scaled by a power of two, so
+    /// that it gives the same bits at every size (see [`Normalised`]).
+    pub(super) fn normalised(&self) -> Normalised {
+        let (scale, unscale) = (local("scale"), local("unscale"));
+        let receiver = local("normalised");
+        let name = &self.model.name;
+        let lengths = self.length_params();
+        let fields = self.scaled_fields(&scale);
+        let input = &self.model.input.name;
+        let length_input = self.model.input.kind == Kind::Length;
+        let scaled = |value: &Ident| {
+            if length_input {
+                quote!(#value * #scale)
+            } else {
+                quote!(#value)
+            }
+        };
+        Normalised {
+            prologue: quote! {
+                let (#scale, #unscale) = ::mechgen::__private::length_scale(&[#(self.#lengths),*]);
+                let #receiver = #name { #(#fields),* };
+            },
+            receiver,
+            input: scaled(input),
+            input_dot: scaled(&self.input_dot),
+            input_ddot: scaled(&self.input_ddot),
+            restore: length_input.then(|| {
+                let error = arg("failure");
+                quote!(.map_err(|#error| ::mechgen::__private::at_input(#error, #input)))
+            }),
+        }
+    }
+
+    /// `values` (an unknowns struct) back in the mechanism's units: its lengths times
+    /// `unscale`, checked finite as `quantity`. The struct itself where there are no lengths.
+    pub(super) fn unscaled_unknowns(&self, values: &Ident, quantity: &str) -> TokenStream {
+        let ty = &self.unknowns_type;
+        let lengths: Vec<bool> = self
+            .model
+            .unknowns
+            .iter()
+            .map(|unknown| unknown.kind == Kind::Length)
+            .collect();
+        if !lengths.contains(&true) {
+            return quote!(#values);
+        }
+        let unscale = local("unscale");
+        quote! {
+            #ty::from_array(::mechgen::__private::unscaled(
+                #values.to_array(),
+                [#(#lengths),*],
+                #unscale,
+                #quantity,
+            )?)
+        }
+    }
+
+    /// The public `position` or `motion_near` (`entry`), with `docs`: the function of that
+    /// entry's [`NewtonEntry::inner`] name, called on the mechanism scaled by a power of two,
+    /// with the guess's lengths and the tolerance scaled alike; the solution's lengths, its
+    /// rates and its residual scaled back. The iteration's rounding is then the same at every
+    /// size, and its squares stay in range.
+    pub(super) fn normalised_newton(&self, entry: NewtonEntry, docs: TokenStream) -> TokenStream {
+        let input = &self.model.input.name;
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (guess, options, failure) = (arg("guess"), arg("options"), arg("failure"));
+        let (scale, unscale) = (local("scale"), local("unscale"));
+        let (scaled_guess, scaled_options) = (local("scaled_guess"), local("scaled_options"));
+        let (solved, value) = (local("solved"), local("value"));
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let Normalised {
+            prologue,
+            receiver,
+            input: scaled_input,
+            input_dot: scaled_dot,
+            input_ddot: scaled_ddot,
+            ..
+        } = self.normalised();
+        let lengths: Vec<bool> = self
+            .model
+            .unknowns
+            .iter()
+            .map(|unknown| unknown.kind == Kind::Length)
+            .collect();
+        let guess_value = if lengths.contains(&true) {
+            quote!(#ty::from_array(::mechgen::__private::scaled(#guess.to_array(), [#(#lengths),*], #scale)))
+        } else {
+            quote!(*#guess)
+        };
+        let inner = entry.inner();
+        let (name, rate_parameters, rate_arguments, value_type, finish) = match entry {
+            NewtonEntry::Position => (
+                quote!(position),
+                TokenStream::new(),
+                TokenStream::new(),
+                quote!(#unknowns),
+                self.unscaled_unknowns(&value, "position"),
+            ),
+            NewtonEntry::MotionNear => {
+                let [position, velocity, acceleration] =
+                    ["position", "velocity", "acceleration"].map(local);
+                let [finish_position, finish_velocity, finish_acceleration] = [
+                    (&position, "position"),
+                    (&velocity, "velocity"),
+                    (&acceleration, "acceleration"),
+                ]
+                .map(|(values, quantity)| self.unscaled_unknowns(values, quantity));
+                (
+                    quote!(motion_near),
+                    quote!(, #input_dot: T, #input_ddot: T),
+                    quote!(, #scaled_dot, #scaled_ddot),
+                    quote!(::mechgen::Motion<#unknowns, T>),
+                    quote! {{
+                        let #position = #value.position;
+                        let #velocity = #value.velocity;
+                        let #acceleration = #value.acceleration;
+                        ::mechgen::Motion {
+                            position: #finish_position,
+                            velocity: #finish_velocity,
+                            acceleration: #finish_acceleration,
+                            accuracy: #value.accuracy,
+                        }
+                    }},
+                )
+            }
+        };
+        quote! {
+            #docs
+            pub fn #name(
+                &self,
+                #input: T,
+                #guess: &#unknowns,
+                #options: &::mechgen::NewtonOptions<T>
+                #rate_parameters
+            ) -> ::core::result::Result<::mechgen::Solved<#value_type, T>, ::mechgen::Error<T>> {
+                #prologue
+                let #scaled_guess = #guess_value;
+                let #scaled_options = ::mechgen::NewtonOptions {
+                    tolerance: #options.tolerance * #scale,
+                    ..*#options
+                };
+                let #solved = #receiver
+                    .#inner(#scaled_input, &#scaled_guess, &#scaled_options #rate_arguments)
+                    .map_err(|#failure| ::mechgen::__private::newton_at_scale(#failure, #unscale, #input))?;
+                let #value = #solved.value;
+                ::core::result::Result::Ok(::mechgen::Solved {
+                    value: #finish,
+                    iterations: #solved.iterations,
+                    residual_norm: #solved.residual_norm * #unscale,
+                    condition: #solved.condition,
+                })
+            }
+        }
+    }
+}
+
+/// The Newton functions that compute on the normalised mechanism.
+#[derive(Clone, Copy)]
+pub(super) enum NewtonEntry {
+    Position,
+    MotionNear,
+}
+
+impl NewtonEntry {
+    /// The private function that solves on the normalised mechanism, under the public one.
+    pub(super) fn inner(self) -> Ident {
+        let name = match self {
+            NewtonEntry::Position => "mechgen_position_normalised",
+            NewtonEntry::MotionNear => "mechgen_motion_near_normalised",
+        };
+        Ident::new(name, Span::call_site())
+    }
+}
