@@ -98,7 +98,8 @@ impl Scalar {
         }
     }
 
-    fn last_span(&self) -> Span {
+    /// The span of the expression's last token.
+    pub fn last_span(&self) -> Span {
         match self {
             Scalar::Name(name) => name.span(),
             Scalar::Number(_, span) | Scalar::Degrees(_, span) => *span,

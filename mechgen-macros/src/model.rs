@@ -104,6 +104,8 @@ pub struct Term {
     pub negated: bool,
     pub magnitude: Linear,
     pub angle: Linear,
+    /// The spans of the term's first and last tokens as written, for diagnostics.
+    pub span: [Span; 2],
 }
 
 /// A vector sum: a loop that must close, or a point's position from the origin.
@@ -111,6 +113,23 @@ pub struct VectorSum {
     pub terms: Vec<Term>,
     /// The sum as the user wrote it, for generated docs.
     pub source: String,
+}
+
+impl VectorSum {
+    /// An error underlining term `term`, or the whole sum. (`Span::join` is unavailable on
+    /// stable, but `syn::Error::new_spanned` spans from a stream's first token to its last.)
+    pub fn error(&self, term: Option<usize>, message: impl std::fmt::Display) -> syn::Error {
+        let [first, last] = match term {
+            Some(t) => self.terms[t].span,
+            None => [
+                self.terms.first().map_or(Span::call_site(), |t| t.span[0]),
+                self.terms.last().map_or(Span::call_site(), |t| t.span[1]),
+            ],
+        };
+        let first = Ident::new("first", first);
+        let last = Ident::new("last", last);
+        syn::Error::new_spanned(quote::quote!(#first #last), message)
+    }
 }
 
 pub struct Point {
@@ -124,6 +143,9 @@ pub struct Point {
 pub struct Outputs {
     pub velocity: bool,
     pub acceleration: bool,
+    /// `generate: assemble`: the closed forms are required, so a declaration without one is
+    /// an error at the loop that has none, rather than a type without `assemble`.
+    pub assemble: bool,
 }
 
 pub struct Model {
@@ -510,6 +532,7 @@ impl Scope {
                 negated: term.negated,
                 magnitude: self.resolve(&term.magnitude, Kind::Length, errors),
                 angle: self.resolve(&term.angle, Kind::Angle, errors),
+                span: [term.magnitude.span(), term.angle.last_span()],
             })
             .collect();
         VectorSum {
@@ -740,18 +763,21 @@ fn check_every_symbol_in_a_loop(
     }
 }
 
-const OUTPUTS: [&str; 3] = ["position", "velocity", "acceleration"];
+const OUTPUTS: [&str; 4] = ["position", "velocity", "acceleration", "assemble"];
 
-/// Rule: outputs are `position`, `velocity`, `acceleration`, each needing the one before.
-/// Without a `generate` section, all three are generated.
+/// Rule: outputs are `position`, `velocity`, `acceleration`, each needing the one before,
+/// and `assemble`, which asks for the closed forms (checked once the loops are planned).
+/// Without a `generate` section, the first three are generated, and the closed forms where
+/// the loops have them.
 fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Outputs {
     let Some((_, names)) = generate else {
         return Outputs {
             velocity: true,
             acceleration: true,
+            assemble: false,
         };
     };
-    let mut seen = [None::<&Ident>; 3];
+    let mut seen = [None::<&Ident>; 4];
     for name in &names {
         match OUTPUTS.iter().position(|o| name == o) {
             Some(i) if seen[i].is_some() => {
@@ -761,12 +787,13 @@ fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Output
             None => errors.error_at(
                 name,
                 format!(
-                    "unknown output `{name}`: expected `position`, `velocity` or `acceleration`"
+                    "unknown output `{name}`: expected `position`, `velocity`, `acceleration` \
+                     or `assemble`"
                 ),
             ),
         }
     }
-    for i in 1..OUTPUTS.len() {
+    for i in 1..3 {
         if let (Some(name), None) = (seen[i], seen[i - 1]) {
             errors.error_at(
                 name,
@@ -781,6 +808,7 @@ fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Output
     Outputs {
         velocity: seen[1].is_some(),
         acceleration: seen[2].is_some(),
+        assemble: seen[3].is_some(),
     }
 }
 

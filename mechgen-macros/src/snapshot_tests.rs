@@ -111,3 +111,69 @@ fn position_only_expansion() {
     }
     assert_expansion("FourBarPositions", &expansion);
 }
+
+/// A four-bar whose coupler angle is measured the other way (`pi - phi3`, coefficient −1):
+/// its closed forms solve for `phi3' = −phi3` and hand back `phi3 = −phi3'`, its unit vector
+/// conjugated, and the scene kernel's block determinant changes sign with that column.
+#[test]
+fn flipped_angle_expansion() {
+    let declaration = quote::quote! {
+        /// Four-bar, the coupler's angle measured backwards.
+        pub struct FourBarBackwards {
+            params: l1, l2, l3, l4;
+            input: theta2: angle;
+            unknowns: phi3: angle, theta4: angle;
+            loop: l2 @ theta2 + l3 @ (pi - phi3) - l4 @ theta4 - l1 @ 0;
+            generate: position, velocity, acceleration, assemble;
+            scene angles: phi3, theta4, phi3_dot, theta4_dot;
+        }
+    };
+    let expansion = pretty(crate::expand::expand(declaration));
+    assert!(expansion.contains("pub fn assemble"));
+    assert_expansion("FourBarBackwards", &expansion);
+}
+
+/// Without a closed form, the struct's docs say which loop has none and why.
+#[test]
+fn docs_say_which_loop_has_no_closed_form() {
+    let cases = [
+        (
+            quote::quote! {
+                pub struct Chain {
+                    params: l1, l2, l3, l4, l5, l6, l7, l8;
+                    input: t: angle;
+                    unknowns: a: angle, b: angle, c: angle, d: angle, e: angle, f: angle;
+                    loop: l1 @ t + l2 @ a - l3 @ b - l1 @ 0;
+                    loop: l4 @ b + l5 @ c + l6 @ d - l7 @ e - l8 @ 0;
+                    loop: l4 @ a + l5 @ c - l6 @ d + l7 @ e - l8 @ f;
+                }
+            },
+            "No closed form: loop 2 (`l4 @ b + l5 @ c + l6 @ d - l7 @ e - l8 @ 0`) has three \
+             unknowns (`c`, `d` and `e`) left after loop 1 solved its own, more than its two \
+             equations fix.",
+        ),
+        (
+            quote::quote! {
+                pub struct BothWays {
+                    params: l1, l2, l3, e, l4;
+                    input: theta2: angle;
+                    unknowns: theta3: angle, theta4: angle;
+                    loop: l2 @ theta2 + l3 @ theta3 + e @ (pi - theta3) - l4 @ theta4 - l1 @ 0;
+                }
+            },
+            "- l1 @ 0`) turns vector 2 with `theta3` and vector 3 with `−theta3`: Chace's \
+             cases need",
+        ),
+    ];
+    for (declaration, expected) in cases {
+        let expansion = pretty(crate::expand::expand(declaration));
+        // The docs as one line, however they were wrapped.
+        let docs: Vec<&str> = expansion
+            .lines()
+            .map_while(|line| line.trim().strip_prefix("///"))
+            .map(str::trim)
+            .collect();
+        let docs = docs.join(" ");
+        assert!(docs.contains(expected), "{docs}");
+    }
+}

@@ -13,18 +13,33 @@ use crate::symbolic::{Equations, Var};
 
 pub fn check(model: &Model, equations: &Equations) -> syn::Result<()> {
     let mut errors = Errors::default();
-    // Rule: a scene kernel is straight-line code, so every loop must close in closed form.
-    if equations.closed_form.is_none() {
+    if let Err(missing) = &equations.closed_form {
+        // Rule: a scene kernel is straight-line code, so every loop must close in closed form.
         for scene in &model.scenes {
             errors.error_at(
                 &scene.name,
                 format!(
                     "scene `{}` needs every loop solved in closed form, but these loops must be \
-                     solved together by Newton-Raphson: use `motion_near` (Newton, then the \
-                     rates)",
-                    scene.name
+                     solved together by Newton-Raphson ({}): use `motion_near` (Newton, then \
+                     the rates)",
+                    scene.name,
+                    missing.sentence(model)
                 ),
             );
+        }
+        // Rule: `generate: assemble` asks for the closed forms, so a loop without one is an
+        // error there, not a type that silently lacks `assemble`.
+        if model.outputs.assemble {
+            let loop_sum = &model.loops[missing.loop_index];
+            errors.push(loop_sum.error(
+                missing.term,
+                format!(
+                    "`generate: assemble` asks for every loop in closed form, but loop {} {}; \
+                     without `assemble`, `position` solves the loops by Newton-Raphson",
+                    missing.loop_index + 1,
+                    missing.reason
+                ),
+            ));
         }
     }
     let rows = equations.jacobian.len();

@@ -41,6 +41,14 @@ impl Generator<'_> {
                 step.case.description(),
                 branch_rule(&step.case, &a, &b),
             ));
+            for (u, _) in step.solved().into_iter().filter(|&(_, flipped)| flipped) {
+                let q = self.model.unknowns[u].name.unraw();
+                docs.push_str(&format!(
+                    "; this loop turns with `−{q}`, so the case solves for `{q}' = −{q}` (read \
+                     `{q}'` for `{q}` above: the branch is that of the loop written in `{q}'`) \
+                     and gives `{q} = −{q}'`"
+                ));
+            }
         }
         docs.push_str(
             "\n\nErrors: [`mechgen::Error::CannotAssemble`] where a loop cannot close (outside \
@@ -126,8 +134,14 @@ impl Generator<'_> {
                 let (prologue, coefficients) = self.block(&needed);
                 let vectors = complex_values(&coefficients);
                 let first = &self.model.unknowns[step.unknowns[0]].name;
+                // A flipped angle's case reads `q' = −q`.
+                let first = if step.flipped[0] {
+                    quote!(-#position.#first)
+                } else {
+                    quote!(#position.#first)
+                };
                 let function = Ident::new(function, proc_macro2::Span::call_site());
-                let sign = quote!(::mechgen::closed::#function(#(#vectors),*, #position.#first));
+                let sign = quote!(::mechgen::closed::#function(#(#vectors),*, #first));
                 quote! {
                     {
                         #prologue
@@ -238,10 +252,12 @@ impl Generator<'_> {
                     _ => quote!((#a, #b, #direction_b)),
                 };
                 let directions = &direction_bindings[s + 1];
+                let flips = self.flips(step, true, true);
                 quote! {
                     #(#computed)*
                     let #pattern = ::mechgen::closed::#solver(#(#vectors),* #sign)
                         .map_err(|#failure| #failure.at(#input))?;
+                    #flips
                     #(#directions)*
                 }
             })
@@ -365,11 +381,13 @@ impl Generator<'_> {
                 // (length, angle, the angle's direction)
                 _ => quote!((#a, #b, #direction_b)),
             };
+            let flips = self.flips(step, true, directions);
             quote! {
                 let #pattern = {
                     #prologue
                     #call
                 };
+                #flips
             }
         });
         quote!(#(#solves)*)
@@ -407,6 +425,26 @@ impl Generator<'_> {
                 quote!(, #branches: [::mechgen::Branch; #n])
             }
         }
+    }
+
+    /// What follows a step's solver call for each [flipped](Step::flipped) angle, which the
+    /// call bound as `q'`: `q = −q'` where `values` are bound, and where `directions` are,
+    /// the unit vector conjugated, `(cos q', −sin q')`.
+    pub(super) fn flips(&self, step: &Step, values: bool, directions: bool) -> TokenStream {
+        let statements = step
+            .solved()
+            .into_iter()
+            .filter(|&(_, flipped)| flipped)
+            .map(|(u, _)| {
+                let name = &self.model.unknowns[u].name;
+                let direction = self.direction(u);
+                let value = values.then(|| quote!(let #name = -#name;));
+                let direction = directions.then(
+                    || quote!(let #direction = ::mechgen::Vec2::new(#direction.x, -#direction.y);),
+                );
+                quote!(#value #direction)
+            });
+        quote!(#(#statements)*)
     }
 
     /// The local holding an unknown angle's `(cos, sin)` from a closed form.

@@ -330,7 +330,7 @@ impl<'a> Generator<'a> {
             self.position(),
             self.condition(),
         ];
-        if let Some(steps) = &self.equations.closed_form {
+        if let Ok(steps) = &self.equations.closed_form {
             functions.push(self.assemble(steps));
             functions.push(self.branch_of(steps));
             if self.model.outputs.acceleration {

@@ -149,7 +149,7 @@ impl Generator<'_> {
     /// cannot assemble), and otherwise `None`, so that Newton judges by the condition.
     /// `None` without closed forms.
     fn assembles(&self) -> TokenStream {
-        let Some(steps) = self.equations.closed_form.as_deref() else {
+        let Ok(steps) = self.equations.closed_form.as_deref() else {
             return quote!(|| ::core::option::Option::None);
         };
         let input = &self.model.input.name;

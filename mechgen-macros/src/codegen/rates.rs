@@ -271,6 +271,7 @@ impl Generator<'_> {
         self.equations
             .closed_form
             .as_deref()
+            .ok()
             .filter(|steps| steps.len() > 1)
     }
 

@@ -24,8 +24,21 @@ impl Generator<'_> {
             let vis = &param.vis;
             quote!(#docs #vis #field: T,)
         });
+        // Without a closed form, the docs say which loop has none and why, in place of the
+        // `assemble` a reader would look for.
+        let missing = self.equations.closed_form.as_ref().err().map(|missing| {
+            let separator = (!attrs.is_empty()).then(|| quote!(#[doc = ""]));
+            let text = doc(&format!(
+                "No closed form: {}. So there is no `assemble` (nor `branch_of`, `motion` or \
+                 scenes): [`position`](Self::position) solves the loops by Newton-Raphson from \
+                 a guess.",
+                missing.sentence(self.model)
+            ));
+            quote!(#separator #text)
+        });
         quote! {
             #(#attrs)*
+            #missing
             #[derive(Clone, Copy, Debug, PartialEq)]
             #vis struct #name<T> {
                 #(#fields)*
@@ -149,7 +162,7 @@ impl Generator<'_> {
             .equations
             .closed_form
             .as_ref()
-            .is_some_and(|steps| steps.iter().any(|s| s.case.has_branches()))
+            .is_ok_and(|steps| steps.iter().any(|s| s.case.has_branches()))
         {
             quote! {
                 self.branch_of(#input_a, &#ty::from_array(#a))

@@ -39,8 +39,9 @@ pub struct Equations {
     /// residual rows can close to.
     pub magnitude_loops: Vec<usize>,
     pub points: Vec<PointExprs>,
-    /// The loops in the order they solve in closed form, if every one does.
-    pub closed_form: Option<Vec<super::closed_form::Step>>,
+    /// The loops in the order they solve in closed form, if every one does; otherwise the
+    /// loop that does not, and why.
+    pub closed_form: Result<Vec<super::closed_form::Step>, super::closed_form::Missing>,
     /// Without a closed form, the fewest unknowns Newton can iterate on, the rest solved in
     /// closed form inside each evaluation, if the loops allow it.
     pub reduction: Option<super::reduction::Reduction>,
@@ -122,7 +123,7 @@ impl Equations {
             .collect();
 
         let closed_form = super::closed_form::plan(model, &mut graph);
-        let reduction = closed_form.is_none().then(|| {
+        let reduction = closed_form.is_err().then(|| {
             let full = super::reduction::Full {
                 residual: &residual,
                 jacobian: &jacobian,
@@ -132,7 +133,7 @@ impl Equations {
             super::reduction::find(model, &mut graph, &full)
         });
         let scenes = match &closed_form {
-            Some(steps) if !model.scenes.is_empty() => {
+            Ok(steps) if !model.scenes.is_empty() => {
                 graph.group_fixed_factors();
                 let mut expand = |roots: &[ExprId]| super::angles::expand(&mut graph, roots);
                 Some(SceneExprs {

@@ -190,7 +190,19 @@ impl Builder<'_> {
 
     /// Records an unknown angle's unit vector: its sine and cosine, and (through `atan2`) its
     /// value, wherever the model's expressions read them.
-    fn solved_angle(&mut self, unknown: usize, unit: Complex, values: &mut [ExprId]) {
+    ///
+    /// `flipped`: `unit` is that of `q' = −q` ([`Step::flipped`]), whose conjugate is `q`'s.
+    fn solved_angle(
+        &mut self,
+        (unknown, flipped): (usize, bool),
+        unit: Complex,
+        values: &mut [ExprId],
+    ) {
+        let unit = if flipped {
+            [unit[0], self.graph.neg(unit[1])]
+        } else {
+            unit
+        };
         let var = self.graph.var(Var::Value(SymbolRef::Unknown(unknown)));
         let angle = self.aux(AuxKind::Angle {
             y: unit[1],
@@ -233,6 +245,7 @@ impl Builder<'_> {
         let coefficients = self.substituted(coefficients);
         let vector = |i: usize| [coefficients[2 * i], coefficients[2 * i + 1]];
         let [a, b] = step.unknowns;
+        let [solved_a, solved_b] = step.solved();
         let mut branch_root = |builder: &mut Self, plus: ExprId, minus: ExprId| {
             let root = builder.aux(AuxKind::BranchRoot {
                 plus,
@@ -250,7 +263,7 @@ impl Builder<'_> {
                 self.block_columns(columns);
                 let inverse_norms = *self.inverse_norms.last().expect("just recorded");
                 // ∂/∂l1 = v1, ∂/∂l2 = v2: the block is the one solved here.
-                self.determinants.push(det);
+                self.determinant(step, det);
                 let inverse = self.aux(AuxKind::InverseDeterminant {
                     det,
                     inverse_norms,
@@ -305,7 +318,7 @@ impl Builder<'_> {
                 // The block's columns are i·P1 and i·P2, so its determinant is
                 // P1 × P2 = P1 × chord = −height (P1 = (chord·along + i·chord·height)/c²).
                 let det = self.graph.neg(height);
-                self.determinants.push(det);
+                self.determinant(step, det);
                 let normal = [self.graph.neg(chord[1]), chord[0]];
                 let (on, off) = (self.scaled(chord, along), self.scaled(normal, height));
                 let sum = self.plus(on, off);
@@ -314,8 +327,8 @@ impl Builder<'_> {
                 let minus_p1 = self.negated(p1);
                 let p2 = self.plus(chord, minus_p1);
                 let (e1, e2) = (self.turn(p1, w1), self.turn(p2, w2));
-                self.solved_angle(a, e1, values);
-                self.solved_angle(b, e2, values);
+                self.solved_angle(solved_a, e1, values);
+                self.solved_angle(solved_b, e2, values);
             }
             Case::LengthAndOwnAngle { .. } => {
                 // |l·w1 + w0| = |K|: a quadratic in l; then the vector turns onto −K.
@@ -334,7 +347,7 @@ impl Builder<'_> {
                 let length = self.quadratic_solution(half_b, root, quadratic);
                 // Columns e^{iq}·w1 and i·e^{iq}·(l·w1 + w0): the determinant is
                 // w1·(l·w1 + w0) = l·|w1|² + w1·w0, the root.
-                self.determinants.push(root);
+                self.determinant(step, root);
                 let moving = self.scaled(w1, length);
                 let turned = self.plus(moving, w0);
                 let target = self.negated(k);
@@ -343,7 +356,7 @@ impl Builder<'_> {
                 let inverse = self.aux(AuxKind::Inverse(k_squared));
                 let unit = self.scaled(product, inverse);
                 self.solved_length(a, length, values);
-                self.solved_angle(b, unit, values);
+                self.solved_angle(solved_b, unit, values);
             }
             Case::LengthAndOtherAngle { .. } => {
                 // The point K + l·v on a line meets the circle of radius |w0|.
@@ -362,15 +375,26 @@ impl Builder<'_> {
                 // Columns v and i·W with W = −(K + l·v): the determinant is
                 // v·W = −(v·K + l·|v|²), minus the root.
                 let det = self.graph.neg(root);
-                self.determinants.push(det);
+                self.determinant(step, det);
                 let along = self.scaled(v, length);
                 let point = self.plus(k, along);
                 let target = self.negated(point);
                 let unit = self.turn(target, w0);
                 self.solved_length(a, length, values);
-                self.solved_angle(b, unit, values);
+                self.solved_angle(solved_b, unit, values);
             }
         }
+    }
+
+    /// Records the step's Jacobian block determinant, `det` as the case knows it for its
+    /// unknowns: a [flipped](Step::flipped) angle's column is minus the case's, in `q'`.
+    fn determinant(&mut self, step: &Step, det: ExprId) {
+        let det = if step.flips_determinant() {
+            self.graph.neg(det)
+        } else {
+            det
+        };
+        self.determinants.push(det);
     }
 
     /// `(−half_b + root) / a`.

@@ -75,6 +75,12 @@ impl Generator<'_> {
             let statements = block.statements.concat();
             let vectors = complex_values(&block.outputs);
             let first = unknown(step.unknowns[0]);
+            // A flipped angle's case reads `q' = −q`.
+            let first = if step.flipped[0] {
+                quote!(-#guess.#first)
+            } else {
+                quote!(#guess.#first)
+            };
             let sign = local(&format!("sign{s}"));
             sign_statements.push(quote! {
                 let #sign = {
@@ -82,7 +88,7 @@ impl Generator<'_> {
                     #(#unknowns)*
                     #(#statements)*
                     ::mechgen::Branch::from_sign(
-                        ::mechgen::closed::#function(#(#vectors),*, #guess.#first),
+                        ::mechgen::closed::#function(#(#vectors),*, #first),
                     )
                     .sign::<T>()
                 };

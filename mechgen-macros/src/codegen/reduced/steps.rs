@@ -54,8 +54,11 @@ impl Generator<'_> {
             .collect()
     }
 
-    /// `let (sin_q, cos_q) = (direction_q.y, direction_q.x);` for the angles `step` solves.
+    /// What follows a step's call: each [flipped](Step::flipped) angle's direction turned
+    /// from `q'`'s to `q`'s, then `let (sin_q, cos_q) = (direction_q.y, direction_q.x);` for
+    /// the angles `step` solves.
     pub(super) fn trig_bindings(&self, directions: &[Direction], step: &Step) -> TokenStream {
+        let flips = self.flips(step, false, true);
         let bindings = directions
             .iter()
             .filter(|d| step.unknowns.contains(&d.unknown))
@@ -63,7 +66,7 @@ impl Generator<'_> {
                 let (direction, [sin, cos]) = (&d.direction, &d.trig);
                 quote!(let (#sin, #cos) = (#direction.y, #direction.x);)
             });
-        quote!(#(#bindings)*)
+        quote!(#flips #(#bindings)*)
     }
 
     /// The pattern that binds a closed form's results (lengths by name, angles as
