@@ -101,6 +101,15 @@ pub fn unscaled<T: Real, const N: usize>(
     crate::newton::finite(values, quantity)
 }
 
+/// Whether Newton solves a mechanism with these lengths as it is given: its size, the sum
+/// of their magnitudes, within [`Real::NEWTON_SIZES`] (not a NaN, not zero). Elsewhere it
+/// solves the mechanism scaled by [`length_scale`], out of line.
+#[inline(always)]
+pub fn newton_as_given<T: Real>(lengths: &[T]) -> bool {
+    let size = lengths.iter().fold(T::zero(), |sum, l| sum + l.abs());
+    size >= T::NEWTON_SIZES[0] && size <= T::NEWTON_SIZES[1]
+}
+
 /// `values` with each length among them (where `lengths` is true) multiplied by `scale`: a
 /// Newton guess in the units of the mechanism scaled by [`length_scale`].
 #[inline(always)]

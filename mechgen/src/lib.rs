@@ -42,8 +42,8 @@ pub mod __private {
     pub use crate::accuracy::{rate_threshold, rates_accuracy, rates_accuracy_at};
     pub use crate::kernel::{
         all_finite as finite_all, at_input, blame, branch_root, inverse, inverse_determinant,
-        lanes, length_scale, newton_at_scale, outputs_finite, rates_inverse_determinant, scaled,
-        triangle_root, unit_angle, unscaled,
+        lanes, length_scale, newton_as_given, newton_at_scale, outputs_finite,
+        rates_inverse_determinant, scaled, triangle_root, unit_angle, unscaled,
     };
     pub use crate::linear::{Factored, orientation, solve_lu, solve2};
     pub use crate::newton::{

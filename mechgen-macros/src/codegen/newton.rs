@@ -56,10 +56,10 @@ impl Generator<'_> {
                  the loops cannot pass; no convergence within `options.max_iterations`."
             ));
             let wrapper = self.normalised_newton(NewtonEntry::Position, public_doc);
-            let inner = NewtonEntry::Position.inner();
+            let inner = NewtonEntry::Position.solve();
             let doc = doc(
-                "[`Self::position`] on the mechanism scaled by a power of two (see \
-                 `normalised_newton` in the generator).",
+                "[`Self::position`] on the mechanism it is called on: the mechanism as \
+                 given, or scaled by a power of two.",
             );
             (quote!(#wrapper #doc), quote!(#[inline(always)] fn #inner))
         } else {
@@ -127,6 +127,7 @@ impl Generator<'_> {
                     #options,
                     #keep_orientation,
                     #common_closure,
+                    #[inline(always)]
                     |#converged| -> #result { #finish },
                     || self.#aside(#input, #guess, #options),
                 )
@@ -333,6 +334,7 @@ impl Generator<'_> {
                     #options,
                     #keep_orientation,
                     #common_closure,
+                    #[inline(always)]
                     |#converged| -> ::core::result::Result<
                         ::mechgen::Solved<::mechgen::Motion<#ty<T>, T>, T>,
                         ::mechgen::Error<T>,
@@ -357,7 +359,7 @@ impl Generator<'_> {
                 #rates_body
         };
         let wrapper = self.normalised_newton(NewtonEntry::MotionNear, docs);
-        let inner = NewtonEntry::MotionNear.inner();
+        let inner = NewtonEntry::MotionNear.solve();
         let hot = self.motion_near_item(
             quote!(fn #inner),
             normalised_motion_near_doc(),
@@ -401,11 +403,11 @@ impl Generator<'_> {
             ::mechgen::__private::check_all_finite([#input_dot, #input_ddot], &[#dot_label, #ddot_label])?;
         };
         let wrapper = self.normalised_newton(NewtonEntry::MotionNear, docs);
-        let inner = NewtonEntry::MotionNear.inner();
+        let inner = NewtonEntry::MotionNear.solve();
         let solve = self.motion_near_item(
             quote!(fn #inner),
             normalised_motion_near_doc(),
-            quote!(#attrs #[inline(always)]),
+            quote!(#attrs #[inline]),
             check,
             body,
         );
@@ -605,6 +607,9 @@ impl Generator<'_> {
             quote! {
                 {
                     #turnings
+                    // Inlined into the iteration whatever the size of the function around it:
+                    // it is called once an iteration, and its values feed the rates.
+                    #[inline(always)]
                     move |#x: &[T; #count]| {
                         let [#(#names),*] = *#x;
                         #turns
@@ -718,7 +723,7 @@ fn trig_names(
 /// The docs of the function under `motion_near`.
 fn normalised_motion_near_doc() -> TokenStream {
     doc(
-        "[`Self::motion_near`] on the mechanism scaled by a power of two (see \
-         `normalised_newton` in the generator).",
+        "[`Self::motion_near`] on the mechanism it is called on: the mechanism as \
+         given, or scaled by a power of two.",
     )
 }

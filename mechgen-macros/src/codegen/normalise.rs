@@ -86,11 +86,13 @@ impl Generator<'_> {
         }
     }
 
-    /// The public `position` or `motion_near` (`entry`), with `docs`: the function of that
-    /// entry's [`NewtonEntry::inner`] name, called on the mechanism scaled by a power of two,
-    /// with the guess's lengths and the tolerance scaled alike; the solution's lengths, its
-    /// rates and its residual scaled back. The iteration's rounding is then the same at every
-    /// size, and its squares stay in range.
+    /// The public `position` or `motion_near` (`entry`), with `docs`: the entry's
+    /// [`NewtonEntry::solve`] on the mechanism as it is given where its size is well inside
+    /// the float's range (`mechgen::__private::newton_as_given`); elsewhere, out of line, on
+    /// the mechanism scaled by a power of two, with the guess's lengths and the tolerance
+    /// scaled alike and the solution's lengths, rates and residual scaled back. Both give the
+    /// same bits (rounding is the same at every power-of-two scale while nothing overflows or
+    /// underflows), and the common case pays for one sum and two comparisons.
     pub(super) fn normalised_newton(&self, entry: NewtonEntry, docs: TokenStream) -> TokenStream {
         let input = &self.model.input.name;
         let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
@@ -119,7 +121,6 @@ impl Generator<'_> {
         } else {
             quote!(*#guess)
         };
-        let inner = entry.inner();
         let (name, rate_parameters, rate_arguments, value_type, finish) = match entry {
             NewtonEntry::Position => (
                 quote!(position),
@@ -156,6 +157,30 @@ impl Generator<'_> {
                 )
             }
         };
+        let normalised = entry.normalised();
+        let solve = entry.solve();
+        let mut sizes: Vec<TokenStream> = self
+            .length_params()
+            .into_iter()
+            .map(|length| quote!(self.#length))
+            .collect();
+        if self.model.input.kind == Kind::Length {
+            sizes.push(quote!(#input));
+        }
+        let (rate_parameters_again, plain_arguments) = match entry {
+            NewtonEntry::Position => (TokenStream::new(), TokenStream::new()),
+            NewtonEntry::MotionNear => (
+                quote!(, #input_dot: T, #input_ddot: T),
+                quote!(, #input_dot, #input_ddot),
+            ),
+        };
+        let result = quote! {
+            ::core::result::Result<::mechgen::Solved<#value_type, T>, ::mechgen::Error<T>>
+        };
+        let normalised_doc = super::docs::doc(&format!(
+            "[`Self::{name}`] on the mechanism scaled by a power of two, for a mechanism whose \
+             size is far from 1: the same bits as at any other size."
+        ));
         quote! {
             #docs
             pub fn #name(
@@ -164,7 +189,24 @@ impl Generator<'_> {
                 #guess: &#unknowns,
                 #options: &::mechgen::NewtonOptions<T>
                 #rate_parameters
-            ) -> ::core::result::Result<::mechgen::Solved<#value_type, T>, ::mechgen::Error<T>> {
+            ) -> #result {
+                if ::mechgen::__private::newton_as_given(&[#(#sizes),*]) {
+                    self.#solve(#input, #guess, #options #plain_arguments)
+                } else {
+                    self.#normalised(#input, #guess, #options #plain_arguments)
+                }
+            }
+
+            #normalised_doc
+            #[cold]
+            #[inline(never)]
+            fn #normalised(
+                &self,
+                #input: T,
+                #guess: &#unknowns,
+                #options: &::mechgen::NewtonOptions<T>
+                #rate_parameters_again
+            ) -> #result {
                 #prologue
                 let #scaled_guess = #guess_value;
                 let #scaled_options = ::mechgen::NewtonOptions {
@@ -172,7 +214,7 @@ impl Generator<'_> {
                     ..*#options
                 };
                 let #solved = #receiver
-                    .#inner(#scaled_input, &#scaled_guess, &#scaled_options #rate_arguments)
+                    .#solve(#scaled_input, &#scaled_guess, &#scaled_options #rate_arguments)
                     .map_err(|#failure| ::mechgen::__private::newton_at_scale(#failure, #unscale, #input))?;
                 let #value = #solved.value;
                 ::core::result::Result::Ok(::mechgen::Solved {
@@ -194,8 +236,18 @@ pub(super) enum NewtonEntry {
 }
 
 impl NewtonEntry {
-    /// The private function that solves on the normalised mechanism, under the public one.
-    pub(super) fn inner(self) -> Ident {
+    /// The private function that solves on the mechanism it is called on, under the public
+    /// one.
+    pub(super) fn solve(self) -> Ident {
+        let name = match self {
+            NewtonEntry::Position => "mechgen_position_solve",
+            NewtonEntry::MotionNear => "mechgen_motion_near_solve",
+        };
+        Ident::new(name, Span::call_site())
+    }
+
+    /// The private function that solves on the mechanism scaled by a power of two.
+    fn normalised(self) -> Ident {
         let name = match self {
             NewtonEntry::Position => "mechgen_position_normalised",
             NewtonEntry::MotionNear => "mechgen_motion_near_normalised",

@@ -95,15 +95,15 @@ impl Generator<'_> {
             )
         };
         let wrapper = self.normalised_newton(NewtonEntry::Position, doc);
-        let inner = NewtonEntry::Position.inner();
+        let inner = NewtonEntry::Position.solve();
         let inner_doc = super::docs::doc(
-            "[`Self::position`] on the mechanism scaled by a power of two (see \
-             `normalised_newton` in the generator).",
+            "[`Self::position`] on the mechanism it is called on: the mechanism as \
+             given, or scaled by a power of two.",
         );
         quote! {
             #wrapper
             #inner_doc
-            #[inline(always)]
+            #[inline]
             fn #inner(
                 &self,
                 #input: T,
