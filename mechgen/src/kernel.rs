@@ -101,13 +101,20 @@ pub fn unscaled<T: Real, const N: usize>(
     crate::newton::finite(values, quantity)
 }
 
-/// Whether Newton solves a mechanism with these lengths as it is given: its size, the sum
-/// of their magnitudes, within [`Real::NEWTON_SIZES`] (not a NaN, not zero). Elsewhere it
-/// solves the mechanism scaled by [`length_scale`], out of line.
+/// Whether the closed forms and Newton solve a mechanism with these lengths as it is given:
+/// its size, the sum of their magnitudes, within [`Real::SIZES_AS_GIVEN`] (not a NaN, not
+/// zero). Elsewhere they solve the mechanism scaled by [`length_scale`], out of line. Within
+/// those bounds no product the solvers form leaves the float's normal range (they are of
+/// degree two in any one length, but for a nearly tangent triangle's area, a few units of
+/// rounding times three lengths, and of lengths times squared rates), down to links some
+/// 2^-40 of the size in `f32`, far shorter than its rounding can tell from nothing: rounding
+/// is then the same as on the scaled mechanism, and so are the bits of the answer. One sum
+/// and two comparisons.
 #[inline(always)]
-pub fn newton_as_given<T: Real>(lengths: &[T]) -> bool {
+pub fn as_given<T: Real>(lengths: &[T]) -> bool {
     let size = lengths.iter().fold(T::zero(), |sum, l| sum + l.abs());
-    size >= T::NEWTON_SIZES[0] && size <= T::NEWTON_SIZES[1]
+    let [smallest, largest] = T::SIZES_AS_GIVEN;
+    size >= smallest && size <= largest
 }
 
 /// `values` with each length among them (where `lengths` is true) multiplied by `scale`: a
@@ -348,6 +355,22 @@ mod tests {
         );
         assert_eq!(branch_root(-1.0, 1.0, 1.0), Err(Failure::CannotClose));
         assert_eq!(branch_root(1.0, f64::NAN, 1.0), Err(Failure::CannotClose));
+    }
+
+    #[test]
+    fn mechanisms_are_solved_as_given_only_well_inside_the_range() {
+        assert!(as_given(&[180.0, 80.0, 0.0, 200.0]));
+        assert!(!as_given::<f64>(&[]));
+        assert!(!as_given(&[1e-61, 1e-62]));
+        assert!(!as_given(&[180.0, 2e60]));
+        assert!(!as_given(&[180.0, f64::NAN]));
+        assert!(!as_given(&[180.0, f64::INFINITY]));
+        assert!(as_given(&[2f64.powi(-200), 1e-300]));
+        assert!(as_given(&[2f64.powi(200)]));
+        // f32's bounds are narrower.
+        assert!(as_given(&[180.0f32, 1e-9]));
+        assert!(!as_given(&[1e-5f32, 1e-6]));
+        assert!(!as_given(&[3e7f32]));
     }
 
     #[test]

@@ -41,8 +41,8 @@ pub use mechgen_macros::mechanism;
 pub mod __private {
     pub use crate::accuracy::{rate_threshold, rates_accuracy, rates_accuracy_at};
     pub use crate::kernel::{
-        all_finite as finite_all, at_input, blame, branch_root, inverse, inverse_determinant,
-        lanes, length_scale, newton_as_given, newton_at_scale, outputs_finite,
+        all_finite as finite_all, as_given, at_input, blame, branch_root, inverse,
+        inverse_determinant, lanes, length_scale, newton_at_scale, outputs_finite,
         rates_inverse_determinant, scaled, triangle_root, unit_angle, unscaled,
     };
     pub use crate::linear::{Factored, orientation, solve_lu, solve2};

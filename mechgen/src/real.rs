@@ -52,13 +52,11 @@ pub trait Real: num_traits::Float + Debug + Display + Default + Send + Sync + 's
     #[doc(hidden)]
     const EPSILON_CUBE_ROOT: Self;
 
-    /// The sizes (sums of a mechanism's lengths) at which Newton solves the mechanism as it
-    /// is given, `[2^-200, 2^200]` for `f64` and `[2^-24, 2^24]` for `f32`: well inside the
-    /// float's range, so that none of its products of lengths, rates and accelerations leaves
-    /// it. Outside them it solves the mechanism scaled by a power of two; by homogeneity both
-    /// round alike, so the answer has the same bits either way.
+    /// The sizes (sums of a mechanism's lengths) at which the closed forms and Newton solve
+    /// the mechanism as it is given (see `as_given` in the runtime's kernel helpers):
+    /// `[2^-200, 2^200]` for `f64`, `[2^-16, 2^24]` for `f32`, well inside the float's range.
     #[doc(hidden)]
-    const NEWTON_SIZES: [Self; 2];
+    const SIZES_AS_GIVEN: [Self; 2];
 
     /// `π/2` in two parts for [`fast::unit_angle`](crate::fast::unit_angle): the first
     /// rounded to nearest, the second `π/2` minus the first, rounded to nearest.
@@ -113,7 +111,7 @@ impl Real for f64 {
     }
 
     const EPSILON_CUBE_ROOT: Self = 6.055_454_452_393_339e-6;
-    const NEWTON_SIZES: [Self; 2] = [6.223_015_277_861_142e-61, 1.606_938_044_258_990_3e60];
+    const SIZES_AS_GIVEN: [Self; 2] = [6.223_015_277_861_142e-61, 1.606_938_044_258_990_3e60];
     const UNIT_ANGLE_PI_OVER_2: [Self; 2] =
         [core::f64::consts::FRAC_PI_2, 6.123_233_995_736_766e-17];
     const UNIT_ANGLE_SPLITTER: Self = 134_217_729.0;
@@ -162,7 +160,7 @@ impl Real for f32 {
     }
 
     const EPSILON_CUBE_ROOT: Self = 4.921_566_6e-3;
-    const NEWTON_SIZES: [Self; 2] = [5.960_464_5e-8, 16_777_216.0];
+    const SIZES_AS_GIVEN: [Self; 2] = [1.525_878_9e-5, 16_777_216.0];
     const UNIT_ANGLE_PI_OVER_2: [Self; 2] = [core::f32::consts::FRAC_PI_2, -4.371_139e-8];
     const UNIT_ANGLE_SPLITTER: Self = 4097.0;
 

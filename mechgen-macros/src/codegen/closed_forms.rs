@@ -55,7 +55,7 @@ impl Generator<'_> {
              the range of motion); a degenerate configuration; a non-finite parameter or input.",
         );
         let docs = doc(&docs);
-        let inner = local("mechgen_assemble_normalised");
+        let inner = local("mechgen_assemble_solve");
         let branch_argument = self.branch_argument(steps);
         let Normalised {
             prologue,
@@ -66,6 +66,9 @@ impl Generator<'_> {
         } = self.normalised();
         let position = local("position");
         let finish = self.unscaled_unknowns(&position, "position");
+        let finish_as_given = self.finite_unknowns(&position, "position");
+        let as_given = self.as_given();
+        let scaled = local("mechgen_assemble_scaled");
         quote! {
             #docs
             pub fn assemble(
@@ -73,13 +76,30 @@ impl Generator<'_> {
                 #input: T #branch_parameter
             ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
+                if #as_given {
+                    let #position = self.#inner(#input #branch_argument)?;
+                    ::core::result::Result::Ok(#finish_as_given)
+                } else {
+                    self.#scaled(#input #branch_argument)
+                }
+            }
+
+            /// [`Self::assemble`] on the mechanism scaled by a power of two (its arguments
+            /// checked), for a mechanism whose size is far from 1: the same bits as at any
+            /// other size.
+            #[cold]
+            #[inline(never)]
+            fn #scaled(
+                &self,
+                #input: T #branch_parameter
+            ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
                 #prologue
                 let #position = #receiver.#inner(#scaled_input #branch_argument)#restore?;
                 ::core::result::Result::Ok(#finish)
             }
 
-            /// [`Self::assemble`] on the mechanism scaled by a power of two (its arguments
-            /// checked), which keeps every digit at any size.
+            /// [`Self::assemble`] on the mechanism it is called on (its arguments checked):
+            /// the mechanism as given, or scaled by a power of two.
             #[inline(always)]
             fn #inner(
                 &self,
@@ -280,7 +300,7 @@ impl Generator<'_> {
              them.\n\nErrors: as [`Self::assemble`], [`Self::velocity`] and \
              [`Self::acceleration`]."
         ));
-        let inner = local("mechgen_motion_normalised");
+        let inner = local("mechgen_motion_solve");
         let branch_argument = self.branch_argument(steps);
         let Normalised {
             prologue,
@@ -301,6 +321,14 @@ impl Generator<'_> {
         ]
         .map(|(values, quantity)| self.unscaled_unknowns(values, quantity));
         let [finish_position, finish_velocity, finish_acceleration] = finish;
+        let [given_position, given_velocity, given_acceleration] = [
+            (&position, "position"),
+            (&velocity, "velocity"),
+            (&acceleration, "acceleration"),
+        ]
+        .map(|(values, quantity)| self.finite_unknowns(values, quantity));
+        let as_given = self.as_given();
+        let scaled = local("mechgen_motion_scaled");
         quote! {
             #docs
             pub fn motion(
@@ -311,6 +339,33 @@ impl Generator<'_> {
             ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
                 ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                if #as_given {
+                    let #motion = self.#inner(#input #branch_argument, #input_dot, #input_ddot)?;
+                    let #position = #motion.position;
+                    let #velocity = #motion.velocity;
+                    let #acceleration = #motion.acceleration;
+                    ::core::result::Result::Ok(::mechgen::Motion {
+                        position: #given_position,
+                        velocity: #given_velocity,
+                        acceleration: #given_acceleration,
+                        accuracy: #motion.accuracy,
+                    })
+                } else {
+                    self.#scaled(#input #branch_argument, #input_dot, #input_ddot)
+                }
+            }
+
+            /// [`Self::motion`] on the mechanism scaled by a power of two (its arguments
+            /// checked), for a mechanism whose size is far from 1: the same bits as at any
+            /// other size.
+            #[cold]
+            #[inline(never)]
+            fn #scaled(
+                &self,
+                #input: T #branch_parameter,
+                #input_dot: T,
+                #input_ddot: T,
+            ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 #prologue
                 let #motion = #receiver
                     .#inner(#scaled_input #branch_argument, #scaled_dot, #scaled_ddot)#restore?;
@@ -325,8 +380,8 @@ impl Generator<'_> {
                 })
             }
 
-            /// [`Self::motion`] on the mechanism scaled by a power of two (its arguments
-            /// checked), which keeps every digit at any size.
+            /// [`Self::motion`] on the mechanism it is called on (its arguments checked): the
+            /// mechanism as given, or scaled by a power of two.
             #[inline(always)]
             fn #inner(
                 &self,

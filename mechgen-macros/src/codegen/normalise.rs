@@ -86,9 +86,35 @@ impl Generator<'_> {
         }
     }
 
+    /// Whether to solve the mechanism as it is given (`mechgen::__private::as_given`, from
+    /// its lengths and a length input): its size well inside the float's range.
+    pub(super) fn as_given(&self) -> TokenStream {
+        let input = &self.model.input.name;
+        let mut sizes: Vec<TokenStream> = self
+            .length_params()
+            .into_iter()
+            .map(|length| quote!(self.#length))
+            .collect();
+        if self.model.input.kind == Kind::Length {
+            sizes.push(quote!(#input));
+        }
+        quote!(::mechgen::__private::as_given(&[#(#sizes),*]))
+    }
+
+    /// `values` (an unknowns struct) checked finite as `quantity` where the unknowns hold a
+    /// length (a length can overflow; an angle from `atan2` cannot): what
+    /// [`Self::unscaled_unknowns`] checks, for the mechanism solved as given.
+    pub(super) fn finite_unknowns(&self, values: &Ident, quantity: &str) -> TokenStream {
+        let ty = &self.unknowns_type;
+        if self.model.unknowns.iter().all(|u| u.kind != Kind::Length) {
+            return quote!(#values);
+        }
+        quote!(#ty::from_array(::mechgen::__private::finite(#values.to_array(), #quantity)?))
+    }
+
     /// The public `position` or `motion_near` (`entry`), with `docs`: the entry's
     /// [`NewtonEntry::solve`] on the mechanism as it is given where its size is well inside
-    /// the float's range (`mechgen::__private::newton_as_given`); elsewhere, out of line, on
+    /// the float's range (`mechgen::__private::as_given`); elsewhere, out of line, on
     /// the mechanism scaled by a power of two, with the guess's lengths and the tolerance
     /// scaled alike and the solution's lengths, rates and residual scaled back. Both give the
     /// same bits (rounding is the same at every power-of-two scale while nothing overflows or
@@ -159,14 +185,7 @@ impl Generator<'_> {
         };
         let normalised = entry.normalised();
         let solve = entry.solve();
-        let mut sizes: Vec<TokenStream> = self
-            .length_params()
-            .into_iter()
-            .map(|length| quote!(self.#length))
-            .collect();
-        if self.model.input.kind == Kind::Length {
-            sizes.push(quote!(#input));
-        }
+        let as_given = self.as_given();
         let (rate_parameters_again, plain_arguments) = match entry {
             NewtonEntry::Position => (TokenStream::new(), TokenStream::new()),
             NewtonEntry::MotionNear => (
@@ -190,7 +209,7 @@ impl Generator<'_> {
                 #options: &::mechgen::NewtonOptions<T>
                 #rate_parameters
             ) -> #result {
-                if ::mechgen::__private::newton_as_given(&[#(#sizes),*]) {
+                if #as_given {
                     self.#solve(#input, #guess, #options #plain_arguments)
                 } else {
                     self.#normalised(#input, #guess, #options #plain_arguments)
