@@ -671,3 +671,112 @@ fn newton_gives_the_same_bits_at_every_scale() {
         assert_eq!(stephenson(2f64.powi(power)), unit, "Stephenson × 2^{power}");
     }
 }
+
+/// Four-bars, slider-cranks and inverted slider-cranks on either side of the sizes at which the
+/// closed forms and Newton solve the mechanism as given (`mechgen::__private::as_given`:
+/// 2^-200 to 2^200 in f64, 2^-16 to 2^24 in f32), each against the same mechanism scaled by a
+/// power of two far outside them: the same bits, or the same error. Link ratios to 1e6 and
+/// inputs within 1e-9 of a limit as well as anywhere.
+#[test]
+fn solving_as_given_or_scaled_gives_the_same_bits() {
+    fn check<T: Real + std::fmt::Debug>(exponents: (f64, f64), shift: i32) -> usize {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut uniform = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let t = |x: f64| T::from(x).unwrap();
+        let same = |a: String, b: String| a == b;
+        let mut compared = 0;
+        for _ in 0..2000 {
+            let decades = uniform() * 6.0;
+            let size = 2f64.powi((exponents.0 + uniform() * (exponents.1 - exponents.0)) as i32);
+            let l: Vec<T> = (0..4)
+                .map(|_| t(10f64.powf(-uniform() * decades) * size))
+                .collect();
+            let k = t(2f64.powi(shift));
+            let (Ok(small), Ok(large)) = (
+                FourBar::new(l[0], l[1], l[2], l[3]),
+                FourBar::new(l[0] * k, l[1] * k, l[2] * k, l[3] * k),
+            ) else {
+                continue;
+            };
+            let limits = small.limit_angles();
+            let input = match (limits.folded, limits.extended, uniform()) {
+                (Some(limit), _, u) | (_, Some(limit), u) if u < 0.6 => {
+                    limit * t(1.0 + (uniform() - 0.5) * 2e-9)
+                }
+                _ => t(uniform() * std::f64::consts::TAU),
+            };
+            let (w, a) = (t(3.0), t(1.0));
+            for branch in [Branch::Open, Branch::Crossed] {
+                let (x, y) = (
+                    small.motion(input, branch, w, a),
+                    large.motion(input, branch, w, a),
+                );
+                let text = |m: &Result<mechgen::Motion<FourBarUnknowns<T>, T>, Error<T>>| match m {
+                    Ok(m) => format!("{:?}", (m.position, m.velocity, m.acceleration)),
+                    Err(e) => format!("{:?}", std::mem::discriminant(e)),
+                };
+                assert!(
+                    same(text(&x), text(&y)),
+                    "{l:?} at {input:?}: {x:?} / {y:?}"
+                );
+                compared += 1;
+                if let Ok(m) = x {
+                    let guess = FourBarUnknowns {
+                        theta3: m.position.theta3 + t(1e-3),
+                        theta4: m.position.theta4 - t(1e-3),
+                    };
+                    let options = NewtonOptions::default();
+                    let newton = |linkage: &FourBar<T>| match linkage
+                        .motion_near(input, &guess, &options, w, a)
+                    {
+                        Ok(s) => format!("{:?}", (s.value.position, s.value.velocity)),
+                        Err(e) => format!("{:?}", std::mem::discriminant(&e)),
+                    };
+                    assert_eq!(newton(&small), newton(&large), "{l:?} at {input:?}");
+                    compared += 1;
+                }
+            }
+            let offset = l[0] - l[3];
+            if let (Ok(small), Ok(large)) = (
+                SliderCrank::new(l[1], l[2], offset),
+                SliderCrank::new(l[1] * k, l[2] * k, offset * k),
+            ) {
+                let angles = |m: Result<
+                    mechgen::Motion<mechanisms::SliderCrankUnknowns<T>, T>,
+                    Error<T>,
+                >,
+                              unit: T| match m {
+                    Ok(m) => format!(
+                        "{:?}",
+                        (
+                            m.position.theta3,
+                            m.velocity.theta3,
+                            m.acceleration.theta3,
+                            m.position.d / unit,
+                            m.acceleration.d / unit
+                        )
+                    ),
+                    Err(e) => format!("{:?}", std::mem::discriminant(&e)),
+                };
+                assert_eq!(
+                    angles(small.motion(input, Branch::Open, w, a), t(1.0)),
+                    angles(large.motion(input, Branch::Open, w, a), k),
+                    "slider-crank {l:?} at {input:?}"
+                );
+                compared += 1;
+            }
+        }
+        compared
+    }
+    assert!(check::<f64>((-202.0, -190.0), 400) > 2000);
+    assert!(check::<f64>((190.0, 202.0), -400) > 2000);
+    assert!(check::<f64>((-20.0, 20.0), 700) > 2000);
+    assert!(check::<f32>((-18.0, -8.0), 40) > 2000);
+    assert!(check::<f32>((16.0, 26.0), -40) > 2000);
+    assert!(check::<f32>((-5.0, 10.0), 60) > 2000);
+}
