@@ -1,4 +1,4 @@
-#![doc = include_str!("../../README.md")]
+#![doc = include_str!("../README.md")]
 #![no_std]
 // One unsafe call, in `simd`, with its reason beside it; nothing else may use unsafe.
 #![deny(unsafe_code)]
