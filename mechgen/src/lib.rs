@@ -15,6 +15,8 @@ pub mod fast;
 pub mod grashof;
 mod kernel;
 mod linear;
+#[cfg(feature = "nalgebra")]
+pub mod nalgebra_support;
 mod newton;
 mod real;
 pub mod simd;
