@@ -10,3 +10,6 @@ cd "$(dirname "$0")/.."
 # The members that are not published (tests, compile-fail, no-std, no-panic) say
 # `publish = false`, and `--workspace` leaves them out.
 cargo publish --dry-run --workspace "$@"
+# Again with every feature, so that mechgen's optional `nalgebra` module builds from its
+# package too.
+cargo publish --dry-run --workspace --all-features "$@"
