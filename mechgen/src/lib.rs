@@ -1,4 +1,4 @@
-#![doc = include_str!("../../README.md")]
+#![doc = include_str!("../README.md")]
 #![no_std]
 // One unsafe call, in `simd`, with its reason beside it; nothing else may use unsafe.
 #![deny(unsafe_code)]
@@ -15,6 +15,8 @@ pub mod fast;
 pub mod grashof;
 mod kernel;
 mod linear;
+#[cfg(feature = "nalgebra")]
+pub mod nalgebra_support;
 mod newton;
 mod real;
 pub mod simd;

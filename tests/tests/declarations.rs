@@ -1,7 +1,7 @@
 //! The declaration language beyond the shipped mechanisms: a length as the driven input,
-//! constant offsets in angles, scaled magnitudes, a leading negative term, and a
-//! position-only declaration. Each generated solver is checked against geometry or finite
-//! differences.
+//! constant offsets in angles, scaled magnitudes, a leading negative term, a position-only
+//! declaration and one without parameters. Each generated solver is checked against geometry
+//! or finite differences.
 
 use mechgen::{Branch, NewtonOptions, mechanism};
 
@@ -25,6 +25,35 @@ mechanism! {
         loop: l2 @ (phi + offset) + 2 * half_l3 @ theta3 - l4 @ (psi + pi / 2) - l1 @ 0;
         generate: position;
     }
+}
+
+mechanism! {
+    /// A block pushed along x by `d` slides up a 45° ramp: no parameters, the input sets
+    /// the size.
+    pub struct Ramp {
+        input: d: length;
+        unknowns: rise: length, along: length;
+        loop: d @ 0 + rise @ (pi / 2) - along @ (pi / 4);
+    }
+}
+
+#[test]
+fn a_declaration_without_parameters_is_built_by_new_and_solves() {
+    let ramp = Ramp::new();
+    assert_eq!(ramp, Ramp::default());
+    let q = ramp.assemble(3.0_f64).unwrap();
+    assert!((q.rise - 3.0).abs() < 1e-12);
+    assert!((q.along - 3.0 * 2f64.sqrt()).abs() < 1e-12);
+    let v = ramp.velocity(3.0, &q, 2.0).unwrap();
+    assert!((v.rise - 2.0).abs() < 1e-12);
+    let guess = RampUnknowns {
+        rise: 0.0,
+        along: 0.0,
+    };
+    let solved = ramp
+        .position(3.0, &guess, &NewtonOptions::default())
+        .unwrap();
+    assert!((solved.value.rise - q.rise).abs() < 1e-12);
 }
 
 #[test]

@@ -186,6 +186,10 @@ impl<'a> Generator<'a> {
     /// The fields of `self` scaled by `scale` (a power of two): its lengths times it, its
     /// angles as they are.
     fn scaled_fields(&self, scale: &Ident) -> Vec<TokenStream> {
+        if self.model.params.is_empty() {
+            let scalar = types::scalar_field();
+            return vec![quote!(#scalar: ::core::marker::PhantomData)];
+        }
         self.model
             .params
             .iter()

@@ -15,14 +15,39 @@ impl Generator<'_> {
         let Model {
             attrs, vis, name, ..
         } = self.model;
-        let fields = self.model.params.iter().map(|param| {
-            let field = &param.name;
-            let docs = docs_or(
-                &param.docs,
-                &format!("Parameter `{}`: {}.", field.unraw(), unit(param.kind)),
-            );
-            let vis = &param.vis;
-            quote!(#docs #vis #field: T,)
+        let mut fields: Vec<TokenStream> = self
+            .model
+            .params
+            .iter()
+            .map(|param| {
+                let field = &param.name;
+                let docs = docs_or(
+                    &param.docs,
+                    &format!("Parameter `{}`: {}.", field.unraw(), unit(param.kind)),
+                );
+                let vis = &param.vis;
+                quote!(#docs #vis #field: T,)
+            })
+            .collect();
+        // A mechanism without parameters (its magnitudes all the input and unknowns) still
+        // has a scalar type, which a field must use; it is then built by `new`.
+        let constructor = self.model.params.is_empty().then(|| {
+            let scalar = scalar_field();
+            fields.push(quote!(#scalar: ::core::marker::PhantomData<T>,));
+            quote! {
+                impl<T> #name<T> {
+                    /// The mechanism: it has no parameters.
+                    pub const fn new() -> Self {
+                        Self { #scalar: ::core::marker::PhantomData }
+                    }
+                }
+
+                impl<T> ::core::default::Default for #name<T> {
+                    fn default() -> Self {
+                        Self::new()
+                    }
+                }
+            }
         });
         // Without a closed form, the docs say which loop has none and why, in place of the
         // `assemble` a reader would look for.
@@ -43,6 +68,8 @@ impl Generator<'_> {
             #vis struct #name<T> {
                 #(#fields)*
             }
+
+            #constructor
         }
     }
 
@@ -227,4 +254,10 @@ pub(super) fn unit(kind: Kind) -> &'static str {
         Kind::Length => "a length",
         Kind::Angle => "an angle, in radians",
     }
+}
+
+/// The field that holds the scalar type of a mechanism without parameters, which has no
+/// other field to name a user's name could clash with.
+pub(super) fn scalar_field() -> Ident {
+    Ident::new("scalar", proc_macro2::Span::call_site())
 }
