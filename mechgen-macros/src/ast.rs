@@ -68,7 +68,20 @@ pub enum Scalar {
     Degrees(f64, Span),
     Neg(Span, Box<Scalar>),
     Binary(BinaryOp, Span, Box<Scalar>, Box<Scalar>),
+    /// `sqrt(21.25)`, `atan2(1, 4.5)`: one of [`FUNCTIONS`] of numbers, evaluated at compile
+    /// time; the span is the closing parenthesis's.
+    Call(Ident, Vec<Scalar>, Span),
 }
+
+/// The functions a declaration may apply to numbers, with how many arguments each takes.
+pub const FUNCTIONS: [(&str, usize); 6] = [
+    ("sqrt", 1),
+    ("sin", 1),
+    ("cos", 1),
+    ("tan", 1),
+    ("atan2", 2),
+    ("hypot", 2),
+];
 
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub enum BinaryOp {
@@ -85,6 +98,7 @@ impl Scalar {
             Scalar::Name(name) => name.span(),
             Scalar::Number(_, span) | Scalar::Degrees(_, span) | Scalar::Neg(span, _) => *span,
             Scalar::Binary(_, _, left, _) => left.span(),
+            Scalar::Call(function, ..) => function.span(),
         }
     }
 
@@ -92,7 +106,10 @@ impl Scalar {
     pub fn numbers(&self) -> Box<dyn Iterator<Item = (f64, Span)> + '_> {
         match self {
             Scalar::Number(value, span) => Box::new(std::iter::once((*value, *span))),
-            Scalar::Name(_) | Scalar::Degrees(..) => Box::new(std::iter::empty()),
+            // A function's value is computed, in radians where it is an angle.
+            Scalar::Name(_) | Scalar::Degrees(..) | Scalar::Call(..) => {
+                Box::new(std::iter::empty())
+            }
             Scalar::Neg(_, inner) => inner.numbers(),
             Scalar::Binary(_, _, left, right) => Box::new(left.numbers().chain(right.numbers())),
         }
@@ -104,6 +121,7 @@ impl Scalar {
             Scalar::Name(name) => name.span(),
             Scalar::Number(_, span) | Scalar::Degrees(_, span) => *span,
             Scalar::Neg(_, inner) | Scalar::Binary(_, _, _, inner) => inner.last_span(),
+            Scalar::Call(_, _, close) => *close,
         }
     }
 
@@ -319,7 +337,11 @@ fn parse_atom(input: ParseStream) -> syn::Result<Scalar> {
         }
         Ok(scalar)
     } else if lookahead.peek(Ident) {
-        Ok(Scalar::Name(input.parse()?))
+        let name: Ident = input.parse()?;
+        if input.peek(syn::token::Paren) {
+            return parse_call(input, name);
+        }
+        Ok(Scalar::Name(name))
     } else if lookahead.peek(syn::LitInt) {
         let literal: syn::LitInt = input.parse()?;
         reject_suffix(literal.suffix(), literal.span())?;
@@ -331,6 +353,40 @@ fn parse_atom(input: ParseStream) -> syn::Result<Scalar> {
     } else {
         Err(lookahead.error())
     }
+}
+
+/// `function(argument, …)`, after the function's name: one of [`FUNCTIONS`], with as many
+/// arguments as it takes.
+fn parse_call(input: ParseStream, function: Ident) -> syn::Result<Scalar> {
+    let inner;
+    let parens = syn::parenthesized!(inner in input);
+    let Some(&(_, arity)) = FUNCTIONS.iter().find(|(name, _)| function == name) else {
+        let known: Vec<String> = FUNCTIONS
+            .iter()
+            .map(|(name, _)| format!("`{name}`"))
+            .collect();
+        return Err(syn::Error::new(
+            function.span(),
+            format!(
+                "`{function}` is not a function a declaration knows: it knows {}",
+                known.join(", ")
+            ),
+        ));
+    };
+    let arguments =
+        syn::punctuated::Punctuated::<Scalar, Token![,]>::parse_terminated_with(&inner, parse_sum)?;
+    let arguments: Vec<Scalar> = arguments.into_iter().collect();
+    if arguments.len() != arity {
+        let plural = if arity == 1 { "" } else { "s" };
+        return Err(syn::Error::new(
+            parens.span.join(),
+            format!(
+                "`{function}` takes {arity} argument{plural}, not {}",
+                arguments.len()
+            ),
+        ));
+    }
+    Ok(Scalar::Call(function, arguments, parens.span.close()))
 }
 
 /// `number deg` (an angle in degrees) where `deg` follows the number, else the number.

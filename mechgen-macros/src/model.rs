@@ -663,6 +663,15 @@ impl Scope {
                 }
             },
             Scalar::Neg(_, inner) => Some(self.linear(inner, expected, errors)?.scaled(-1.0)),
+            Scalar::Call(function, ..) => {
+                let value = constant_value(scalar, function, errors)?;
+                if value.is_finite() {
+                    Some(Linear::constant(value))
+                } else {
+                    errors.push(scalar.error(format!("`{scalar}` is not a finite number")));
+                    None
+                }
+            }
             Scalar::Binary(op, op_span, left, right) => {
                 let l = self.linear(left, expected, errors);
                 let r = self.linear(right, expected, errors);
@@ -827,6 +836,57 @@ impl fmt::Display for ast::VectorSum {
     }
 }
 
+/// The value of a function's argument: numbers (`30 deg` in radians, `pi`) and what
+/// arithmetic and the functions make of them. A declared name is an error: a function is
+/// evaluated at compile time, and a value computed from parameters belongs in a parameter of
+/// its own, which the mechanism's constructor can compute.
+fn constant_value(scalar: &Scalar, function: &Ident, errors: &mut Errors) -> Option<f64> {
+    match scalar {
+        Scalar::Number(value, _) => Some(*value),
+        Scalar::Degrees(value, _) => Some(value.to_radians()),
+        Scalar::Name(name) if name == "pi" => Some(std::f64::consts::PI),
+        Scalar::Name(name) => {
+            errors.error_at(
+                name,
+                format!(
+                    "`{function}` takes numbers only (it is evaluated at compile time), not \
+                     `{name}`: make the value a parameter of its own, computed by the \
+                     mechanism's constructor"
+                ),
+            );
+            None
+        }
+        Scalar::Neg(_, inner) => Some(-constant_value(inner, function, errors)?),
+        Scalar::Binary(op, _, left, right) => {
+            let l = constant_value(left, function, errors);
+            let r = constant_value(right, function, errors);
+            let (l, r) = (l?, r?);
+            Some(match op {
+                BinaryOp::Add => l + r,
+                BinaryOp::Sub => l - r,
+                BinaryOp::Mul => l * r,
+                BinaryOp::Div => l / r,
+            })
+        }
+        Scalar::Call(inner, arguments, _) => {
+            let values: Option<Vec<f64>> = arguments
+                .iter()
+                .map(|argument| constant_value(argument, inner, errors))
+                .collect();
+            // The parser takes only the known functions, each with its number of arguments.
+            match (inner.to_string().as_str(), values?.as_slice()) {
+                ("sqrt", [x]) => Some(x.sqrt()),
+                ("sin", [x]) => Some(x.sin()),
+                ("cos", [x]) => Some(x.cos()),
+                ("tan", [x]) => Some(x.tan()),
+                ("atan2", [y, x]) => Some(y.atan2(*x)),
+                ("hypot", [x, y]) => Some(x.hypot(*y)),
+                _ => None,
+            }
+        }
+    }
+}
+
 impl fmt::Display for Scalar {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -834,6 +894,10 @@ impl fmt::Display for Scalar {
             Scalar::Number(value, _) => write!(f, "{value}"),
             Scalar::Degrees(value, _) => write!(f, "{value} deg"),
             Scalar::Neg(_, inner) => write!(f, "-{inner}"),
+            Scalar::Call(function, arguments, _) => {
+                let arguments: Vec<String> = arguments.iter().map(|a| a.to_string()).collect();
+                write!(f, "{function}({})", arguments.join(", "))
+            }
             Scalar::Binary(op, _, left, right) => {
                 let op = match op {
                     BinaryOp::Add => "+",

@@ -286,3 +286,44 @@ fn angles_can_be_written_in_degrees() {
         assert!(gap_x.hypot(gap_y) < 1e-12 * 200.0, "gap {gap_x}, {gap_y}");
     }
 }
+
+mechanism! {
+    /// The same slider, its line's angle and the offset's written with functions of numbers:
+    /// `atan2(1, sqrt(3))` is 30°, and `hypot(3, 4) / 5` a factor of one.
+    pub struct InclinedFunctions {
+        params: l2, l3, c;
+        input: theta2: angle;
+        unknowns: theta3: angle, d: length;
+        loop: l2 @ theta2 + l3 @ theta3 - hypot(3, 4) / 5 * c @ (pi / 2 + atan2(1, sqrt(3)))
+            - d @ atan2(sin(30 deg), cos(pi / 6));
+    }
+}
+
+/// Functions of numbers (sqrt, sin, cos, tan, atan2, hypot) are evaluated at compile time,
+/// in magnitudes' factors and in angles: the same slider as in degrees, to rounding.
+#[test]
+fn functions_of_numbers_are_constants() {
+    let functions = InclinedFunctions {
+        l2: 40.0,
+        l3: 130.0,
+        c: 15.0,
+    };
+    let degrees = InclinedDegrees {
+        l2: 40.0,
+        l3: 130.0,
+        c: 15.0,
+    };
+    for step in 0..36 {
+        let theta2 = f64::from(step) * 10f64.to_radians();
+        let a = functions.motion(theta2, Branch::Open, 3.0, 1.0).unwrap();
+        let b = degrees.motion(theta2, Branch::Open, 3.0, 1.0).unwrap();
+        for (x, y) in [
+            (a.position.theta3, b.position.theta3),
+            (a.position.d, b.position.d),
+            (a.velocity.theta3, b.velocity.theta3),
+            (a.acceleration.d, b.acceleration.d),
+        ] {
+            assert!((x - y).abs() <= 1e-12 * y.abs().max(1.0), "{x} against {y}");
+        }
+    }
+}
