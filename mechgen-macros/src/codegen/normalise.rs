@@ -62,16 +62,20 @@ impl Generator<'_> {
         }
     }
 
+    /// For each unknown, in declaration order, whether it is a length (which scales).
+    fn length_unknowns(&self) -> Vec<bool> {
+        self.model
+            .unknowns
+            .iter()
+            .map(|unknown| unknown.kind == Kind::Length)
+            .collect()
+    }
+
     /// `values` (an unknowns struct) back in the mechanism's units: its lengths times
     /// `unscale`, checked finite as `quantity`. The struct itself where there are no lengths.
     pub(super) fn unscaled_unknowns(&self, values: &Ident, quantity: &str) -> TokenStream {
         let ty = &self.unknowns_type;
-        let lengths: Vec<bool> = self
-            .model
-            .unknowns
-            .iter()
-            .map(|unknown| unknown.kind == Kind::Length)
-            .collect();
+        let lengths = self.length_unknowns();
         if !lengths.contains(&true) {
             return quote!(#values);
         }
@@ -106,7 +110,7 @@ impl Generator<'_> {
     /// [`Self::unscaled_unknowns`] checks, for the mechanism solved as given.
     pub(super) fn finite_unknowns(&self, values: &Ident, quantity: &str) -> TokenStream {
         let ty = &self.unknowns_type;
-        if self.model.unknowns.iter().all(|u| u.kind != Kind::Length) {
+        if !self.length_unknowns().contains(&true) {
             return quote!(#values);
         }
         quote!(#ty::from_array(::mechgen::__private::finite(#values.to_array(), #quantity)?))
@@ -136,12 +140,7 @@ impl Generator<'_> {
             input_ddot: scaled_ddot,
             ..
         } = self.normalised();
-        let lengths: Vec<bool> = self
-            .model
-            .unknowns
-            .iter()
-            .map(|unknown| unknown.kind == Kind::Length)
-            .collect();
+        let lengths = self.length_unknowns();
         let guess_value = if lengths.contains(&true) {
             quote!(#ty::from_array(::mechgen::__private::scaled(#guess.to_array(), [#(#lengths),*], #scale)))
         } else {
