@@ -915,6 +915,78 @@ mod tests {
         );
     }
 
+    /// `q = input`, but it cannot be assembled for `40 < input < 100`.
+    struct Window;
+
+    impl Kinematics<f64, 1> for Window {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            if input > 40.0 && input < 100.0 {
+                return Err(Error::CannotAssemble { input });
+            }
+            Line.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Line.slope(input, position)
+        }
+
+        fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn what_lies_beyond_is_looked_for_at_distances_scaled_to_the_input_and_the_step() {
+        // Stuck at x = 2: the first solve beyond is √ε·|x| past it.
+        let gap = Counted::new(Gap);
+        let (samples, stop) = sweep(&gap, 3.0, -1.0, -3.0, 1);
+        assert_eq!((samples.len(), gap.work()), (1, (130, 39)));
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 3.0,
+                next_input: 0.0,
+                error: Error::CannotAssemble {
+                    input: 1.9999999702013156
+                }
+            })
+        );
+        // Steps of 1e-8, shorter than √ε: still solves up to 256·√ε beyond.
+        let circle = Counted::new(Circle);
+        let (samples, stop) = sweep(&circle, 1.0 - 1e-7, 1.0, 1e-8, 20);
+        assert_eq!((samples.len(), circle.work()), (10, (71, 66)));
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 0.9999999900000001,
+                next_input: 1.0,
+                error: Error::CannotAssemble {
+                    input: 1.0000000149011612
+                }
+            })
+        );
+        // Pieces of 2^5 in a step of 2^21: refused at 64, halved to 8 (accepted, to 40), and
+        // grown again by doubling (to 56), not back to 2^5 at once.
+        let window = Counted::new(Window);
+        let (samples, stop) = sweep(&window, 0.0, 0.0, 2097152.0, 1);
+        assert_eq!((samples.len(), window.work()), (1, (42, 4)));
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 0.0,
+                next_input: 2097152.0,
+                error: Error::CannotAssemble {
+                    input: 40.00000762939453
+                }
+            })
+        );
+    }
+
     /// The last two of `u32::MAX + 1` samples, then the end: no overflow of the index.
     #[test]
     fn the_longest_sweep_ends_after_its_last_sample() {
