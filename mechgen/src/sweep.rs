@@ -987,6 +987,66 @@ mod tests {
         );
     }
 
+    /// [`Cross`], but Newton does not converge for inputs in `(0, window]`, just past the
+    /// change point.
+    struct Tangle {
+        window: f64,
+    }
+
+    impl Kinematics<f64, 1> for Tangle {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            if input > 0.0 && input <= self.window {
+                return Err(Error::NoConvergence {
+                    iterations: 50,
+                    residual_norm: input,
+                });
+            }
+            Cross.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Cross.slope(input, position)
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            Cross.same_branch(a, p, b, q)
+        }
+    }
+
+    #[test]
+    fn a_change_point_is_told_by_most_of_what_lies_beyond_it_and_a_tie_is_a_toggle() {
+        // Beyond the stuck point, 14 solves at distances growing fourfold from √ε: the
+        // nearest 2 fail and 12 land on the other branch, a change point; with the nearest 7
+        // failing, a tie, which is not enough to say the motion goes on.
+        let (samples, stop) = sweep(&Tangle { window: 1e-7 }, -1.0, 1.0, 0.3, 8);
+        assert_eq!(samples.len(), 4);
+        assert_eq!(
+            stop,
+            Some(Stop::BranchChange {
+                last_input: -1.0 + 0.3 * 3.0,
+                next_input: -1.0 + 0.3 * 4.0
+            })
+        );
+        let (samples, stop) = sweep(&Tangle { window: 1e-4 }, -1.0, 1.0, 0.3, 8);
+        assert_eq!(samples.len(), 4);
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: -1.0 + 0.3 * 3.0,
+                next_input: -1.0 + 0.3 * 4.0,
+                error: Error::NoConvergence {
+                    iterations: 50,
+                    residual_norm: 1.4901070170362611e-8
+                }
+            })
+        );
+    }
+
     /// The last two of `u32::MAX + 1` samples, then the end: no overflow of the index.
     #[test]
     fn the_longest_sweep_ends_after_its_last_sample() {
