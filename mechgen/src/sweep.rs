@@ -1047,6 +1047,38 @@ mod tests {
         );
     }
 
+    /// `q = 10⁸ + 10⁻¹⁰·input`: a motion far below the rounding of the position.
+    struct Offset;
+
+    impl Kinematics<f64, 1> for Offset {
+        fn solve_near(
+            &self,
+            input: f64,
+            _guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            Line.solve_near(1e8 + 1e-10 * input, [0.0], options)
+        }
+
+        fn slope(&self, _input: f64, _position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Ok([1e-10])
+        }
+
+        fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn a_change_lost_in_the_rounding_of_the_position_is_smooth() {
+        // Each step's change rounds to 0 against 10⁻¹⁰ predicted: within 64ε of the position's
+        // size, so accepted at once, not halved.
+        let offset = Counted::new(Offset);
+        let (samples, stop) = sweep(&offset, 0.0, 1e8, 1.0, 10);
+        assert_eq!((samples.len(), stop, offset.work()), (11, None, (11, 11)));
+        assert!(samples.iter().all(|s| s.position == [1e8]));
+    }
+
     /// The last two of `u32::MAX + 1` samples, then the end: no overflow of the index.
     #[test]
     fn the_longest_sweep_ends_after_its_last_sample() {
