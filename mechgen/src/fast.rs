@@ -324,6 +324,27 @@ mod tests {
     }
 
     #[test]
+    fn sin_cos_is_mostly_the_platforms_to_the_last_bit() {
+        // Both mostly round the exact value correctly (here 99.3% agree): a rounding error
+        // more in the cosine's leading terms, within the bound of a float, shows as about
+        // 2% fewer agreeing.
+        let inputs = sin_cos_inputs();
+        let (mut sines, mut cosines) = (0, 0);
+        for &x in &inputs {
+            let (s, c) = sin_cos(x);
+            let (sin, cos) = x.sin_cos();
+            sines += usize::from(s == sin);
+            cosines += usize::from(c == cos);
+        }
+        let least = inputs.len() * 985 / 1000;
+        assert!(
+            sines >= least && cosines >= least,
+            "{sines}, {cosines} of {}",
+            inputs.len()
+        );
+    }
+
+    #[test]
     fn sin_cos_f32_is_within_a_float_of_the_rounded_f64_values() {
         let mut state = 0x2545_f491_4f6c_dd1d;
         let grid = (0..20_000).map(|k| k as f32 * 0.05);
