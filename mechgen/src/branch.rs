@@ -61,3 +61,19 @@ impl Branch {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_zero_sign_is_open_and_each_branch_has_its_sign() {
+        assert_eq!(Branch::from_sign(0.0), Branch::Open);
+        assert_eq!(Branch::from_sign(-0.0f32), Branch::Open);
+        assert_eq!(Branch::from_sign(-1e-300), Branch::Crossed);
+        assert_eq!(Branch::Open.sign::<f64>(), 1.0);
+        assert_eq!(Branch::Crossed.sign::<f32>(), -1.0);
+        assert_eq!(Branch::Open.other(), Branch::Crossed);
+        assert_eq!(Branch::Crossed.other(), Branch::Open);
+    }
+}

@@ -120,3 +120,66 @@ impl<T: fmt::Display> fmt::Display for BatchError<T> {
         write!(f, "input {} of the batch: {}", self.index, self.error)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::format;
+
+    #[test]
+    fn each_error_says_what_went_wrong() {
+        let cases = [
+            (
+                Error::NonFinite {
+                    quantity: "input theta2",
+                },
+                "input theta2 is not finite",
+            ),
+            (
+                Error::CannotAssemble { input: 2.5 },
+                "the mechanism cannot be assembled at input 2.5: it is outside the range of \
+                 motion",
+            ),
+            (
+                Error::Singular {
+                    determinant: 0.0,
+                    relative_determinant: 1e-9,
+                },
+                "the loop Jacobian is singular (determinant 0, relative determinant \
+                 0.000000001): the mechanism is at a toggle or change point",
+            ),
+            (
+                Error::Inaccurate {
+                    order: crate::Order::Velocity,
+                    estimate: 0.5,
+                    required: 0.25,
+                },
+                "the velocity would be off by up to 0.5 relative (more than the 0.25 required): \
+                 the mechanism is too near a toggle or change point",
+            ),
+            (
+                Error::OtherBranch,
+                "Newton-Raphson converged on the other assembly branch than its guess's",
+            ),
+            (
+                Error::NoConvergence {
+                    iterations: 50,
+                    residual_norm: 0.125,
+                },
+                "Newton-Raphson did not converge in 50 iterations (residual norm 0.125)",
+            ),
+        ];
+        for (error, message) in cases {
+            assert_eq!(format!("{error}"), message);
+        }
+        let batch = BatchError {
+            index: 7,
+            error: Error::CannotAssemble { input: 3.0 },
+        };
+        assert_eq!(
+            format!("{batch}"),
+            "input 7 of the batch: the mechanism cannot be assembled at input 3: it is outside \
+             the range of motion"
+        );
+    }
+}

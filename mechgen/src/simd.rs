@@ -88,3 +88,26 @@ mod x86 {
         f()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_widest_path_runs_the_closure_once_and_returns_its_value() {
+        let mut runs = 0;
+        let value = widest(
+            #[inline(always)]
+            || {
+                runs += 1;
+                crate::fast::sin_cos(0.4f64)
+            },
+        );
+        assert_eq!((runs, value), (1, crate::fast::sin_cos(0.4)));
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        assert_eq!(
+            avx2_fma(),
+            std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
+        );
+    }
+}

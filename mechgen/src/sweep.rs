@@ -573,6 +573,43 @@ mod tests {
         }
     }
 
+    /// `q = min(input, 0.1)`, on one branch: a corner in the path at 0.1.
+    struct Corner;
+
+    impl Kinematics<f64, 1> for Corner {
+        fn solve_near(
+            &self,
+            input: f64,
+            _guess: [f64; 1],
+            _options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            Line.solve_near(input.min(0.1), [0.0], &NewtonOptions::default())
+        }
+
+        fn slope(&self, input: f64, _position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Ok([if input < 0.1 { 1.0 } else { 0.0 }])
+        }
+
+        fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn a_long_step_backwards_is_walked_backwards() {
+        // From 0 to −3 in unit pieces, stopped at the gap's edge near −1, not at +1.
+        let (samples, stop) = sweep(&Gap, 0.0, 1.0, -3.0, 1);
+        assert_eq!(samples.len(), 1);
+        match stop {
+            Some(Stop::Toggle {
+                last_input: 0.0,
+                next_input: -3.0,
+                error: Error::CannotAssemble { input },
+            }) => assert!(input < -1.0 && input > -2.0, "{input}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
     /// [`Circle`], but converging on the other branch for inputs just past 1 (up to
     /// 1 + 1e-7), where a toggle's fringe can send Newton.
     struct Fringe;
@@ -760,6 +797,286 @@ mod tests {
         counted.next();
         assert_eq!(counted.size_hint(), (0, Some(3)));
         assert_eq!(counted.count(), 3);
+    }
+
+    /// A mechanism with its solves and velocities counted: the work a sweep does.
+    struct Counted<M> {
+        mechanism: M,
+        solves: core::cell::Cell<u32>,
+        slopes: core::cell::Cell<u32>,
+    }
+
+    impl<M> Counted<M> {
+        fn new(mechanism: M) -> Self {
+            Counted {
+                mechanism,
+                solves: core::cell::Cell::new(0),
+                slopes: core::cell::Cell::new(0),
+            }
+        }
+
+        fn work(&self) -> (u32, u32) {
+            (self.solves.get(), self.slopes.get())
+        }
+    }
+
+    impl<M: Kinematics<f64, 1>> Kinematics<f64, 1> for Counted<M> {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            self.solves.set(self.solves.get() + 1);
+            self.mechanism.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            self.slopes.set(self.slopes.get() + 1);
+            self.mechanism.slope(input, position)
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            self.mechanism.same_branch(a, p, b, q)
+        }
+    }
+
+    #[test]
+    fn a_sweep_costs_one_solve_and_one_velocity_a_smooth_step_and_halves_near_a_toggle() {
+        // (solves, velocities) for the start and each step: one of each where the motion is
+        // smooth; a step longer than a unit is walked in unit pieces, one of more than 2^16
+        // units in 2^16 pieces.
+        let line = |step, steps| {
+            let line = Counted::new(Line);
+            let (samples, stop) = sweep(&line, 0.0, 0.0, step, steps);
+            assert_eq!((samples.len(), stop), (steps as usize + 1, None));
+            line.work()
+        };
+        assert_eq!(line(0.1, 10), (11, 11));
+        assert_eq!(line(3.0, 2), (7, 7));
+        assert_eq!(line(1e6, 1), (65537, 65537));
+        assert_eq!(line(-3.0, 2), (7, 7));
+        // A corner in the path: the unit piece across it is refused as not smooth, and so is
+        // its first half; the quarter is accepted, and the pieces double again.
+        let corner = Counted::new(Corner);
+        let (samples, stop) = sweep(&corner, 0.0, 0.0, 1.0, 1);
+        assert_eq!((samples[1].position, stop), ([0.1], None));
+        assert_eq!(corner.work(), (6, 6));
+        // 2^16 units: still unit pieces, checked for smoothness (the corner's halved); beyond,
+        // 2^16 pieces, checked only for the branch.
+        let corner = Counted::new(Corner);
+        let (samples, stop) = sweep(&corner, 0.0, 0.0, 65536.0, 1);
+        assert_eq!((samples[1].position, stop), ([0.1], None));
+        assert_eq!(corner.work(), (65541, 65541));
+        let corner = Counted::new(Corner);
+        let (samples, stop) = sweep(&corner, 0.0, 0.0, 65540.0, 1);
+        assert_eq!((samples[1].position, stop), ([0.1], None));
+        assert_eq!(corner.work(), (65537, 65537));
+        // Near a toggle, pieces halve (and double again) down to the stuck point, then solve
+        // beyond it: the count pins the halving, the doubling and the look beyond.
+        let circle = Counted::new(Circle);
+        let (samples, _) = sweep(&circle, 0.0, 1.0, 0.1, 15);
+        assert_eq!((samples.len(), circle.work()), (10, (102, 89)));
+        let circle = Counted::new(Circle);
+        let (samples, _) = sweep(&circle, 0.0, -1.0, -0.25, 6);
+        assert_eq!((samples.len(), circle.work()), (4, (99, 44)));
+        let circle = Counted::new(Circle);
+        let (samples, _) = sweep(&circle, 0.0, 1.0, 1e6, 2);
+        assert_eq!((samples.len(), circle.work()), (1, (63, 13)));
+        let cross = Counted::new(Cross);
+        let (samples, _) = sweep(&cross, -1.0, 1.0, 0.3, 8);
+        assert_eq!((samples.len(), cross.work()), (4, (99, 24)));
+        let gap = Counted::new(Gap);
+        let (samples, _) = sweep(&gap, 0.0, 1.0, 3.0, 1);
+        assert_eq!((samples.len(), gap.work()), (1, (131, 78)));
+        let fringe = Counted::new(Fringe);
+        let (samples, stop) = sweep(&fringe, 0.0, 1.0, 0.1, 15);
+        assert_eq!((samples.len(), fringe.work()), (10, (102, 89)));
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 0.9,
+                next_input: 1.0,
+                error: Error::CannotAssemble {
+                    input: 1.0000002384183972
+                }
+            })
+        );
+        let (_, stop) = sweep(&Gap, 0.0, 1.0, 3.0, 1);
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 0.0,
+                next_input: 3.0,
+                error: Error::CannotAssemble {
+                    input: 1.0000000148975232
+                }
+            })
+        );
+    }
+
+    /// `q = input`, but it cannot be assembled for `40 < input < 100`.
+    struct Window;
+
+    impl Kinematics<f64, 1> for Window {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            if input > 40.0 && input < 100.0 {
+                return Err(Error::CannotAssemble { input });
+            }
+            Line.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Line.slope(input, position)
+        }
+
+        fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn what_lies_beyond_is_looked_for_at_distances_scaled_to_the_input_and_the_step() {
+        // Stuck at x = 2: the first solve beyond is √ε·|x| past it.
+        let gap = Counted::new(Gap);
+        let (samples, stop) = sweep(&gap, 3.0, -1.0, -3.0, 1);
+        assert_eq!((samples.len(), gap.work()), (1, (130, 39)));
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 3.0,
+                next_input: 0.0,
+                error: Error::CannotAssemble {
+                    input: 1.9999999702013156
+                }
+            })
+        );
+        // Steps of 1e-8, shorter than √ε: still solves up to 256·√ε beyond.
+        let circle = Counted::new(Circle);
+        let (samples, stop) = sweep(&circle, 1.0 - 1e-7, 1.0, 1e-8, 20);
+        assert_eq!((samples.len(), circle.work()), (10, (71, 66)));
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 0.9999999900000001,
+                next_input: 1.0,
+                error: Error::CannotAssemble {
+                    input: 1.0000000149011612
+                }
+            })
+        );
+        // Pieces of 2^5 in a step of 2^21: refused at 64, halved to 8 (accepted, to 40), and
+        // grown again by doubling (to 56), not back to 2^5 at once.
+        let window = Counted::new(Window);
+        let (samples, stop) = sweep(&window, 0.0, 0.0, 2097152.0, 1);
+        assert_eq!((samples.len(), window.work()), (1, (42, 4)));
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 0.0,
+                next_input: 2097152.0,
+                error: Error::CannotAssemble {
+                    input: 40.00000762939453
+                }
+            })
+        );
+    }
+
+    /// [`Cross`], but Newton does not converge for inputs in `(0, window]`, just past the
+    /// change point.
+    struct Tangle {
+        window: f64,
+    }
+
+    impl Kinematics<f64, 1> for Tangle {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            if input > 0.0 && input <= self.window {
+                return Err(Error::NoConvergence {
+                    iterations: 50,
+                    residual_norm: input,
+                });
+            }
+            Cross.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Cross.slope(input, position)
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            Cross.same_branch(a, p, b, q)
+        }
+    }
+
+    #[test]
+    fn a_change_point_is_told_by_most_of_what_lies_beyond_it_and_a_tie_is_a_toggle() {
+        // Beyond the stuck point, 14 solves at distances growing fourfold from √ε: the
+        // nearest 2 fail and 12 land on the other branch, a change point; with the nearest 7
+        // failing, a tie, which is not enough to say the motion goes on.
+        let (samples, stop) = sweep(&Tangle { window: 1e-7 }, -1.0, 1.0, 0.3, 8);
+        assert_eq!(samples.len(), 4);
+        assert_eq!(
+            stop,
+            Some(Stop::BranchChange {
+                last_input: -1.0 + 0.3 * 3.0,
+                next_input: -1.0 + 0.3 * 4.0
+            })
+        );
+        let (samples, stop) = sweep(&Tangle { window: 1e-4 }, -1.0, 1.0, 0.3, 8);
+        assert_eq!(samples.len(), 4);
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: -1.0 + 0.3 * 3.0,
+                next_input: -1.0 + 0.3 * 4.0,
+                error: Error::NoConvergence {
+                    iterations: 50,
+                    residual_norm: 1.4901070170362611e-8
+                }
+            })
+        );
+    }
+
+    /// `q = 10⁸ + 10⁻¹⁰·input`: a motion far below the rounding of the position.
+    struct Offset;
+
+    impl Kinematics<f64, 1> for Offset {
+        fn solve_near(
+            &self,
+            input: f64,
+            _guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            Line.solve_near(1e8 + 1e-10 * input, [0.0], options)
+        }
+
+        fn slope(&self, _input: f64, _position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Ok([1e-10])
+        }
+
+        fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn a_change_lost_in_the_rounding_of_the_position_is_smooth() {
+        // Each step's change rounds to 0 against 10⁻¹⁰ predicted: within 64ε of the position's
+        // size, so accepted at once, not halved.
+        let offset = Counted::new(Offset);
+        let (samples, stop) = sweep(&offset, 0.0, 1e8, 1.0, 10);
+        assert_eq!((samples.len(), stop, offset.work()), (11, None, (11, 11)));
+        assert!(samples.iter().all(|s| s.position == [1e8]));
     }
 
     /// The last two of `u32::MAX + 1` samples, then the end: no overflow of the index.

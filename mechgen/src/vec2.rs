@@ -119,3 +119,74 @@ fn sum<T: crate::Real>(values: [T; 4]) -> Result<T, crate::Error<T>> {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Error;
+
+    #[test]
+    fn a_vector_has_its_length_direction_sum_and_difference() {
+        let a = Vec2::new(3.0, -4.0);
+        let b = Vec2::new(0.5, 2.0);
+        assert_eq!(a.norm(), 5.0);
+        assert_eq!(Vec2::new(-2.0f32, 0.0).angle(), core::f32::consts::PI);
+        assert_eq!(Vec2::new(1.0, 1.0).angle(), core::f64::consts::FRAC_PI_4);
+        assert_eq!(a + b, Vec2::new(3.5, -2.0));
+        assert_eq!(a - b, Vec2::new(2.5, -6.0));
+    }
+
+    fn parts(x: [f64; 4], y: [f64; 4]) -> AccelerationParts<f64> {
+        AccelerationParts {
+            tangential: Vec2::new(x[0], y[0]),
+            normal: Vec2::new(x[1], y[1]),
+            sliding: Vec2::new(x[2], y[2]),
+            coriolis: Vec2::new(x[3], y[3]),
+        }
+    }
+
+    #[test]
+    fn the_total_acceleration_sums_its_parts_even_past_an_overflowing_partial_sum() {
+        assert_eq!(
+            parts([1.0, 2.0, 4.0, 8.0], [-1.0, 0.5, 0.25, 3.0]).total(),
+            Ok(Vec2::new(15.0, 2.75))
+        );
+        // (MAX + MAX) overflows, but the total, MAX − MAX/2 + … , fits: summed at half scale.
+        let max = f64::MAX;
+        assert_eq!(
+            parts([max, max, -max, -0.5 * max], [0.0; 4]).total(),
+            Ok(Vec2::new(0.5 * max, 0.0))
+        );
+        assert_eq!(
+            parts([0.0; 4], [max, max, -max, 3.0]).total(),
+            Ok(Vec2::new(0.0, max))
+        );
+        // The total itself too large.
+        assert_eq!(
+            parts([max, max, 0.0, 0.0], [0.0; 4]).total(),
+            Err(Error::NonFinite {
+                quantity: "point acceleration"
+            })
+        );
+        assert_eq!(
+            parts([0.0; 4], [0.0, 0.0, -max, -max]).total(),
+            Err(Error::NonFinite {
+                quantity: "point acceleration"
+            })
+        );
+        for bad in [f64::NAN, f64::INFINITY] {
+            assert_eq!(
+                parts([0.0, 0.0, 0.0, bad], [0.0; 4]).total(),
+                Err(Error::NonFinite {
+                    quantity: "point acceleration part"
+                })
+            );
+            assert_eq!(
+                parts([0.0; 4], [bad, 0.0, 0.0, 0.0]).total(),
+                Err(Error::NonFinite {
+                    quantity: "point acceleration part"
+                })
+            );
+        }
+    }
+}
