@@ -610,29 +610,40 @@ mod tests {
         }
     }
 
-    /// [`Circle`], but converging on the other branch for inputs just past 1 (up to
-    /// 1 + 1e-7), where a toggle's fringe can send Newton.
-    struct Fringe;
+    /// `inner`, but its solve failing with `fail`'s error where `fail` gives one.
+    struct Failing<M, F> {
+        inner: M,
+        fail: F,
+    }
 
-    impl Kinematics<f64, 1> for Fringe {
+    impl<M: Kinematics<f64, 1>, F: Fn(f64) -> Option<Error<f64>>> Kinematics<f64, 1> for Failing<M, F> {
         fn solve_near(
             &self,
             input: f64,
             guess: [f64; 1],
             options: &NewtonOptions<f64>,
         ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
-            if input > 1.0 && input <= 1.0 + 1e-7 {
-                return Err(Error::OtherBranch);
+            match (self.fail)(input) {
+                Some(error) => Err(error),
+                None => self.inner.solve_near(input, guess, options),
             }
-            Circle.solve_near(input, guess, options)
         }
 
         fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
-            Circle.slope(input, position)
+            self.inner.slope(input, position)
         }
 
         fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
-            Circle.same_branch(a, p, b, q)
+            self.inner.same_branch(a, p, b, q)
+        }
+    }
+
+    /// [`Circle`], but converging on the other branch for inputs just past 1 (up to
+    /// 1 + 1e-7), where a toggle's fringe can send Newton.
+    fn fringe() -> impl Kinematics<f64, 1> {
+        Failing {
+            inner: Circle,
+            fail: |input: f64| (input > 1.0 && input <= 1.0 + 1e-7).then_some(Error::OtherBranch),
         }
     }
 
@@ -640,7 +651,7 @@ mod tests {
     fn a_toggle_is_told_by_most_of_what_lies_beyond_it() {
         // Beyond the stuck point, the nearest two solves land on the other branch and the
         // farther ones cannot assemble: more failures, so a toggle.
-        let (samples, stop) = sweep(&Fringe, 0.0, 1.0, 0.1, 15);
+        let (samples, stop) = sweep(&fringe(), 0.0, 1.0, 0.1, 15);
         assert_eq!(samples.len(), 10);
         match stop {
             Some(Stop::Toggle {
@@ -889,7 +900,7 @@ mod tests {
         let gap = Counted::new(Gap);
         let (samples, _) = sweep(&gap, 0.0, 1.0, 3.0, 1);
         assert_eq!((samples.len(), gap.work()), (1, (131, 78)));
-        let fringe = Counted::new(Fringe);
+        let fringe = Counted::new(fringe());
         let (samples, stop) = sweep(&fringe, 0.0, 1.0, 0.1, 15);
         assert_eq!((samples.len(), fringe.work()), (10, (102, 89)));
         assert_eq!(
@@ -989,32 +1000,15 @@ mod tests {
 
     /// [`Cross`], but Newton does not converge for inputs in `(0, window]`, just past the
     /// change point.
-    struct Tangle {
-        window: f64,
-    }
-
-    impl Kinematics<f64, 1> for Tangle {
-        fn solve_near(
-            &self,
-            input: f64,
-            guess: [f64; 1],
-            options: &NewtonOptions<f64>,
-        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
-            if input > 0.0 && input <= self.window {
-                return Err(Error::NoConvergence {
+    fn tangle(window: f64) -> impl Kinematics<f64, 1> {
+        Failing {
+            inner: Cross,
+            fail: move |input: f64| {
+                (input > 0.0 && input <= window).then_some(Error::NoConvergence {
                     iterations: 50,
                     residual_norm: input,
-                });
-            }
-            Cross.solve_near(input, guess, options)
-        }
-
-        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
-            Cross.slope(input, position)
-        }
-
-        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
-            Cross.same_branch(a, p, b, q)
+                })
+            },
         }
     }
 
@@ -1023,7 +1017,7 @@ mod tests {
         // Beyond the stuck point, 14 solves at distances growing fourfold from √ε: the
         // nearest 2 fail and 12 land on the other branch, a change point; with the nearest 7
         // failing, a tie, which is not enough to say the motion goes on.
-        let (samples, stop) = sweep(&Tangle { window: 1e-7 }, -1.0, 1.0, 0.3, 8);
+        let (samples, stop) = sweep(&tangle(1e-7), -1.0, 1.0, 0.3, 8);
         assert_eq!(samples.len(), 4);
         assert_eq!(
             stop,
@@ -1032,7 +1026,7 @@ mod tests {
                 next_input: -1.0 + 0.3 * 4.0
             })
         );
-        let (samples, stop) = sweep(&Tangle { window: 1e-4 }, -1.0, 1.0, 0.3, 8);
+        let (samples, stop) = sweep(&tangle(1e-4), -1.0, 1.0, 0.3, 8);
         assert_eq!(samples.len(), 4);
         assert_eq!(
             stop,
