@@ -90,6 +90,27 @@ pub fn sin_cos_limit<T: Real>() -> T {
 /// ```
 #[inline(always)]
 pub fn sin_cos<T: Real>(x: T) -> (T, T) {
+    // Range check, off the critical path: 0 within the limit; NaN beyond it, for ±∞ and for
+    // NaN, subtracted from the quadrant, so that it poisons both results.
+    let excess = x.abs() - T::SIN_COS_LIMIT;
+    let overflow = (excess + excess.abs()) * T::max_value() * T::max_value();
+    // ∞ − ∞ is the NaN wanted; 0 − 0 is 0.
+    #[allow(clippy::eq_op)]
+    let nan_beyond = overflow - overflow;
+    sin_cos_offset(x, nan_beyond)
+}
+
+/// [`sin_cos`] for `|x| ≤` [`sin_cos_limit`], which the caller has checked: the same bits,
+/// without the range check's arithmetic (scalar code that branches on the range anyway).
+#[inline(always)]
+pub(crate) fn sin_cos_within_limit<T: Real>(x: T) -> (T, T) {
+    sin_cos_offset(x, T::zero())
+}
+
+/// [`sin_cos`]'s arithmetic, with `offset` (0, or NaN to poison both results) subtracted
+/// from the quadrant.
+#[inline(always)]
+fn sin_cos_offset<T: Real>(x: T, offset: T) -> (T, T) {
     let one = T::one();
     let two = T::constant(2.0);
     let four = T::constant(4.0);
@@ -126,15 +147,7 @@ pub fn sin_cos<T: Real>(x: T) -> (T, T) {
     // m = |q − 1| − 1: triangle waves, each 0 or ±1, so every product below is exact and
     // every sum has a zero term. At q = 0, m is +0, and subtracting c·m = +0 keeps s's sign
     // of zero: sin(−0) = −0.
-    //
-    // Range check, off the critical path: 0 within the limit; NaN beyond it, for ±∞ and for
-    // NaN, subtracted from q, so that it poisons both results.
-    let excess = x.abs() - T::SIN_COS_LIMIT;
-    let overflow = (excess + excess.abs()) * T::max_value() * T::max_value();
-    // ∞ − ∞ is the NaN wanted; 0 − 0 is 0.
-    #[allow(clippy::eq_op)]
-    let nan_beyond = overflow - overflow;
-    let q = (n - four * round(n * quarter - three_eighths)) - nan_beyond;
+    let q = (n - four * round(n * quarter - three_eighths)) - offset;
     let cos_n = (q - two).abs() - one;
     let m = (q - one).abs() - one;
     (s * cos_n - c * m, c * cos_n + s * m)

@@ -864,14 +864,20 @@ impl<T: Real, const K: usize> Default for Turnings<T, K> {
     }
 }
 
-/// `(sin x, cos x)` of an angle computed once per solve (the input's): inline
-/// [`fast::sin_cos`](crate::fast::sin_cos) within its limit (within 0.9 ulp, no call and a few
-/// instructions fewer than the platform's), else the platform's, out of line.
+/// `(sin x, cos x)` for generated code: for `f64`, inline
+/// [`fast::sin_cos`](crate::fast::sin_cos) within its limit (within 0.9 ulp; no call, so no
+/// live value is spilled around one, and fewer instructions than the platform's), else the
+/// platform's, out of line; for `f32`, the platform's (see [`Real::INLINE_SIN_COS`]). Every
+/// generated function takes its input's sine and cosine from here, so that they all see the
+/// same bits.
 #[inline(always)]
 pub fn sin_cos<T: Real>(x: T) -> (T, T) {
+    if !T::INLINE_SIN_COS {
+        return x.sin_cos();
+    }
     // False for NaN, which the platform's maps to NaN as well.
     if x.abs() <= crate::fast::sin_cos_limit::<T>() {
-        crate::fast::sin_cos(x)
+        crate::fast::sin_cos_within_limit(x)
     } else {
         let ([sin], [cos]) = platform_sin_cos([x]);
         (sin, cos)
@@ -891,7 +897,7 @@ fn fresh_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K]) {
     let mut sines = angles;
     let mut cosines = angles;
     for ((s, c), a) in sines.iter_mut().zip(&mut cosines).zip(angles) {
-        (*s, *c) = crate::fast::sin_cos(a);
+        (*s, *c) = crate::fast::sin_cos_within_limit(a);
     }
     (sines, cosines)
 }

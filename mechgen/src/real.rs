@@ -17,6 +17,13 @@ pub trait Real: num_traits::Float + Debug + Display + Default + Send + Sync + 's
     #[doc(hidden)]
     const SIN_COS_LIMIT: Self;
 
+    /// Whether generated code's scalar sines and cosines (`__private::sin_cos`) inline
+    /// [`fast::sin_cos`](crate::fast::sin_cos) within its limit: for `f64`, where its
+    /// arithmetic takes fewer instructions than a call of the C library's `sincos`; not for
+    /// `f32`, whose `sincosf` is cheaper still.
+    #[doc(hidden)]
+    const INLINE_SIN_COS: bool;
+
     /// `2/π`, rounded to nearest: the quadrant of `x` is `x·(2/π)` rounded to an integer.
     #[doc(hidden)]
     const SIN_COS_TWO_OVER_PI: Self;
@@ -85,6 +92,7 @@ impl Real for f64 {
     }
 
     const SIN_COS_LIMIT: Self = 1e6;
+    const INLINE_SIN_COS: bool = true;
     const SIN_COS_TWO_OVER_PI: Self = core::f64::consts::FRAC_2_PI;
     const SIN_COS_SHIFTER: Self = 6_755_399_441_055_744.0;
     const SIN_COS_PI_OVER_2: [Self; 4] = [
@@ -146,6 +154,7 @@ impl Real for f32 {
     }
 
     const SIN_COS_LIMIT: Self = 1e3;
+    const INLINE_SIN_COS: bool = false;
     const SIN_COS_TWO_OVER_PI: Self = core::f32::consts::FRAC_2_PI;
     const SIN_COS_SHIFTER: Self = 12_582_912.0;
     const SIN_COS_PI_OVER_2: [Self; 4] =

@@ -258,7 +258,9 @@ impl Emitter<'_> {
         assign(Node::Sin(angle), &sin_name);
         assign(Node::Cos(angle), &cos_name);
         match (sin, cos) {
-            (true, true) => quote!(let (#sin_name, #cos_name) = #argument.sin_cos();),
+            (true, true) => {
+                quote!(let (#sin_name, #cos_name) = ::mechgen::__private::sin_cos(#argument);)
+            }
             (true, false) => quote!(let #sin_name = #argument.sin();),
             _ => quote!(let #cos_name = #argument.cos();),
         }

@@ -14,13 +14,19 @@ use super::graph::{ExprId, Graph, Node, Var};
 use super::rewrite::Rewriter;
 
 /// `roots`, rewritten with every sine and cosine of a sum taken apart.
+///
+/// A fixed factor of such a product goes into the expansion's terms: `a·cos(θ3 + δ)` is
+/// `(a·cos δ)·cos θ3 − (a·sin δ)·sin θ3`, whose fixed products are computed once per
+/// mechanism (see [`Graph::distributing`]).
 pub fn expand(graph: &mut Graph, roots: &[ExprId]) -> Vec<ExprId> {
-    Rewriter::new(|graph, id| match graph.node(id) {
-        Node::Cos(angle) => Some(unit(graph, angle)[0]),
-        Node::Sin(angle) => Some(unit(graph, angle)[1]),
-        _ => None,
+    graph.distributing(|graph| {
+        Rewriter::new(|graph, id| match graph.node(id) {
+            Node::Cos(angle) => Some(unit(graph, angle)[0]),
+            Node::Sin(angle) => Some(unit(graph, angle)[1]),
+            _ => None,
+        })
+        .all(graph, roots)
     })
-    .all(graph, roots)
 }
 
 /// `(cos, sin)` of `angle` as a product of one unit vector per moving name and one for the

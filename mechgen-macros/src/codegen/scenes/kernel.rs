@@ -66,7 +66,7 @@ impl Generator<'_> {
                 if lanes {
                     quote!(let (#sin, #cos) = ::mechgen::fast::sin_cos(#input);)
                 } else {
-                    quote!(let (#sin, #cos) = #input.sin_cos();)
+                    quote!(let (#sin, #cos) = ::mechgen::__private::sin_cos(#input);)
                 }
             });
         // Auxiliary value k is known from stage k + 1.

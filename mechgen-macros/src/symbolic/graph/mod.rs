@@ -84,6 +84,9 @@ pub struct Graph {
     fixed: Vec<bool>,
     /// While set, products keep their fixed factors together (see [`Graph::mul`]).
     group_fixed: bool,
+    /// While set (and `group_fixed`), a product multiplies its fixed factors into a sum
+    /// whose every term has fixed factors of its own (see [`Graph::distributing`]).
+    distribute_fixed: bool,
 }
 
 /// Values within this of 0 or ±1 after folding `sin`/`cos` of a constant are snapped, so that
@@ -144,6 +147,19 @@ impl Graph {
     /// mechanism. Expressions built before keep their form.
     pub fn group_fixed_factors(&mut self) {
         self.group_fixed = true;
+    }
+
+    /// `build` run with products multiplying their fixed factors into the sums they scale,
+    /// where every term of the sum has fixed factors too: `a·(cos δ·cos θ − sin δ·sin θ)`
+    /// becomes `(a·cos δ)·cos θ − (a·sin δ)·sin θ`, one product fewer once the fixed
+    /// products are computed per mechanism. Only for the sums an angle's expansion makes,
+    /// which nothing else reads: a sum that other expressions read whole would be computed
+    /// twice.
+    pub fn distributing<R>(&mut self, build: impl FnOnce(&mut Self) -> R) -> R {
+        let before = std::mem::replace(&mut self.distribute_fixed, true);
+        let result = build(self);
+        self.distribute_fixed = before;
+        result
     }
 
     pub fn constant(&mut self, value: f64) -> ExprId {
