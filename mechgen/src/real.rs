@@ -18,9 +18,11 @@ pub trait Real: num_traits::Float + Debug + Display + Default + Send + Sync + 's
     const SIN_COS_LIMIT: Self;
 
     /// Whether generated code's scalar sines and cosines (`__private::sin_cos`) inline
-    /// [`fast::sin_cos`](crate::fast::sin_cos) within its limit: for `f64`, where its
-    /// arithmetic takes fewer instructions than a call of the C library's `sincos`; not for
-    /// `f32`, whose `sincosf` is cheaper still.
+    /// [`fast::sin_cos`](crate::fast::sin_cos) within its limit: for `f64` with the `std`
+    /// feature, where its arithmetic takes fewer instructions than a call of the C library's
+    /// `sincos`; not for `f32`, whose `sincosf` is cheaper still, nor without `std`, where
+    /// `libm`'s is Rust the compiler sees into and inlining ours at every call would only
+    /// grow the code (a microcontroller's flash).
     #[doc(hidden)]
     const INLINE_SIN_COS: bool;
 
@@ -92,7 +94,7 @@ impl Real for f64 {
     }
 
     const SIN_COS_LIMIT: Self = 1e6;
-    const INLINE_SIN_COS: bool = true;
+    const INLINE_SIN_COS: bool = cfg!(feature = "std");
     const SIN_COS_TWO_OVER_PI: Self = core::f64::consts::FRAC_2_PI;
     const SIN_COS_SHIFTER: Self = 6_755_399_441_055_744.0;
     const SIN_COS_PI_OVER_2: [Self; 4] = [
