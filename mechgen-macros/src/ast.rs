@@ -15,6 +15,8 @@
 //! }
 //! ```
 
+use std::cell::Cell;
+
 use proc_macro2::Span;
 use syn::parse::{Parse, ParseStream};
 use syn::punctuated::Punctuated;
@@ -239,12 +241,73 @@ impl Parse for SymbolDecl {
     }
 }
 
+/// The most vectors a loop or a point may sum, the deepest an expression may nest
+/// (parentheses, calls and unary minus) and the most names, numbers and operators it may
+/// hold. The passes after parsing recurse through a loop's sum and an expression's tree:
+/// beyond these, a compile error on the token past the limit, where a declaration with
+/// thousands would run the compiler out of stack. Real mechanisms are far inside them.
+const MAX_TERMS: usize = 256;
+const MAX_NESTING: usize = 32;
+const MAX_NODES: usize = 256;
+
+thread_local! {
+    /// The nesting depth and node count of the magnitude or angle being parsed.
+    static EXPRESSION: Cell<(usize, usize)> = const { Cell::new((0, 0)) };
+}
+
+/// A whole magnitude or angle (`unary (('*' | '/') unary)*`), its size checked against the
+/// limits above.
+fn parse_expression(input: ParseStream) -> syn::Result<Scalar> {
+    EXPRESSION.with(|e| e.set((0, 0)));
+    parse_product(input)
+}
+
+/// One more name, number or operator of the expression, at `span`.
+fn count_node(span: Span) -> syn::Result<()> {
+    let (depth, nodes) = EXPRESSION.with(Cell::get);
+    if nodes >= MAX_NODES {
+        return Err(syn::Error::new(
+            span,
+            format!(
+                "this expression is too long: a magnitude or an angle holds at most \
+                 {MAX_NODES} names, numbers and operators"
+            ),
+        ));
+    }
+    EXPRESSION.with(|e| e.set((depth, nodes + 1)));
+    Ok(())
+}
+
+/// `parse` one level deeper, in parentheses, a call's arguments or after a unary minus, at
+/// `span`.
+fn nested<R>(span: Span, parse: impl FnOnce() -> syn::Result<R>) -> syn::Result<R> {
+    let (depth, nodes) = EXPRESSION.with(Cell::get);
+    if depth >= MAX_NESTING {
+        return Err(syn::Error::new(
+            span,
+            format!(
+                "this expression is nested too deeply: at most {MAX_NESTING} levels of \
+                 parentheses, calls and signs"
+            ),
+        ));
+    }
+    EXPRESSION.with(|e| e.set((depth + 1, nodes)));
+    let parsed = parse();
+    EXPRESSION.with(|e| e.set((depth, e.get().1)));
+    parsed
+}
+
 impl Parse for VectorSum {
     fn parse(input: ParseStream) -> syn::Result<Self> {
         let mut terms = Vec::new();
         let mut negated = parse_sign(input)?.unwrap_or(false);
         loop {
-            let magnitude = parse_product(input)?;
+            if terms.len() == MAX_TERMS {
+                return Err(input.error(format!(
+                    "too many vectors: a loop or a point sums at most {MAX_TERMS}"
+                )));
+            }
+            let magnitude = parse_expression(input)?;
             if !input.peek(Token![@]) {
                 return Err(syn::Error::new(
                     magnitude.span(),
@@ -253,7 +316,7 @@ impl Parse for VectorSum {
                 ));
             }
             input.parse::<Token![@]>()?;
-            let angle = parse_product(input)?;
+            let angle = parse_expression(input)?;
             terms.push(VectorTerm {
                 negated,
                 magnitude,
@@ -293,6 +356,7 @@ fn parse_sum(input: ParseStream) -> syn::Result<Scalar> {
             return Ok(left);
         };
         let span = input.span();
+        count_node(span)?;
         input.parse::<proc_macro2::Punct>()?;
         let right = parse_product(input)?;
         left = Scalar::Binary(op, span, Box::new(left), Box::new(right));
@@ -312,6 +376,7 @@ fn parse_product(input: ParseStream) -> syn::Result<Scalar> {
             return Ok(left);
         };
         let span = input.span();
+        count_node(span)?;
         input.parse::<proc_macro2::Punct>()?;
         let right = parse_unary(input)?;
         left = Scalar::Binary(op, span, Box::new(left), Box::new(right));
@@ -321,7 +386,9 @@ fn parse_product(input: ParseStream) -> syn::Result<Scalar> {
 fn parse_unary(input: ParseStream) -> syn::Result<Scalar> {
     if input.peek(Token![-]) {
         let minus: Token![-] = input.parse()?;
-        return Ok(Scalar::Neg(minus.span, Box::new(parse_unary(input)?)));
+        count_node(minus.span)?;
+        let operand = nested(minus.span, || parse_unary(input))?;
+        return Ok(Scalar::Neg(minus.span, Box::new(operand)));
     }
     parse_atom(input)
 }
@@ -330,24 +397,27 @@ fn parse_atom(input: ParseStream) -> syn::Result<Scalar> {
     let lookahead = input.lookahead1();
     if lookahead.peek(syn::token::Paren) {
         let inner;
-        syn::parenthesized!(inner in input);
-        let scalar = parse_sum(&inner)?;
+        let parens = syn::parenthesized!(inner in input);
+        let scalar = nested(parens.span.open(), || parse_sum(&inner))?;
         if !inner.is_empty() {
             return Err(inner.error("expected `+`, `-`, `*`, `/` or `)`"));
         }
         Ok(scalar)
     } else if lookahead.peek(Ident) {
         let name: Ident = input.parse()?;
+        count_node(name.span())?;
         if input.peek(syn::token::Paren) {
-            return parse_call(input, name);
+            return nested(name.span(), || parse_call(input, name));
         }
         Ok(Scalar::Name(name))
     } else if lookahead.peek(syn::LitInt) {
         let literal: syn::LitInt = input.parse()?;
+        count_node(literal.span())?;
         reject_suffix(literal.suffix(), literal.span())?;
         in_degrees(input, finite(literal.base10_parse()?, literal.span())?)
     } else if lookahead.peek(syn::LitFloat) {
         let literal: syn::LitFloat = input.parse()?;
+        count_node(literal.span())?;
         reject_suffix(literal.suffix(), literal.span())?;
         in_degrees(input, finite(literal.base10_parse()?, literal.span())?)
     } else {
