@@ -54,7 +54,7 @@ mechanism! {
         point rocker_pin = l1 @ 0 + l4 @ theta4;
         /// P, the coupler point.
         point coupler_point = l2 @ theta2 + a @ (theta3 + delta);
-        generate: position, velocity, acceleration;
+        generate: position, velocity, acceleration, sensitivities;
         /// The coupler's and rocker's angles, rates and accelerations.
         scene angles: theta3, theta4, theta3_dot, theta4_dot, theta3_ddot, theta4_ddot;
         /// The moving joints' positions, A and B, as drawing the linkage needs.

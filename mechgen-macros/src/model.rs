@@ -146,6 +146,9 @@ pub struct Outputs {
     /// `generate: assemble`: the closed forms are required, so a declaration without one is
     /// an error at the loop that has none, rather than a type without `assemble`.
     pub assemble: bool,
+    /// `generate: sensitivities`: the unknowns' and the points' derivatives with respect to
+    /// the parameters, at a solved position.
+    pub sensitivities: bool,
 }
 
 pub struct Model {
@@ -772,21 +775,28 @@ fn check_every_symbol_in_a_loop(
     }
 }
 
-const OUTPUTS: [&str; 4] = ["position", "velocity", "acceleration", "assemble"];
+const OUTPUTS: [&str; 5] = [
+    "position",
+    "velocity",
+    "acceleration",
+    "assemble",
+    "sensitivities",
+];
 
-/// Rule: outputs are `position`, `velocity`, `acceleration`, each needing the one before,
-/// and `assemble`, which asks for the closed forms (checked once the loops are planned).
-/// Without a `generate` section, the first three are generated, and the closed forms where
-/// the loops have them.
+/// Rule: outputs are `position`, `velocity`, `acceleration`, each needing the one before;
+/// `assemble`, which asks for the closed forms (checked once the loops are planned); and
+/// `sensitivities`, the derivatives with respect to the parameters. Without a `generate`
+/// section, the first three are generated, and the closed forms where the loops have them.
 fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Outputs {
     let Some((_, names)) = generate else {
         return Outputs {
             velocity: true,
             acceleration: true,
             assemble: false,
+            sensitivities: false,
         };
     };
-    let mut seen = [None::<&Ident>; 4];
+    let mut seen = [None::<&Ident>; 5];
     for name in &names {
         match OUTPUTS.iter().position(|o| name == o) {
             Some(i) if seen[i].is_some() => {
@@ -796,8 +806,8 @@ fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Output
             None => errors.error_at(
                 name,
                 format!(
-                    "unknown output `{name}`: expected `position`, `velocity`, `acceleration` \
-                     or `assemble`"
+                    "unknown output `{name}`: expected `position`, `velocity`, `acceleration`, \
+                     `assemble` or `sensitivities`"
                 ),
             ),
         }
@@ -818,6 +828,7 @@ fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Output
         velocity: seen[1].is_some(),
         acceleration: seen[2].is_some(),
         assemble: seen[3].is_some(),
+        sensitivities: seen[4].is_some(),
     }
 }
 

@@ -15,6 +15,7 @@ mod points;
 mod rates;
 mod reduced;
 mod scenes;
+mod sensitivities;
 mod types;
 
 use std::collections::BTreeSet;
@@ -37,11 +38,13 @@ pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
     let functions = generator.functions();
     let kinematics = generator.kinematics_impl();
     let scenes = generator.scene_items();
+    let sensitivities = generator.sensitivities_struct();
     let name = &model.name;
     quote! {
         #mechanism
         #unknowns
         #points
+        #sensitivities
         #kinematics
         #scenes
         // Spans of generated tokens all point at the macro call, which misleads
@@ -143,6 +146,12 @@ impl<'a> Generator<'a> {
                     .iter()
                     .map(|u| format!("direction_{}", u.name.unraw())),
             )
+            .chain(model.params.iter().flat_map(|param| {
+                let per_point = model.points.iter().flat_map(|point| {
+                    sensitivities::sensitivity_components(&point.name, &param.name)
+                });
+                std::iter::once(sensitivities::sensitivity_name(&param.name)).chain(per_point)
+            }))
             .collect();
         Generator {
             model,
@@ -358,6 +367,7 @@ impl<'a> Generator<'a> {
                 functions.extend([self.point_accelerations(), self.point_acceleration_parts()]);
             }
         }
+        functions.extend(self.sensitivity_functions());
         quote!(#(#functions)*)
     }
 

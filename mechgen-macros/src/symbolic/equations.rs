@@ -39,6 +39,8 @@ pub struct Equations {
     /// residual rows can close to.
     pub magnitude_loops: Vec<usize>,
     pub points: Vec<PointExprs>,
+    /// What the sensitivities to the parameters solve, where the declaration asks for them.
+    pub sensitivities: Option<Sensitivities>,
     /// The loops in the order they solve in closed form, if every one does; otherwise the
     /// loop that does not, and why.
     pub closed_form: Result<Vec<super::closed_form::Step>, super::closed_form::Missing>,
@@ -47,6 +49,61 @@ pub struct Equations {
     pub reduction: Option<super::reduction::Reduction>,
     /// What scene kernels evaluate, when the declaration has scenes and a closed form.
     pub scenes: Option<Straight>,
+}
+
+/// The derivatives of the loops and the points with respect to the parameters:
+/// `J·∂q/∂p = −∂f/∂p` gives the unknowns' sensitivity to each parameter `p` at a solved
+/// position, and `dP/dp = ∂P/∂p + Σ ∂P/∂q_j·∂q_j/∂p` each point's.
+pub struct Sensitivities {
+    /// For each parameter, `−∂f/∂p`: one right-hand side per parameter, row by row.
+    pub rhs: Vec<Vec<ExprId>>,
+    /// For each point and each coordinate (`x`, `y`), `∂P/∂p` for each parameter.
+    pub point_parameters: Vec<[Vec<ExprId>; 2]>,
+    /// For each point and each coordinate, `∂P/∂q_j` for each unknown.
+    pub point_unknowns: Vec<[Vec<ExprId>; 2]>,
+}
+
+impl Sensitivities {
+    fn derive(
+        graph: &mut Graph,
+        model: &Model,
+        residual: &[ExprId],
+        points: &[PointExprs],
+    ) -> Self {
+        let parameters: Vec<Var> = (0..model.params.len())
+            .map(|i| Var::Value(SymbolRef::Param(i)))
+            .collect();
+        let unknowns: Vec<Var> = (0..model.unknowns.len())
+            .map(|i| Var::Value(SymbolRef::Unknown(i)))
+            .collect();
+        let rhs = parameters
+            .iter()
+            .map(|&p| {
+                residual
+                    .iter()
+                    .map(|&f| {
+                        let partial = graph.partial(f, p);
+                        graph.neg(partial)
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut partials = |vars: &[Var]| -> Vec<[Vec<ExprId>; 2]> {
+            points
+                .iter()
+                .map(|point| {
+                    point
+                        .position
+                        .map(|c| vars.iter().map(|&v| graph.partial(c, v)).collect())
+                })
+                .collect()
+        };
+        Sensitivities {
+            point_parameters: partials(&parameters),
+            point_unknowns: partials(&unknowns),
+            rhs,
+        }
+    }
 }
 
 impl Equations {
@@ -166,7 +223,13 @@ impl Equations {
                 .collect();
             super::straight::build(&mut graph, steps, &exprs, &lengths)
         });
+        // Last, so that the other functions' expressions keep their order in the graph.
+        let sensitivities = model
+            .outputs
+            .sensitivities
+            .then(|| Sensitivities::derive(&mut graph, model, &residual, &points));
         Equations {
+            sensitivities,
             closed_form,
             reduction: reduction.flatten(),
             scenes,

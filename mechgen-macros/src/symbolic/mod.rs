@@ -10,7 +10,7 @@ mod rewrite;
 mod straight;
 
 pub use closed_form::{Case, Step};
-pub use equations::{Equations, PointExprs};
+pub use equations::{Equations, PointExprs, Sensitivities};
 pub use graph::{ExprId, Graph, Node, Var};
 pub use reduction::Reduction;
 pub use straight::{AuxKind, Straight, Threshold};

@@ -1,0 +1,165 @@
+//! Issue 15's generated sensitivities: `∂q/∂p` and `dP/dp` at a solved position, against
+//! central differences of the closed form (each dimension moved by ±h, the linkage assembled
+//! again), on the seeds' Example 1 with a coupler point, on both branches.
+
+use mechanisms::FourBar;
+use mechgen::{Branch, Error};
+
+/// Example 1's lengths, and a coupler point 100 from A at 30° from A B.
+const DIMENSIONS: [f64; 6] = [180.0, 80.0, 200.0, 150.0, 100.0, 0.5235987755982988];
+
+fn linkage(d: [f64; 6]) -> FourBar<f64> {
+    FourBar::new(d[0], d[1], d[2], d[3])
+        .and_then(|l| l.with_coupler_point(d[4], d[5]))
+        .expect("valid dimensions")
+}
+
+/// `[θ3, θ4, P.x, P.y]` of the linkage with dimensions `d`.
+fn solved(d: [f64; 6], theta2: f64, branch: Branch) -> [f64; 4] {
+    let l = linkage(d);
+    let q = l.assemble(theta2, branch).expect("assembles");
+    let p = l.points(theta2, &q).expect("points").coupler_point;
+    [q.theta3, q.theta4, p.x, p.y]
+}
+
+/// The derivatives of `[θ3, θ4, P.x, P.y]` with respect to each dimension, by central
+/// differences with a step of 1e-5 relative (angles 1e-5 rad): truncation about h², 1e-10.
+fn differences(theta2: f64, branch: Branch) -> [[f64; 4]; 6] {
+    std::array::from_fn(|k| {
+        let h = 1e-5 * DIMENSIONS[k].abs().max(1.0);
+        let (mut up, mut down) = (DIMENSIONS, DIMENSIONS);
+        up[k] += h;
+        down[k] -= h;
+        let (a, b) = (solved(up, theta2, branch), solved(down, theta2, branch));
+        std::array::from_fn(|i| (a[i] - b[i]) / (2.0 * h))
+    })
+}
+
+#[test]
+fn sensitivities_agree_with_central_differences() {
+    for branch in [Branch::Open, Branch::Crossed] {
+        for degrees in [0.0, 45.0, 60.0, 137.0, 200.0, 300.0] {
+            let theta2 = f64::to_radians(degrees);
+            let l = linkage(DIMENSIONS);
+            let q = l.assemble(theta2, branch).unwrap();
+            let s = l.sensitivities(theta2, &q).unwrap();
+            let p = l.point_sensitivities(theta2, &q).unwrap();
+            let generated: [[f64; 4]; 6] = [
+                (s.l1, p.l1),
+                (s.l2, p.l2),
+                (s.l3, p.l3),
+                (s.l4, p.l4),
+                (s.a, p.a),
+                (s.delta, p.delta),
+            ]
+            .map(|(s, p)| [s.theta3, s.theta4, p.coupler_point.x, p.coupler_point.y]);
+            let expected = differences(theta2, branch);
+            for (k, (g, e)) in generated.iter().zip(&expected).enumerate() {
+                for i in 0..4 {
+                    // Angles per length are about 1e-2, points about 1: differences good to
+                    // about 1e-10 of those.
+                    let scale = e[i].abs().max(1e-2);
+                    assert!(
+                        (g[i] - e[i]).abs() <= 1e-8 * scale,
+                        "{branch:?} at {degrees}°, dimension {k}, output {i}: {} against {}",
+                        g[i],
+                        e[i]
+                    );
+                }
+            }
+            // The coupler point's own dimensions move no unknown.
+            assert_eq!(
+                (s.a.theta3, s.a.theta4, s.delta.theta3, s.delta.theta4),
+                (0.0, 0.0, 0.0, 0.0)
+            );
+        }
+    }
+}
+
+/// Every length times k moves each angle by nothing and each point by its position over k
+/// (Euler's theorem for a function homogeneous of degree 1: Σ l·∂P/∂l = P, Σ l·∂θ/∂l = 0).
+#[test]
+fn sensitivities_to_the_lengths_sum_to_the_scaling() {
+    let l = linkage(DIMENSIONS);
+    let theta2 = 1.1;
+    let q = l.assemble(theta2, Branch::Open).unwrap();
+    let s = l.sensitivities(theta2, &q).unwrap();
+    let p = l.point_sensitivities(theta2, &q).unwrap();
+    let position = l.points(theta2, &q).unwrap();
+    let [l1, l2, l3, l4, a, _] = DIMENSIONS;
+    let angle = |f: fn(&mechanisms::FourBarUnknowns<f64>) -> f64| {
+        l1 * f(&s.l1) + l2 * f(&s.l2) + l3 * f(&s.l3) + l4 * f(&s.l4) + a * f(&s.a)
+    };
+    assert!(angle(|u| u.theta3).abs() < 1e-14);
+    assert!(angle(|u| u.theta4).abs() < 1e-14);
+    for (moved, at) in [
+        (
+            [p.l1, p.l2, p.l3, p.l4, p.a].map(|x| x.rocker_pin),
+            position.rocker_pin,
+        ),
+        (
+            [p.l1, p.l2, p.l3, p.l4, p.a].map(|x| x.coupler_point),
+            position.coupler_point,
+        ),
+    ] {
+        let lengths = [l1, l2, l3, l4, a];
+        let x: f64 = moved.iter().zip(lengths).map(|(v, l)| v.x * l).sum();
+        let y: f64 = moved.iter().zip(lengths).map(|(v, l)| v.y * l).sum();
+        assert!(
+            (x - at.x).abs() < 1e-12 * at.x.abs().max(1.0),
+            "{x} against {}",
+            at.x
+        );
+        assert!(
+            (y - at.y).abs() < 1e-12 * at.y.abs().max(1.0),
+            "{y} against {}",
+            at.y
+        );
+    }
+}
+
+/// At a toggle the sensitivities are unbounded: `Singular`, as for the velocity.
+#[test]
+fn sensitivities_at_a_toggle_are_singular() {
+    // A crank-rocker whose coupler and rocker fold: θ2 at the limit of a rocker-crank.
+    let l = FourBar::new(180.0, 150.0, 200.0, 80.0).unwrap();
+    let limit = l.limit_angles().folded.unwrap();
+    let q = l.assemble(limit, Branch::Open).unwrap();
+    match l.sensitivities(limit, &q) {
+        Err(Error::Singular { .. } | Error::Inaccurate { .. }) => {}
+        other => panic!("expected Singular or Inaccurate at a toggle, got {other:?}"),
+    }
+    assert!(l.sensitivities(f64::NAN, &q).is_err());
+}
+
+/// The same in f32, to its precision: the generated code is generic over the float.
+#[test]
+fn f32_sensitivities_agree_with_f64() {
+    let d = DIMENSIONS;
+    let l64 = linkage(d);
+    let l32 = FourBar::<f32>::new(d[0] as f32, d[1] as f32, d[2] as f32, d[3] as f32)
+        .and_then(|l| l.with_coupler_point(d[4] as f32, d[5] as f32))
+        .unwrap();
+    for degrees in [10.0f64, 95.0, 250.0] {
+        let theta2 = degrees.to_radians();
+        let q64 = l64.assemble(theta2, Branch::Open).unwrap();
+        let q32 = l32.assemble(theta2 as f32, Branch::Open).unwrap();
+        let (s64, s32) = (
+            l64.point_sensitivities(theta2, &q64).unwrap(),
+            l32.point_sensitivities(theta2 as f32, &q32).unwrap(),
+        );
+        for (a, b) in [
+            (s64.l1, s32.l1),
+            (s64.l2, s32.l2),
+            (s64.l3, s32.l3),
+            (s64.l4, s32.l4),
+            (s64.a, s32.a),
+            (s64.delta, s32.delta),
+        ] {
+            let (a, b) = (a.coupler_point, b.coupler_point);
+            let size = a.x.hypot(a.y).max(1e-2);
+            assert!((a.x - f64::from(b.x)).abs() <= 1e-4 * size, "{a:?} against {b:?}");
+            assert!((a.y - f64::from(b.y)).abs() <= 1e-4 * size, "{a:?} against {b:?}");
+        }
+    }
+}
