@@ -30,12 +30,14 @@ mod inverted_slider_crank;
 mod jansen;
 mod six_bar;
 mod slider_crank;
+pub mod tolerance;
 mod triangle;
 
 pub use dimensions::DimensionError;
 pub use four_bar::{
     DeadCentre, FourBar, FourBarAngles, FourBarCouplerMotion, FourBarCouplerPath, FourBarJoints,
-    FourBarPoints, FourBarScenes, FourBarUnknowns, LimitAngles, TransmissionExtremes,
+    FourBarPoints, FourBarScenes, FourBarSensitivities, FourBarUnknowns, LimitAngles,
+    TransmissionExtremes,
 };
 pub use inverted_slider_crank::{
     InvertedSliderCrank, InvertedSliderCrankPoints, InvertedSliderCrankScenes,
@@ -53,3 +55,4 @@ pub use slider_crank::{
     SliderCrank, SliderCrankPoints, SliderCrankScenes, SliderCrankSlider, SliderCrankState,
     SliderCrankUnknowns,
 };
+pub use tolerance::{Deviation, FourBarDeviations, FourBarTolerances};

@@ -1151,3 +1151,109 @@ fn huge_and_tiny_six_bars_never_panic() {
         }
     }
 }
+
+/// `tolerance`: Example 1 with ±0.1 mm on every length, its first-order worst case at 60°
+/// beside the worst corner of the nonlinear model (the library's doctest has the same
+/// figures), a chart, and clear refusals.
+#[test]
+fn tolerance_reports_first_order_beside_the_nonlinear_model() {
+    let report = stdout_of(&[
+        "tolerance",
+        "four-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "--coupler-point",
+        "100,28.64788975654116",
+        "--step",
+        "60",
+        "--samples",
+        "500",
+    ]);
+    // θ2 = 60°: θ4 within ±0.1656° at first order, 0.1657° at the worst corner.
+    let row = report
+        .lines()
+        .find(|l| l.starts_with("| 60.0 |"))
+        .unwrap_or_else(|| panic!("no row for 60° in:\n{report}"));
+    assert!(row.contains("| 1.6556e-1 | 1.6569e-1 |"), "{row}");
+    assert!(
+        report.contains("Largest first-order worst case of θ4"),
+        "{report}"
+    );
+    let scratch = Scratch::new("tolerance");
+    std::fs::create_dir_all(&scratch.0).unwrap();
+    let svg = scratch.0.join("tolerance.svg");
+    stdout_of(&[
+        "tolerance",
+        "four-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "--step",
+        "90",
+        "--samples",
+        "10",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    let drawing = std::fs::read_to_string(&svg).unwrap();
+    assert!(drawing.starts_with("<svg") && drawing.contains("worst corner"));
+    fails_with(
+        &["tolerance", "slider-crank", "50", "150", "0"],
+        "covers the four-bar",
+    );
+    fails_with(
+        &[
+            "tolerance",
+            "four-bar",
+            "180",
+            "80",
+            "200",
+            "150",
+            "--tolerance",
+            "-1",
+        ],
+        "finite and not negative",
+    );
+    fails_with(
+        &[
+            "tolerance",
+            "four-bar",
+            "180",
+            "80",
+            "200",
+            "150",
+            "--step",
+            "1e-9",
+        ],
+        "--step must be",
+    );
+    fails_with(
+        &[
+            "tolerance",
+            "four-bar",
+            "180",
+            "80",
+            "200",
+            "150",
+            "--samples",
+            "99999999999",
+        ],
+        "--samples takes at most",
+    );
+    fails_with(
+        &[
+            "tolerance",
+            "four-bar",
+            "180",
+            "80",
+            "200",
+            "150",
+            "--tolerances",
+            "1,2",
+        ],
+        "--tolerances takes four",
+    );
+}

@@ -10,6 +10,7 @@ mod seeds;
 mod six_bars;
 mod svg;
 mod sweep;
+mod tolerance;
 
 use std::process::ExitCode;
 
@@ -32,6 +33,10 @@ enum Command {
     Sweep(sweep::Args),
     /// The course notes' worked examples next to the values the notes print.
     Seeds,
+    /// How far a four-bar's output and coupler point move when its dimensions are off by
+    /// their tolerances, over a turn: first order from the generated sensitivities, beside
+    /// the nonlinear model (the tolerance box's corners, and Monte Carlo).
+    Tolerance(tolerance::Args),
 }
 
 /// The mechanisms the program knows, and the dimensions each takes (mm, degrees).
@@ -122,6 +127,7 @@ fn main() -> ExitCode {
         Some(Command::Analyse(args)) => analyse::run(&args),
         Some(Command::Sweep(args)) => sweep::run(&args),
         Some(Command::Seeds) => seeds::run().map_err(|e| e.to_string()),
+        Some(Command::Tolerance(args)) => tolerance::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

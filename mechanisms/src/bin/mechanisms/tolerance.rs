@@ -1,0 +1,240 @@
+//! `mechanisms tolerance`: how far a four-bar's output angle and coupler point move when its
+//! dimensions are off by their tolerances, over a turn: the first-order worst case and
+//! root-sum-square stack-up from the generated sensitivities, beside the nonlinear model at
+//! every corner of the tolerance box and Monte Carlo, as a table and an SVG chart.
+
+use std::fs;
+use std::path::PathBuf;
+
+use clap::Parser;
+use mechanisms::{FourBar, FourBarTolerances};
+use mechgen::{Branch, Error};
+
+use crate::Mechanism;
+use crate::output::{fixed, say, tidy};
+use crate::svg::{self, Chart};
+use crate::sweep::BranchName;
+
+#[derive(Parser)]
+pub struct Args {
+    /// The mechanism (the four-bar).
+    #[arg(value_enum)]
+    pub mechanism: Mechanism,
+    /// Its dimensions in mm.
+    #[arg(allow_negative_numbers = true)]
+    pub dimensions: Vec<f64>,
+    /// The ± tolerance of every length, mm.
+    #[arg(long, default_value_t = 0.1)]
+    pub tolerance: f64,
+    /// The ± tolerances of ground, crank, coupler and rocker, mm, joined by commas: each
+    /// length its own, in place of --tolerance (the coupler point's distance keeps
+    /// --tolerance).
+    #[arg(long, value_delimiter = ',')]
+    pub tolerances: Option<Vec<f64>>,
+    /// A coupler point to follow: distance from the crank pin (mm), angle from the coupler
+    /// (°), as `100,30` [default: the crank pin].
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub coupler_point: Option<Vec<f64>>,
+    /// The ± tolerance of the coupler point's angle, degrees.
+    #[arg(long, default_value_t = 0.0)]
+    pub angle_tolerance: f64,
+    /// The assembly branch.
+    #[arg(long, value_enum, default_value = "open")]
+    pub branch: BranchName,
+    /// The crank angle's step, degrees.
+    #[arg(long, default_value_t = 10.0)]
+    pub step: f64,
+    /// Monte Carlo linkages per crank angle (normal errors, each tolerance 3σ).
+    #[arg(long, default_value_t = 2000)]
+    pub samples: usize,
+    /// The Monte Carlo generator's seed.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Where to write the chart; `-` for standard output, nothing for no chart.
+    #[arg(long)]
+    pub svg: Option<PathBuf>,
+}
+
+/// The most crank angles and Monte Carlo linkages a run takes, so that a huge argument is
+/// refused at once rather than run for hours.
+const MOST_STEPS: f64 = 100_000.0;
+const MOST_SAMPLES: usize = 10_000_000;
+
+pub fn run(args: &Args) -> Result<(), String> {
+    if args.mechanism != Mechanism::FourBar {
+        return Err(format!(
+            "tolerance analysis covers the four-bar, not the {}",
+            args.mechanism.name()
+        ));
+    }
+    args.mechanism.check(&args.dimensions)?;
+    let &[ground, crank, coupler, rocker] = args.dimensions.as_slice() else {
+        unreachable!("checked: four dimensions");
+    };
+    let (distance, angle) = match args.coupler_point.as_deref() {
+        None => (0.0, 0.0),
+        Some(&[distance, angle]) => (distance, angle.to_radians()),
+        Some(_) => return Err("--coupler-point takes a distance and an angle, as 100,30".into()),
+    };
+    let linkage = FourBar::new(ground, crank, coupler, rocker)
+        .and_then(|l| l.with_coupler_point(distance, angle))
+        .map_err(|e| e.to_string())?;
+    let lengths = match args.tolerances.as_deref() {
+        None => [args.tolerance; 4],
+        Some(&[a, b, c, d]) => [a, b, c, d],
+        Some(_) => return Err("--tolerances takes four lengths, as 0.1,0.05,0.1,0.1".into()),
+    };
+    let tolerances = FourBarTolerances {
+        ground: lengths[0],
+        crank: lengths[1],
+        coupler: lengths[2],
+        rocker: lengths[3],
+        distance: args.tolerance,
+        angle: args.angle_tolerance.to_radians(),
+    };
+    let every = [
+        lengths[0],
+        lengths[1],
+        lengths[2],
+        lengths[3],
+        args.tolerance,
+        args.angle_tolerance,
+    ];
+    if every.iter().any(|t| !t.is_finite() || *t < 0.0) {
+        return Err("a tolerance must be finite and not negative".into());
+    }
+    if !(args.step.is_finite() && args.step > 0.0 && 360.0 / args.step <= MOST_STEPS) {
+        return Err(format!(
+            "--step must be a positive number of degrees, at least {}",
+            tidy(360.0 / MOST_STEPS)
+        ));
+    }
+    if args.samples > MOST_SAMPLES {
+        return Err(format!("--samples takes at most {MOST_SAMPLES}"));
+    }
+    let branch = match args.branch {
+        BranchName::Open => Branch::Open,
+        BranchName::Crossed => Branch::Crossed,
+    };
+
+    say!(
+        "Four-bar {}/{}/{}/{} mm, coupler point {} mm at {}°, {} branch",
+        tidy(ground),
+        tidy(crank),
+        tidy(coupler),
+        tidy(rocker),
+        tidy(distance),
+        tidy(angle.to_degrees()),
+        match args.branch {
+            BranchName::Open => "open",
+            BranchName::Crossed => "crossed",
+        }
+    );
+    say!(
+        "tolerances ±: ground {} crank {} coupler {} rocker {} mm, point distance {} mm, point \
+         angle {}°",
+        tidy(lengths[0]),
+        tidy(lengths[1]),
+        tidy(lengths[2]),
+        tidy(lengths[3]),
+        tidy(args.tolerance),
+        tidy(args.angle_tolerance)
+    );
+    say!(
+        "First order from the generated sensitivities: worst case over the tolerance box, and \
+         the root-sum-square stack-up over 3 (the standard deviation when each tolerance is \
+         3σ). Beside them the nonlinear model: its worst corner of the box, and the rms of {} \
+         Monte Carlo linkages (normal errors, seed {}).",
+        args.samples,
+        args.seed
+    );
+    say!("");
+    say!(
+        "| θ2 (°) | θ4 worst (°) | corners (°) | θ4 RSS/3 (°) | Monte Carlo rms (°) | P worst \
+         (mm) | corners (mm) | P RSS/3 (mm) | Monte Carlo rms (mm) |"
+    );
+    say!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let steps = (360.0 / args.step).floor() as usize;
+    let mut rows = Vec::new();
+    let mut skipped = Vec::new();
+    for k in 0..steps {
+        let degrees = k as f64 * args.step;
+        let theta2 = degrees.to_radians();
+        let row = (|| -> Result<[f64; 8], Error<f64>> {
+            let linear = linkage.tolerance(theta2, branch, &tolerances)?;
+            let corners = linkage.corners(theta2, branch, &tolerances)?;
+            let sampled =
+                linkage.monte_carlo(theta2, branch, &tolerances, args.samples, args.seed)?;
+            Ok([
+                linear.output.worst_case.to_degrees(),
+                corners.output_largest.to_degrees(),
+                (linear.output.root_sum_square / 3.0).to_degrees(),
+                sampled.output_rms.to_degrees(),
+                linear.coupler_point.worst_case,
+                corners.coupler_point_largest,
+                linear.coupler_point.root_sum_square / 3.0,
+                sampled.coupler_point_rms,
+            ])
+        })();
+        match row {
+            Ok(values) => {
+                say!(
+                    "| {} | {} |",
+                    fixed(degrees, 1),
+                    values.map(|v| format!("{v:.4e}")).join(" | ")
+                );
+                rows.push((degrees, values));
+            }
+            Err(error) => skipped.push(format!("{}° ({error})", tidy(degrees))),
+        }
+    }
+    say!("");
+    if !skipped.is_empty() {
+        say!("Not analysed: {}.", skipped.join(", "));
+    }
+    let Some(worst) = rows.iter().max_by(|a, b| a.1[0].total_cmp(&b.1[0])) else {
+        return Err("the linkage assembles at none of these crank angles".into());
+    };
+    say!(
+        "Largest first-order worst case of θ4: ±{}° at θ2 = {}°; of the coupler point: {} mm.",
+        fixed(worst.1[0], 4),
+        tidy(worst.0),
+        fixed(rows.iter().map(|r| r.1[4]).fold(0.0, f64::max), 4)
+    );
+    if let Some(path) = &args.svg {
+        let chart = |title: &str, unit: &str, columns: [(usize, &str); 4]| Chart {
+            title: title.into(),
+            unit: unit.into(),
+            series: columns
+                .iter()
+                .map(|&(c, label)| {
+                    let points = rows.iter().map(|(x, v)| (*x, v[c])).collect();
+                    (label.to_string(), vec![(0, points)])
+                })
+                .collect(),
+            band: None,
+        };
+        let labels = ["worst case", "worst corner", "RSS/3", "MC rms"];
+        let charts = [
+            chart(
+                "output angle θ4: deviation",
+                "°",
+                [0, 1, 2, 3].map(|c| (c, labels[c])),
+            ),
+            chart(
+                "coupler point: deviation",
+                "mm",
+                [4, 5, 6, 7].map(|c| (c, labels[c - 4])),
+            ),
+        ];
+        let drawing = svg::charts("θ2 (°)", &charts, &[])?;
+        if path.as_os_str() == "-" {
+            say!("{drawing}");
+        } else {
+            fs::write(path, drawing)
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            eprintln!("wrote {}", path.display());
+        }
+    }
+    Ok(())
+}
