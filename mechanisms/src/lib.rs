@@ -24,12 +24,17 @@
 //! angles in radians counter-clockwise from +x, the crank pivot O2 at the origin.
 #![no_std]
 
+#[cfg(feature = "std")]
+extern crate std;
+
 mod dimensions;
 mod four_bar;
 mod inverted_slider_crank;
 mod jansen;
 mod six_bar;
 mod slider_crank;
+#[cfg(feature = "std")]
+pub mod synthesis;
 pub mod tolerance;
 mod triangle;
 

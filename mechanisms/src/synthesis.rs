@@ -1,0 +1,619 @@
+//! Dimensional synthesis of the four-bar: the dimensions that make its output follow a wanted
+//! function of its input, or its coupler point pass through wanted points.
+//!
+//! Each problem is least squares, solved by Levenberg–Marquardt (the `levenberg-marquardt`
+//! crate) on the exact derivatives the macro generates (`generate: sensitivities`, and the
+//! velocities for the input angles): no finite differences. Lengths are solved for through
+//! their logarithms, so that they stay positive. A start that cannot assemble at a target, or
+//! whose solution breaks a constraint (a crank that must turn fully, a transmission angle
+//! that must stay within bounds), is discarded: random restarts, run in parallel on every
+//! core (rayon) and reproducible from a seed, guard against local minima and infeasible
+//! solutions, and the classical precision-point solution seeds function generation where
+//! there is one (Freudenstein's, [`freudenstein`]).
+//!
+//! The branch asked for is the one every target is solved on: a solution never switches
+//! assembly between targets.
+
+use std::vec::Vec;
+
+use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};
+use mechgen::grashof::Inversion;
+use mechgen::{Branch, Vec2};
+use nalgebra::storage::Owned;
+use nalgebra::{DMatrix, DVector, Dyn};
+use rayon::prelude::*;
+
+use crate::FourBar;
+
+/// What a synthesis may return, and how hard it looks.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// The assembly branch every target is solved on.
+    pub branch: Branch,
+    /// Random starts, besides the classical one where there is one.
+    pub restarts: usize,
+    /// The seed of the random starts: the same seed, the same result, on any number of
+    /// cores.
+    pub seed: u64,
+    /// Require a crank that turns fully (Grashof, with the crank or the ground shortest).
+    pub crank: bool,
+    /// Require the transmission angle within these bounds (radians, within [0, π]) at every
+    /// target; over the whole turn where `crank` is asked too.
+    pub transmission: Option<(f64, f64)>,
+}
+
+impl Default for Options {
+    /// The open branch, 64 restarts from seed 1, no constraint.
+    fn default() -> Self {
+        Options {
+            branch: Branch::Open,
+            restarts: 64,
+            seed: 1,
+            crank: false,
+            transmission: None,
+        }
+    }
+}
+
+/// A synthesised linkage and how well it meets its targets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Synthesis {
+    /// The linkage (for path generation, in its own frame: crank pivot O2 at the origin,
+    /// ground along +x; [`placement`](Self::placement) puts it in the targets' frame).
+    pub linkage: FourBar<f64>,
+    /// For path generation, the crank pivot O2 and the ground line's angle in the targets'
+    /// frame; for function generation, the origin and 0.
+    pub placement: (Vec2<f64>, f64),
+    /// The root-mean-square error at the targets (radians for function generation, lengths
+    /// for path generation), and the largest.
+    pub rms_error: f64,
+    /// The largest error at a target.
+    pub largest_error: f64,
+    /// How many starts converged.
+    pub converged: usize,
+    /// How many of those met every constraint.
+    pub feasible: usize,
+}
+
+/// Why a synthesis found nothing.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SynthesisError {
+    /// Too few targets for the unknowns, or a target that is not finite.
+    BadTargets(&'static str),
+    /// No start converged to a linkage that meets the constraints.
+    NothingFeasible {
+        /// How many starts converged (each to a linkage that breaks a constraint).
+        converged: usize,
+    },
+}
+
+impl core::fmt::Display for SynthesisError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            SynthesisError::BadTargets(why) => write!(f, "{why}"),
+            SynthesisError::NothingFeasible { converged } => write!(
+                f,
+                "no linkage meets the targets and the constraints ({converged} starts converged \
+                 to linkages that break a constraint or miss the targets)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for SynthesisError {}
+
+/// Freudenstein's three-position function generation in closed form: the four-bar with
+/// ground `ground` whose rocker is at `psi[i]` when its crank is at `phi[i]` (radians from
+/// the ground line), from the linear equations
+/// `K1·cos ψ − K2·cos φ + K3 = cos(φ − ψ)` with `K1 = d/a`, `K2 = d/c`,
+/// `K3 = (a² − b² + c² + d²)/(2·a·c)` (crank a, coupler b, rocker c, ground d). `None` where
+/// the equations are singular or give no linkage (a length not positive).
+///
+/// ```
+/// use mechanisms::synthesis::freudenstein;
+/// use mechanisms::FourBar;
+/// use mechgen::Branch;
+/// // Example 1's rocker angles at three crank angles give Example 1 back.
+/// let example = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+/// let phi = [0.3, 1.2, 2.0];
+/// let psi = phi.map(|p| example.assemble(p, Branch::Open).unwrap().theta4);
+/// let [d, a, b, c] = freudenstein(180.0, phi, psi).unwrap();
+/// assert!((a - 80.0).abs() < 1e-9 && (b - 200.0).abs() < 1e-9 && (c - 150.0).abs() < 1e-9);
+/// assert_eq!(d, 180.0);
+/// # Ok::<(), mechanisms::DimensionError<f64>>(())
+/// ```
+pub fn freudenstein(ground: f64, phi: [f64; 3], psi: [f64; 3]) -> Option<[f64; 4]> {
+    let rows = core::array::from_fn::<[f64; 3], 3, _>(|i| [psi[i].cos(), -phi[i].cos(), 1.0]);
+    let rhs = core::array::from_fn::<f64, 3, _>(|i| (phi[i] - psi[i]).cos());
+    let [k1, k2, k3] = solve3(rows, rhs)?;
+    let (a, c) = (ground / k1, ground / k2);
+    let b_squared = a * a + c * c + ground * ground - 2.0 * a * c * k3;
+    (a > 0.0 && c > 0.0 && b_squared > 0.0 && b_squared.is_finite())
+        .then(|| [ground, a, b_squared.sqrt(), c])
+}
+
+/// `x` with `a·x = b`, by Cramer's rule; `None` where `a` is singular to rounding.
+fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+    let det = |m: [[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let d = det(a);
+    let size = a.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    // Not clearly regular (a NaN is not either).
+    let regular = d.abs() > 1e-12 * size * size * size;
+    if !regular {
+        return None;
+    }
+    Some(core::array::from_fn(|k| {
+        let mut m = a;
+        for (row, value) in m.iter_mut().zip(b) {
+            row[k] = value;
+        }
+        det(m) / d
+    }))
+}
+
+/// Function generation: the four-bar with ground `ground` whose rocker angle θ4 is `psi[i]`
+/// when its crank angle θ2 is `phi[i]` (radians from the ground line), for three or more
+/// precision points, in least squares past three. The crank, coupler and rocker are solved
+/// for; Freudenstein's solution of three of the points ([`freudenstein`]) is the first
+/// start.
+///
+/// ```
+/// use mechanisms::synthesis::{function_generation, Options};
+/// use mechanisms::FourBar;
+/// use mechgen::Branch;
+/// // Five precision points of Example 1's output: the synthesis finds Example 1.
+/// let example = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+/// let phi = [0.0, 0.8, 1.6, 2.4, 3.2];
+/// let psi = phi.map(|p| example.assemble(p, Branch::Open).unwrap().theta4);
+/// let found = function_generation(180.0, &phi, &psi, &Options::default())?;
+/// let [_, a, b, c] = found.linkage.lengths();
+/// assert!((a - 80.0).abs() < 1e-7 && (b - 200.0).abs() < 1e-7 && (c - 150.0).abs() < 1e-7);
+/// assert!(found.rms_error < 1e-10);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn function_generation(
+    ground: f64,
+    phi: &[f64],
+    psi: &[f64],
+    options: &Options,
+) -> Result<Synthesis, SynthesisError> {
+    if phi.len() != psi.len() || phi.len() < 3 {
+        return Err(SynthesisError::BadTargets(
+            "function generation needs three or more pairs of input and output angles",
+        ));
+    }
+    if !(ground.is_finite() && ground > 0.0) || phi.iter().chain(psi).any(|v| !v.is_finite()) {
+        return Err(SynthesisError::BadTargets(
+            "the ground length must be positive and every angle finite",
+        ));
+    }
+    let classical = freudenstein(ground, [phi[0], phi[1], phi[2]], [psi[0], psi[1], psi[2]])
+        .map(|[_, a, b, c]| [a, b, c]);
+    let starts = starts(options, classical.into_iter().collect(), |random| {
+        crank_rocker(ground, random)
+    });
+    let problem = |start: [f64; 3]| FunctionProblem {
+        ground,
+        phi,
+        psi,
+        branch: options.branch,
+        x: DVector::from_iterator(3, start.iter().map(|l| l.ln())),
+    };
+    let solved = starts.into_par_iter().map(|start| {
+        let (solved, report) = LevenbergMarquardt::new().minimize(problem(start));
+        let linkage = solved.linkage()?;
+        let errors = solved.errors()?;
+        finished(&report.termination).then_some(())?;
+        Some((linkage, (Vec2::default(), 0.0), errors, phi.to_vec()))
+    });
+    best(solved.collect(), options)
+}
+
+/// Path generation: the four-bar and its placement (crank pivot, ground line's angle) whose
+/// coupler point passes through `targets`, at the crank angles `timing` (radians from the
+/// ground line) where they are prescribed, else at crank angles it finds too (then it needs
+/// nine or more targets for its nine dimensions and placement; five or more with timing).
+///
+/// ```
+/// use mechanisms::synthesis::{path_generation, Options};
+/// use mechanisms::FourBar;
+/// use mechgen::{Branch, Vec2};
+/// // Six points of Example 1's coupler curve (P 100 from A at 30°), with their crank angles.
+/// let example = FourBar::new(180.0, 80.0, 200.0, 150.0)?.with_coupler_point(100.0, 0.5236)?;
+/// let timing: Vec<f64> = (0..6).map(|k| k as f64).collect();
+/// let targets: Vec<Vec2<f64>> = timing
+///     .iter()
+///     .map(|&t| {
+///         let q = example.assemble(t, Branch::Open).unwrap();
+///         example.points(t, &q).unwrap().coupler_point
+///     })
+///     .collect();
+/// let found = path_generation(&targets, Some(&timing), &Options::default())?;
+/// assert!(found.rms_error < 1e-8);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn path_generation(
+    targets: &[Vec2<f64>],
+    timing: Option<&[f64]>,
+    options: &Options,
+) -> Result<Synthesis, SynthesisError> {
+    let needed = if timing.is_some() { 5 } else { 9 };
+    if targets.len() < needed {
+        return Err(SynthesisError::BadTargets(if timing.is_some() {
+            "path generation with prescribed crank angles needs five or more targets"
+        } else {
+            "path generation without prescribed crank angles needs nine or more targets"
+        }));
+    }
+    if timing.is_some_and(|t| t.len() != targets.len())
+        || targets
+            .iter()
+            .any(|p| !(p.x.is_finite() && p.y.is_finite()))
+        || timing.is_some_and(|t| t.iter().any(|v| !v.is_finite()))
+    {
+        return Err(SynthesisError::BadTargets(
+            "every target needs finite coordinates, and a crank angle if any has one",
+        ));
+    }
+    let n = targets.len();
+    let centre = targets
+        .iter()
+        .fold(Vec2::default(), |c: Vec2<f64>, p| Vec2 {
+            x: c.x + p.x / n as f64,
+            y: c.y + p.y / n as f64,
+        });
+    let spread = targets
+        .iter()
+        .map(|p| (p.x - centre.x).hypot(p.y - centre.y))
+        .fold(0.0f64, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let tau = core::f64::consts::TAU;
+    // [x0, y0, θ1, ln l1, ln l2, ln l3, ln l4, ln a, δ] and, without timing, each θ2.
+    let starts = starts(options, Vec::new(), |random| {
+        let mut x = Vec::with_capacity(9 + n);
+        let radius = spread * (1.0 + 2.0 * random.unit());
+        let around = tau * random.unit();
+        x.push(centre.x + radius * around.cos());
+        x.push(centre.y + radius * around.sin());
+        x.push(tau * random.unit());
+        let ground = spread * (0.5 + 1.5 * random.unit());
+        x.push(ground.ln());
+        x.extend(crank_rocker(ground, random).map(f64::ln));
+        x.push((spread * (0.1 + 1.9 * random.unit())).ln());
+        x.push(tau * random.unit());
+        if timing.is_none() {
+            // In order round the turn, from a random start.
+            let first = tau * random.unit();
+            x.extend((0..n).map(|i| first + tau * i as f64 / n as f64));
+        }
+        x
+    });
+    let solved = starts.into_par_iter().map(|start| {
+        let problem = PathProblem {
+            targets,
+            timing,
+            branch: options.branch,
+            x: DVector::from_vec(start),
+        };
+        let (solved, report) = LevenbergMarquardt::new().minimize(problem);
+        let linkage = solved.linkage()?;
+        let errors = solved.errors()?;
+        finished(&report.termination).then_some(())?;
+        let x = &solved.x;
+        let inputs = (0..n).map(|i| solved.input(i)).collect();
+        Some((linkage, (Vec2 { x: x[0], y: x[1] }, x[2]), errors, inputs))
+    });
+    best(solved.collect(), options)
+}
+
+/// The starts: `classical` first, then `options.restarts` random ones, each from its own
+/// generator seeded from `options.seed` and its index, so that the result does not depend
+/// on how many cores run them.
+fn starts<S>(
+    options: &Options,
+    classical: Vec<S>,
+    random_start: impl Fn(&mut SplitMix64) -> S,
+) -> Vec<S> {
+    let random = (0..options.restarts).map(|k| {
+        let mut generator =
+            SplitMix64(options.seed ^ (k as u64).wrapping_mul(0xA24B_AED4_963E_E407));
+        random_start(&mut generator)
+    });
+    classical.into_iter().chain(random).collect()
+}
+
+/// A start's solution: the linkage, its placement, its errors at the targets and its crank
+/// angles there; `None` for a start that did not converge.
+type Solved = (FourBar<f64>, (Vec2<f64>, f64), Vec<f64>, Vec<f64>);
+
+/// The best of the converged starts that meet the constraints: the smallest rms error, ties
+/// to the earliest start.
+fn best(solved: Vec<Option<Solved>>, options: &Options) -> Result<Synthesis, SynthesisError> {
+    let converged = solved.iter().flatten().count();
+    let feasible: Vec<_> = solved
+        .into_iter()
+        .flatten()
+        .filter(|(linkage, _, _, inputs)| meets(linkage, inputs, options))
+        .collect();
+    let count = feasible.len();
+    feasible
+        .into_iter()
+        .map(|(linkage, placement, errors, _)| Synthesis {
+            linkage,
+            placement,
+            rms_error: rms(&errors),
+            largest_error: errors.iter().fold(0.0f64, |m, e| m.max(e.abs())),
+            converged,
+            feasible: count,
+        })
+        .min_by(|a, b| a.rms_error.total_cmp(&b.rms_error))
+        .ok_or(SynthesisError::NothingFeasible { converged })
+}
+
+/// Whether `linkage` meets the constraints of `options` at the crank angles `inputs`.
+fn meets(linkage: &FourBar<f64>, inputs: &[f64], options: &Options) -> bool {
+    if options.crank
+        && !matches!(
+            linkage.grashof().inversion,
+            Inversion::CrankRocker | Inversion::DoubleCrank
+        )
+    {
+        return false;
+    }
+    let Some((low, high)) = options.transmission else {
+        return true;
+    };
+    let within = |theta2: f64| {
+        linkage
+            .assemble(theta2, options.branch)
+            .is_ok_and(|q| (low..=high).contains(&linkage.transmission_angle(&q)))
+    };
+    if options.crank {
+        // Over the whole turn, every degree.
+        (0..360).all(|k| within(f64::from(k).to_radians()))
+    } else {
+        inputs.iter().all(|&theta2| within(theta2))
+    }
+}
+
+/// Whether Levenberg–Marquardt stopped at a minimum: converged by its tests, or unable to
+/// improve further in the float's precision (where a fit that is not exact ends), not out
+/// of evaluations nor on a non-finite value.
+fn finished(termination: &TerminationReason) -> bool {
+    termination.was_successful()
+        || matches!(termination, TerminationReason::NoImprovementPossible(_))
+}
+
+/// The residuals, or where some target cannot be reached, `count` NaNs: Levenberg–Marquardt
+/// then rejects the step that led there and shortens its trust region, where `None` would end
+/// the run.
+fn not_assembled(errors: Option<Vec<f64>>, count: usize) -> DVector<f64> {
+    errors.map_or_else(|| DVector::from_element(count, f64::NAN), DVector::from_vec)
+}
+
+/// Crank, coupler and rocker of a random crank-rocker on `ground` (the crank shortest, and
+/// Grashof), so that a start reaches every crank angle.
+fn crank_rocker(ground: f64, random: &mut SplitMix64) -> [f64; 3] {
+    let mut lengths = [0.0; 3];
+    for _ in 0..64 {
+        let crank = ground * (0.1 + 0.5 * random.unit());
+        let [coupler, rocker] = [0; 2].map(|_| ground * (0.4 + 1.6 * random.unit()));
+        lengths = [crank, coupler, rocker];
+        let sorted = {
+            let mut all = [ground, crank, coupler, rocker];
+            all.sort_by(f64::total_cmp);
+            all
+        };
+        if crank == sorted[0] && sorted[0] + sorted[3] < sorted[1] + sorted[2] {
+            break;
+        }
+    }
+    lengths
+}
+
+fn rms(errors: &[f64]) -> f64 {
+    (errors.iter().map(|e| e * e).sum::<f64>() / errors.len().max(1) as f64).sqrt()
+}
+
+/// `angle` wrapped to (−π, π].
+fn wrapped(angle: f64) -> f64 {
+    let tau = core::f64::consts::TAU;
+    angle - tau * (angle / tau).round()
+}
+
+/// Function generation's least squares: `x = [ln a, ln b, ln c]`, residuals
+/// `θ4(φ_i) − ψ_i` wrapped.
+struct FunctionProblem<'a> {
+    ground: f64,
+    phi: &'a [f64],
+    psi: &'a [f64],
+    branch: Branch,
+    x: DVector<f64>,
+}
+
+impl FunctionProblem<'_> {
+    fn linkage(&self) -> Option<FourBar<f64>> {
+        let [a, b, c] = [0, 1, 2].map(|k| self.x[k].exp());
+        FourBar::new(self.ground, a, b, c).ok()
+    }
+
+    fn errors(&self) -> Option<Vec<f64>> {
+        let linkage = self.linkage()?;
+        self.phi
+            .iter()
+            .zip(self.psi)
+            .map(|(&phi, &psi)| {
+                let q = linkage.assemble(phi, self.branch).ok()?;
+                Some(wrapped(q.theta4 - psi))
+            })
+            .collect()
+    }
+}
+
+impl LeastSquaresProblem<f64, Dyn, Dyn> for FunctionProblem<'_> {
+    type ResidualStorage = Owned<f64, Dyn>;
+    type JacobianStorage = Owned<f64, Dyn, Dyn>;
+    type ParameterStorage = Owned<f64, Dyn>;
+
+    fn set_params(&mut self, x: &DVector<f64>) {
+        self.x.copy_from(x);
+    }
+
+    fn params(&self) -> DVector<f64> {
+        self.x.clone()
+    }
+
+    fn residuals(&self) -> Option<DVector<f64>> {
+        Some(not_assembled(self.errors(), self.phi.len()))
+    }
+
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        let linkage = self.linkage()?;
+        let [_, a, b, c] = linkage.lengths();
+        let mut jacobian = DMatrix::zeros(self.phi.len(), 3);
+        for (i, &phi) in self.phi.iter().enumerate() {
+            let q = linkage.assemble(phi, self.branch).ok()?;
+            let s = linkage.sensitivities(phi, &q).ok()?;
+            // ∂/∂ln l = l·∂/∂l.
+            for (k, (length, d)) in [(a, s.l2), (b, s.l3), (c, s.l4)].into_iter().enumerate() {
+                jacobian[(i, k)] = length * d.theta4;
+            }
+        }
+        Some(jacobian)
+    }
+}
+
+/// Path generation's least squares: `x = [x0, y0, θ1, ln l1, ln l2, ln l3, ln l4, ln a, δ]`
+/// and, without timing, each target's crank angle; residuals the coupler point's position
+/// in the targets' frame, `O + R(θ1)·P(θ2_i)`, less the target, x and y.
+struct PathProblem<'a> {
+    targets: &'a [Vec2<f64>],
+    timing: Option<&'a [f64]>,
+    branch: Branch,
+    x: DVector<f64>,
+}
+
+impl PathProblem<'_> {
+    fn linkage(&self) -> Option<FourBar<f64>> {
+        let [l1, l2, l3, l4, a] = [3, 4, 5, 6, 7].map(|k| self.x[k].exp());
+        FourBar::new(l1, l2, l3, l4)
+            .and_then(|l| l.with_coupler_point(a, self.x[8]))
+            .ok()
+    }
+
+    /// Target `i`'s crank angle.
+    fn input(&self, i: usize) -> f64 {
+        match self.timing {
+            Some(timing) => timing[i],
+            None => self.x[9 + i],
+        }
+    }
+
+    /// The ground line's rotation.
+    fn turn(&self, v: Vec2<f64>) -> Vec2<f64> {
+        let (s, c) = self.x[2].sin_cos();
+        Vec2 {
+            x: c * v.x - s * v.y,
+            y: s * v.x + c * v.y,
+        }
+    }
+
+    fn errors(&self) -> Option<Vec<f64>> {
+        let linkage = self.linkage()?;
+        let mut errors = Vec::with_capacity(2 * self.targets.len());
+        for (i, target) in self.targets.iter().enumerate() {
+            let theta2 = self.input(i);
+            let q = linkage.assemble(theta2, self.branch).ok()?;
+            let p = self.turn(linkage.points(theta2, &q).ok()?.coupler_point);
+            errors.push(self.x[0] + p.x - target.x);
+            errors.push(self.x[1] + p.y - target.y);
+        }
+        Some(errors)
+    }
+}
+
+impl LeastSquaresProblem<f64, Dyn, Dyn> for PathProblem<'_> {
+    type ResidualStorage = Owned<f64, Dyn>;
+    type JacobianStorage = Owned<f64, Dyn, Dyn>;
+    type ParameterStorage = Owned<f64, Dyn>;
+
+    fn set_params(&mut self, x: &DVector<f64>) {
+        self.x.copy_from(x);
+    }
+
+    fn params(&self) -> DVector<f64> {
+        self.x.clone()
+    }
+
+    fn residuals(&self) -> Option<DVector<f64>> {
+        Some(not_assembled(self.errors(), 2 * self.targets.len()))
+    }
+
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        let linkage = self.linkage()?;
+        let [l1, l2, l3, l4] = linkage.lengths();
+        let (a, _) = linkage.coupler_point();
+        let n = self.targets.len();
+        let mut jacobian = DMatrix::zeros(2 * n, self.x.len());
+        for i in 0..n {
+            let theta2 = self.input(i);
+            let q = linkage.assemble(theta2, self.branch).ok()?;
+            let p = linkage.points(theta2, &q).ok()?.coupler_point;
+            let s = linkage.point_sensitivities(theta2, &q).ok()?;
+            let (sin, cos) = self.x[2].sin_cos();
+            let mut set = |k: usize, v: Vec2<f64>| {
+                jacobian[(2 * i, k)] = v.x;
+                jacobian[(2 * i + 1, k)] = v.y;
+            };
+            // The dimensions' columns turn with the ground line; the pivot's do not.
+            let mut column = |k: usize, v: Vec2<f64>| {
+                set(
+                    k,
+                    Vec2 {
+                        x: cos * v.x - sin * v.y,
+                        y: sin * v.x + cos * v.y,
+                    },
+                )
+            };
+            column(0, Vec2 { x: cos, y: -sin });
+            column(1, Vec2 { x: sin, y: cos });
+            // ∂R(θ1)P/∂θ1 = R(θ1)·(i·P).
+            column(2, Vec2 { x: -p.y, y: p.x });
+            let scaled = |l: f64, v: Vec2<f64>| Vec2 {
+                x: l * v.x,
+                y: l * v.y,
+            };
+            column(3, scaled(l1, s.l1.coupler_point));
+            column(4, scaled(l2, s.l2.coupler_point));
+            column(5, scaled(l3, s.l3.coupler_point));
+            column(6, scaled(l4, s.l4.coupler_point));
+            column(7, scaled(a, s.a.coupler_point));
+            column(8, s.delta.coupler_point);
+            if self.timing.is_none() {
+                // ∂P/∂θ2: the point's velocity at a unit crank rate.
+                let rates = linkage.velocity(theta2, &q, 1.0).ok()?;
+                let v = linkage.point_velocities(theta2, &q, 1.0, &rates).ok()?;
+                column(9 + i, v.coupler_point);
+            }
+        }
+        Some(jacobian)
+    }
+}
+
+/// Steele, Lea and Flood's SplitMix64, for reproducible starts.
+struct SplitMix64(u64);
+
+impl SplitMix64 {
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        (z ^ (z >> 31)) as f64 / 2f64.powi(64)
+    }
+}

@@ -1,0 +1,189 @@
+//! Issue 15's dimensional synthesis: Levenberg–Marquardt on the generated derivatives finds
+//! linkages whose output or coupler point meets precision points, agrees with Freudenstein's
+//! closed form where that applies, keeps its constraints, and gives the same answer from the
+//! same seed on any number of cores.
+
+use mechanisms::FourBar;
+use mechanisms::synthesis::{
+    Options, SynthesisError, freudenstein, function_generation, path_generation,
+};
+use mechgen::grashof::Inversion;
+use mechgen::{Branch, Vec2};
+
+/// Example 1 with its coupler point 100 from A at 30°.
+fn example() -> FourBar<f64> {
+    FourBar::new(180.0, 80.0, 200.0, 150.0)
+        .and_then(|l| l.with_coupler_point(100.0, 30f64.to_radians()))
+        .unwrap()
+}
+
+/// Example 1's rocker angles at `phi`, open branch.
+fn outputs(phi: &[f64]) -> Vec<f64> {
+    phi.iter()
+        .map(|&p| example().assemble(p, Branch::Open).unwrap().theta4)
+        .collect()
+}
+
+/// Example 1's coupler point at `theta2`, open branch, moved to a frame with its crank pivot
+/// at (30, −20) and its ground line at 25°.
+fn target(theta2: f64) -> Vec2<f64> {
+    let l = example();
+    let q = l.assemble(theta2, Branch::Open).unwrap();
+    let p = l.points(theta2, &q).unwrap().coupler_point;
+    let (s, c) = 25f64.to_radians().sin_cos();
+    Vec2 {
+        x: 30.0 + c * p.x - s * p.y,
+        y: -20.0 + s * p.x + c * p.y,
+    }
+}
+
+#[test]
+fn three_precision_points_give_freudensteins_closed_form() {
+    // A function no four-bar follows exactly: y = log10(x) for x in [1, 2], the input
+    // turning 30..90° and the output 60..120° (Chebyshev spacing of the three points).
+    let spacing = [0.0669873f64, 0.5, 0.9330127];
+    let phi = spacing.map(|s| (30.0 + 60.0 * s).to_radians());
+    let psi = spacing.map(|s| (60.0 + 60.0 * (1.0 + s).log10() / 2f64.log10()).to_radians());
+    let closed = freudenstein(100.0, phi, psi).expect("a linkage");
+    // Whichever branch the closed form's linkage meets the points on.
+    let branch = [Branch::Open, Branch::Crossed]
+        .into_iter()
+        .find(|&b| {
+            let l = FourBar::new(closed[0], closed[1], closed[2], closed[3]).unwrap();
+            phi.iter()
+                .zip(&psi)
+                .all(|(&p, &s)| l.assemble(p, b).is_ok_and(|q| (q.theta4 - s).abs() < 1e-9))
+        })
+        .expect("the closed form meets its points on one branch");
+    let options = Options {
+        branch,
+        ..Options::default()
+    };
+    let found = function_generation(100.0, &phi, &psi, &options).unwrap();
+    assert!(found.rms_error < 1e-12, "{}", found.rms_error);
+    for (a, b) in found.linkage.lengths().iter().zip(closed) {
+        assert!(
+            (a - b).abs() < 1e-8 * b,
+            "{:?} against {closed:?}",
+            found.linkage.lengths()
+        );
+    }
+}
+
+#[test]
+fn function_generation_recovers_a_linkage_from_its_own_outputs() {
+    let phi: Vec<f64> = (0..7).map(|k| 0.5 * f64::from(k)).collect();
+    let found = function_generation(180.0, &phi, &outputs(&phi), &Options::default()).unwrap();
+    let [_, a, b, c] = found.linkage.lengths();
+    assert!((a - 80.0).abs() < 1e-8 && (b - 200.0).abs() < 1e-8 && (c - 150.0).abs() < 1e-8);
+    assert!(found.rms_error < 1e-12 && found.largest_error < 1e-12);
+    assert!(found.converged >= 1 && found.feasible >= 1);
+}
+
+#[test]
+fn function_generation_keeps_its_constraints() {
+    // Example 1's output at seven crank angles round the turn, asked of a crank with its
+    // transmission angle within a degree of Example 1's own extremes: Example 1 meets it.
+    let extremes = example().transmission_extremes();
+    let (low, high) = (
+        extremes.min - 1f64.to_radians(),
+        extremes.max + 1f64.to_radians(),
+    );
+    let phi: Vec<f64> = (0..7).map(|k| 0.9 * f64::from(k)).collect();
+    let options = Options {
+        crank: true,
+        transmission: Some((low, high)),
+        ..Options::default()
+    };
+    let found = function_generation(180.0, &phi, &outputs(&phi), &options).unwrap();
+    let l = found.linkage;
+    assert!(matches!(
+        l.grashof().inversion,
+        Inversion::CrankRocker | Inversion::DoubleCrank
+    ));
+    for k in 0..360 {
+        let q = l.assemble(f64::from(k).to_radians(), Branch::Open).unwrap();
+        let gamma = l.transmission_angle(&q);
+        assert!((low..=high).contains(&gamma), "{k}°: transmission {gamma}");
+    }
+    assert!(found.rms_error < 1e-12, "{}", found.rms_error);
+    // Within a degree of 90° all the turn, no crank follows it.
+    let options = Options {
+        crank: true,
+        transmission: Some((89f64.to_radians(), 91f64.to_radians())),
+        restarts: 16,
+        ..Options::default()
+    };
+    let error = function_generation(180.0, &phi, &outputs(&phi), &options).unwrap_err();
+    assert!(matches!(error, SynthesisError::NothingFeasible { converged } if converged > 0));
+    assert!(error.to_string().contains("no linkage meets"), "{error}");
+}
+
+#[test]
+fn path_generation_with_timing_recovers_the_linkage_and_its_placement() {
+    let timing: Vec<f64> = (0..6).map(f64::from).collect();
+    let targets: Vec<Vec2<f64>> = timing.iter().map(|&t| target(t)).collect();
+    let found = path_generation(&targets, Some(&timing), &Options::default()).unwrap();
+    assert!(found.rms_error < 1e-9, "{}", found.rms_error);
+    let [l1, l2, l3, l4] = found.linkage.lengths();
+    for (a, b) in [(l1, 180.0), (l2, 80.0), (l3, 200.0), (l4, 150.0)] {
+        assert!((a - b).abs() < 1e-6, "{:?}", found.linkage.lengths());
+    }
+    let (pivot, angle) = found.placement;
+    assert!((pivot.x - 30.0).abs() < 1e-6 && (pivot.y + 20.0).abs() < 1e-6);
+    assert!((angle.to_degrees().rem_euclid(360.0) - 25.0).abs() < 1e-6);
+}
+
+#[test]
+fn path_generation_without_timing_passes_through_the_points() {
+    let targets: Vec<Vec2<f64>> = (0..10).map(|k| target(0.6 * f64::from(k))).collect();
+    let options = Options {
+        restarts: 128,
+        ..Options::default()
+    };
+    let found = path_generation(&targets, None, &options).unwrap();
+    assert!(found.rms_error < 1e-7, "{}", found.rms_error);
+}
+
+#[test]
+fn the_same_seed_gives_the_same_linkage_on_any_number_of_cores() {
+    // Example 1's output bent a little: a fit, not an exact solution.
+    let phi: Vec<f64> = (0..8).map(|k| 0.8 * f64::from(k)).collect();
+    let psi: Vec<f64> = phi
+        .iter()
+        .zip(outputs(&phi))
+        .map(|(p, out)| out + 0.01 * (3.0 * p).sin())
+        .collect();
+    let options = Options {
+        restarts: 32,
+        seed: 7,
+        ..Options::default()
+    };
+    let many = function_generation(180.0, &phi, &psi, &options).unwrap();
+    assert!(
+        many.rms_error > 1e-4 && many.rms_error < 0.01,
+        "{}",
+        many.rms_error
+    );
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| function_generation(180.0, &phi, &psi, &options).unwrap());
+    assert_eq!(many, one);
+}
+
+#[test]
+fn bad_targets_and_impossible_constraints_say_why() {
+    let too_few = function_generation(100.0, &[0.0, 1.0], &[0.5, 0.7], &Options::default());
+    assert!(matches!(too_few, Err(SynthesisError::BadTargets(_))));
+    let not_finite = function_generation(
+        100.0,
+        &[0.0, 1.0, f64::NAN],
+        &[0.5, 0.7, 0.9],
+        &Options::default(),
+    );
+    assert!(matches!(not_finite, Err(SynthesisError::BadTargets(_))));
+    let few_points = path_generation(&[Vec2 { x: 0.0, y: 0.0 }; 4], None, &Options::default());
+    assert!(matches!(few_points, Err(SynthesisError::BadTargets(_))));
+}
