@@ -20,6 +20,11 @@
 //! the other loop in closed form inside each iteration) and [`JansenLeg`] (Theo Jansen's walking leg with his published lengths, three
 //! loops in closed form, the foot's trajectory, velocity and acceleration).
 //!
+//! Design from the generated sensitivities (`generate: sensitivities`): [`tolerance`] (how
+//! far the four-bar's output and coupler point move within its dimensions' tolerances) and,
+//! with the `std` feature, [`synthesis`] (the four-bar's dimensions for a function or a path,
+//! by Levenberg–Marquardt).
+//!
 //! Conventions (KINEMATICS.md in the project's notes): vectors are `r @ θ` = `r·e^{iθ}`,
 //! angles in radians counter-clockwise from +x, the crank pivot O2 at the origin.
 #![no_std]

@@ -40,10 +40,14 @@ pub struct Options {
     /// Require the transmission angle within these bounds (radians, within [0, π]) at every
     /// target; over the whole turn where `crank` is asked too.
     pub transmission: Option<(f64, f64)>,
+    /// The largest ratio of the longest link to the shortest: a start that runs off towards
+    /// a degenerate linkage (a crank shrinking to nothing, which follows a bad fit exactly
+    /// enough) is discarded.
+    pub max_ratio: f64,
 }
 
 impl Default for Options {
-    /// The open branch, 64 restarts from seed 1, no constraint.
+    /// The open branch, 64 restarts from seed 1, no link more than 50 times another.
     fn default() -> Self {
         Options {
             branch: Branch::Open,
@@ -51,6 +55,7 @@ impl Default for Options {
             seed: 1,
             crank: false,
             transmission: None,
+            max_ratio: 50.0,
         }
     }
 }
@@ -356,6 +361,14 @@ fn best(solved: Vec<Option<Solved>>, options: &Options) -> Result<Synthesis, Syn
 
 /// Whether `linkage` meets the constraints of `options` at the crank angles `inputs`.
 fn meets(linkage: &FourBar<f64>, inputs: &[f64], options: &Options) -> bool {
+    let lengths = linkage.lengths();
+    let longest = lengths.iter().fold(0.0f64, |m, l| m.max(*l));
+    let shortest = lengths.iter().fold(f64::INFINITY, |m, l| m.min(*l));
+    // Not within the ratio (a NaN is not either).
+    let proportionate = longest <= options.max_ratio * shortest;
+    if !proportionate {
+        return false;
+    }
     if options.crank
         && !matches!(
             linkage.grashof().inversion,

@@ -1257,3 +1257,112 @@ fn tolerance_reports_first_order_beside_the_nonlinear_model() {
         "--tolerances takes four",
     );
 }
+
+/// `synthesise`: Example 1's output at six crank angles (rounded to degrees) gives Example 1
+/// back to within the rounding; three points give Freudenstein's closed form; a chart; and
+/// clear refusals.
+#[test]
+fn synthesise_finds_a_four_bar_for_a_function_and_a_path() {
+    let report = stdout_of(&[
+        "synthesise",
+        "function",
+        "--ground",
+        "180",
+        "--crank",
+        "0,45,90,135,180,225",
+        "--rocker",
+        "76,67,87,111,130,138",
+        "--branch",
+        "open",
+    ]);
+    assert!(
+        report.contains("ground 180.0000 crank 80.1067 coupler 200.6338 rocker 151.5064"),
+        "{report}"
+    );
+    let three = stdout_of(&[
+        "synthesise",
+        "function",
+        "--crank",
+        "30,60,90",
+        "--rocker",
+        "60,95.1,120",
+    ]);
+    assert!(three.contains("crossed branch"), "{three}");
+    assert!(
+        three.contains("Freudenstein's closed form of the three points: crank 347.2422"),
+        "{three}"
+    );
+    // Six points of a circle of radius 50 about (100, 100), at crank angles 60° apart: a
+    // four-bar's coupler curve through them, placed.
+    let (x, y): (Vec<String>, Vec<String>) = (0..6)
+        .map(|k| {
+            let t = f64::from(k) * std::f64::consts::FRAC_PI_3;
+            (
+                format!("{:.6}", 100.0 + 50.0 * t.cos()),
+                format!("{:.6}", 100.0 + 50.0 * t.sin()),
+            )
+        })
+        .unzip();
+    let scratch = Scratch::new("synthesise");
+    std::fs::create_dir_all(&scratch.0).unwrap();
+    let svg = scratch.0.join("path.svg");
+    let path = stdout_of(&[
+        "synthesise",
+        "path",
+        "--x",
+        &x.join(","),
+        "--y",
+        &y.join(","),
+        "--timing",
+        "0,60,120,180,240,300",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(path.contains("placed with its crank pivot at"), "{path}");
+    assert!(
+        std::fs::read_to_string(&svg)
+            .unwrap()
+            .contains("coupler curve")
+    );
+    fails_with(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "1,2",
+            "--rocker",
+            "1,2,3",
+        ],
+        "one rocker angle per crank angle",
+    );
+    fails_with(
+        &["synthesise", "path", "--x", "1,2,3", "--y", "1,2,3"],
+        "nine or more targets",
+    );
+    fails_with(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+            "--transmission",
+            "140,40",
+        ],
+        "--transmission takes two angles",
+    );
+    fails_with(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+            "--restarts",
+            "999999999",
+        ],
+        "--restarts takes at most",
+    );
+}

@@ -10,6 +10,7 @@ mod seeds;
 mod six_bars;
 mod svg;
 mod sweep;
+mod synthesise;
 mod tolerance;
 
 use std::process::ExitCode;
@@ -37,6 +38,12 @@ enum Command {
     /// their tolerances, over a turn: first order from the generated sensitivities, beside
     /// the nonlinear model (the tolerance box's corners, and Monte Carlo).
     Tolerance(tolerance::Args),
+    /// A four-bar whose output follows precision points of a function, or whose coupler
+    /// point passes through targets, by Levenberg-Marquardt on the generated derivatives.
+    Synthesise {
+        #[command(subcommand)]
+        task: synthesise::Task,
+    },
 }
 
 /// The mechanisms the program knows, and the dimensions each takes (mm, degrees).
@@ -128,6 +135,7 @@ fn main() -> ExitCode {
         Some(Command::Sweep(args)) => sweep::run(&args),
         Some(Command::Seeds) => seeds::run().map_err(|e| e.to_string()),
         Some(Command::Tolerance(args)) => tolerance::run(&args),
+        Some(Command::Synthesise { task }) => synthesise::run(&task),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
