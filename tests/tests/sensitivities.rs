@@ -244,7 +244,7 @@ proptest::proptest! {
     fn sensitivities_agree_with_central_differences_on_random_four_bars(
         lengths in proptest::array::uniform4(1.0f64..10.0),
         point in (0.0f64..10.0, -3.0f64..3.0),
-        theta2 in -3.14f64..3.14,
+        theta2 in -std::f64::consts::PI..std::f64::consts::PI,
         open in proptest::bool::ANY,
     ) {
         let branch = if open { Branch::Open } else { Branch::Crossed };
