@@ -54,12 +54,12 @@ pub use inverted_slider_crank::{
     InvertedSliderCrankState, InvertedSliderCrankUnknowns,
 };
 pub use jansen::{
-    JansenLeg, JansenLegFootMotion, JansenLegFootPath, JansenLegPoints, JansenLegScenes,
-    JansenLegUnknowns,
+    JansenLeg, JansenLegBranches, JansenLegFootMotion, JansenLegFootPath, JansenLegPoints,
+    JansenLegScenes, JansenLegUnknowns,
 };
 pub use six_bar::{
     StephensonSixBar, StephensonSixBarPoints, StephensonSixBarUnknowns, WattSixBar,
-    WattSixBarOutput, WattSixBarPoints, WattSixBarScenes, WattSixBarUnknowns,
+    WattSixBarBranches, WattSixBarOutput, WattSixBarPoints, WattSixBarScenes, WattSixBarUnknowns,
 };
 pub use slider_crank::{
     SliderCrank, SliderCrankPoints, SliderCrankScenes, SliderCrankSlider, SliderCrankState,

@@ -152,3 +152,69 @@ fn six_bar_matches_circle_intersections_and_finite_differences() {
         assert!((d.x - d_expected.0).abs() < 1e-9 && (d.y - d_expected.1).abs() < 1e-9);
     }
 }
+
+mechanism! {
+    /// The same six-bar with its loops declared the other way round: the dyad's loop first,
+    /// though it can only be solved second (it needs θ4).
+    pub struct Reversed {
+        params: l1, l2, l3, l4, l4b, beta: angle, l5, l6, g, phi: angle;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle, theta5: angle, theta6: angle;
+        loop: l1 @ 0 + l4b @ (theta4 + beta) + l5 @ theta5 - l6 @ theta6 - g @ phi;
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
+    }
+}
+
+/// Issue 14's named branches: a field per branching loop named after the unknowns it sets,
+/// whatever order the loops are declared or solved in, with every loop open by default.
+#[test]
+fn named_branches_choose_each_loop_by_name_in_any_declaration_order() {
+    let s = linkage();
+    let reversed = Reversed {
+        l1: s.l1,
+        l2: s.l2,
+        l3: s.l3,
+        l4: s.l4,
+        l4b: s.l4b,
+        beta: s.beta,
+        l5: s.l5,
+        l6: s.l6,
+        g: s.g,
+        phi: s.phi,
+    };
+    let theta2 = 1.0;
+    for (four_bar, dyad) in [
+        (Branch::Open, Branch::Open),
+        (Branch::Open, Branch::Crossed),
+        (Branch::Crossed, Branch::Open),
+        (Branch::Crossed, Branch::Crossed),
+    ] {
+        let by_name = SixBarBranches {
+            theta3_theta4: four_bar,
+            theta5_theta6: dyad,
+        };
+        let q = s.assemble(theta2, by_name).unwrap();
+        // The same assembly from the array, and from the reversed declaration by name: its
+        // array is in solve order, the four-bar's loop first, though declared second.
+        assert_eq!(q, s.assemble(theta2, [four_bar, dyad]).unwrap());
+        let r = reversed
+            .assemble(
+                theta2,
+                ReversedBranches {
+                    theta3_theta4: four_bar,
+                    theta5_theta6: dyad,
+                },
+            )
+            .unwrap();
+        assert_eq!(
+            [q.theta3, q.theta4, q.theta5, q.theta6],
+            [r.theta3, r.theta4, r.theta5, r.theta6]
+        );
+        // branch_of gives the array back, which converts to the names.
+        assert_eq!(SixBarBranches::from(s.branch_of(theta2, &q)), by_name);
+        let motion = s.motion(theta2, by_name, 10.0, 0.0).unwrap();
+        assert_eq!(motion.position, q);
+    }
+    let open = SixBarBranches::default();
+    assert_eq!(<[Branch; 2]>::from(open), [Branch::Open; 2]);
+}

@@ -50,6 +50,12 @@ impl Generator<'_> {
                 ));
             }
         }
+        if let Some(named) = self.branches_type() {
+            docs.push_str(&format!(
+                "\n\nThe branches: a [`{named}`], each loop's by name, or the array it converts \
+                 into, one per loop above in that order."
+            ));
+        }
         docs.push_str(
             "\n\nErrors: [`mechgen::Error::CannotAssemble`] where a loop cannot close (outside \
              the range of motion); a degenerate configuration; a non-finite parameter or input.",
@@ -69,12 +75,14 @@ impl Generator<'_> {
         let finish_as_given = self.finite_unknowns(&position, "position");
         let as_given = self.as_given();
         let scaled = local("mechgen_assemble_scaled");
+        let (public_parameter, conversion) = self.public_branch_parameter(steps);
         quote! {
             #docs
             pub fn assemble(
                 &self,
-                #input: T #branch_parameter
+                #input: T #public_parameter
             ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
+                #conversion
                 self.mechgen_check_finite(#input)?;
                 if #as_given {
                     let #position = self.#inner(#input #branch_argument)?;
@@ -329,14 +337,16 @@ impl Generator<'_> {
         .map(|(values, quantity)| self.finite_unknowns(values, quantity));
         let as_given = self.as_given();
         let scaled = local("mechgen_motion_scaled");
+        let (public_parameter, conversion) = self.public_branch_parameter(steps);
         quote! {
             #docs
             pub fn motion(
                 &self,
-                #input: T #branch_parameter,
+                #input: T #public_parameter,
                 #input_dot: T,
                 #input_ddot: T,
             ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
+                #conversion
                 self.mechgen_check_finite(#input)?;
                 ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
                 if #as_given {
@@ -466,6 +476,23 @@ impl Generator<'_> {
             .collect()
     }
 
+    /// The `branch` or `branches` parameter of a public closed-form function, and the
+    /// statement its body starts with: for several branching loops, anything that converts
+    /// into the array (the named branches' type, or the array itself), converted.
+    pub(super) fn public_branch_parameter(&self, steps: &[Step]) -> (TokenStream, TokenStream) {
+        match steps.iter().filter(|s| s.case.has_branches()).count() {
+            n if n >= 2 => {
+                let branches = arg("branches");
+                let n = Literal::usize_unsuffixed(n);
+                (
+                    quote!(, #branches: impl ::core::convert::Into<[::mechgen::Branch; #n]>),
+                    quote!(let #branches: [::mechgen::Branch; #n] = #branches.into();),
+                )
+            }
+            _ => (self.branch_parameter(steps), TokenStream::new()),
+        }
+    }
+
     /// The `branch` or `branches` parameter of a closed-form function.
     pub(super) fn branch_parameter(&self, steps: &[Step]) -> TokenStream {
         match steps.iter().filter(|s| s.case.has_branches()).count() {
@@ -546,7 +573,7 @@ fn solver_name(case: &Case) -> Ident {
 }
 
 /// How a case's two branches are told apart, for the docs, with the unknowns' names.
-fn branch_rule(case: &Case, a: &str, b: &str) -> String {
+pub(super) fn branch_rule(case: &Case, a: &str, b: &str) -> String {
     match case {
         Case::TwoLengths { .. } => String::new(),
         Case::LengthAndOwnAngle { .. } => format!(

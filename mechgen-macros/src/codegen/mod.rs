@@ -5,6 +5,7 @@
 //! it reserves, and the helpers that turn expressions into blocks); each submodule adds the
 //! functions for one kind of output in its own `impl Generator`.
 
+mod branches;
 mod closed_forms;
 mod docs;
 mod emit;
@@ -39,11 +40,13 @@ pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
     let kinematics = generator.kinematics_impl();
     let scenes = generator.scene_items();
     let sensitivities = generator.sensitivities_struct();
+    let branches = generator.branches_struct();
     let name = &model.name;
     quote! {
         #mechanism
         #unknowns
         #points
+        #branches
         #sensitivities
         #kinematics
         #scenes

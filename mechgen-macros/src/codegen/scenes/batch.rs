@@ -68,6 +68,8 @@ impl Generator<'_> {
             name.unraw(),
             name.unraw()
         ));
+        let steps = self.equations.closed_form.as_deref().unwrap_or_default();
+        let (public_parameter, conversion) = self.public_branch_parameter(steps);
         let lanes = format_ident!("mechgen_{}_lanes", name.unraw());
         let lanes_docs = doc(&format!(
             "The loop of [`Self::{}`]: whether any output is not finite. Public for the tests \
@@ -101,10 +103,11 @@ impl Generator<'_> {
             #docs
             pub fn #batch(
                 &self,
-                #inputs: &[T] #branch_parameter,
+                #inputs: &[T] #public_parameter,
                 #(#arguments)*
                 #out: &mut [#output_type<T>],
             ) -> ::core::result::Result<(), ::mechgen::BatchError<T>> {
+                #conversion
                 // Inlined into `widest`'s copies, so that each is compiled for its vectors.
                 let #failed = ::mechgen::simd::widest(
                     #[inline(always)]

@@ -324,6 +324,7 @@ impl Generator<'_> {
              [`mechgen::Error::Singular`] where rates are asked for at a toggle; a non-finite \
              argument or result.",
         );
+        let (public_parameter, conversion) = self.public_branch_parameter(steps);
         quote! {
             #docs
             ///
@@ -331,9 +332,10 @@ impl Generator<'_> {
             #[inline(always)]
             pub fn #name(
                 &self,
-                #input: T #branch_parameter,
+                #input: T #public_parameter,
                 #(#arguments)*
             ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
+                #conversion
                 #keep
                 #computed
                 // Every step that can fail gave NaN or an infinity, which reaches an output:
