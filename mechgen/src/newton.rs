@@ -168,12 +168,16 @@ const CREEPING: u32 = 16;
 /// With `keep_orientation`, the Jacobian's orientation (the sign of its determinant) must be
 /// the same at the solution as at the guess, else [`Error::OtherBranch`]: for a single loop
 /// that sign is what tells its two assemblies apart, so Newton never switches branch silently.
+/// Unless the assemblies cannot be told apart: where a whole turn of an unknown angle moves
+/// the loops by no more than their rounding floor (a link shorter than rounding of the
+/// mechanism's size), that angle is undetermined and the two assemblies are the same position
+/// to rounding, so the solution is returned ([`Orientation`]).
 #[inline]
 pub fn newton<T: Real, const N: usize, P: Copy>(
     input: T,
     guess: [T; N],
     options: &NewtonOptions<T>,
-    keep_orientation: bool,
+    keep_orientation: impl Into<Orientation<N>>,
     assembles: impl FnOnce() -> Option<bool>,
     mut linearise: impl FnMut(&[T; N]) -> Linearisation<T, N, P>,
 ) -> Result<Converged<T, N, P>, Error<T>> {
@@ -187,6 +191,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             quantity: "initial guess",
         });
     }
+    let kept: Orientation<N> = keep_orientation.into();
     let rounding_floor = T::constant(16.0) * T::epsilon();
     let quarter = T::constant(0.25);
     let mut x = guess;
@@ -217,7 +222,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         let condition = || T::one() / relative_determinant.abs();
         let floor = rounding_floor * here.scale;
         let accept = |here: Linearisation<T, N, P>, jacobian: Factored<T, N>, x: [T; N]| {
-            if keep_orientation && positive != started_positive {
+            if positive != started_positive && kept.tells_apart(&here, floor) {
                 return Err(Error::OtherBranch);
             }
             Ok(Converged {
@@ -335,6 +340,51 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     }
 }
 
+/// Whether Newton keeps the Jacobian's orientation (see [`newton`]), and which unknowns are
+/// angles. `true` keeps it with every unknown an angle, `false` leaves it free.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Orientation<const N: usize> {
+    /// Any orientation at the solution.
+    Free,
+    /// The guess's orientation at the solution, unless the assemblies cannot be told apart.
+    Kept {
+        /// Which unknowns are angles (the others lengths).
+        angles: [bool; N],
+    },
+}
+
+impl<const N: usize> From<bool> for Orientation<N> {
+    fn from(keep: bool) -> Self {
+        if keep {
+            Orientation::Kept { angles: [true; N] }
+        } else {
+            Orientation::Free
+        }
+    }
+}
+
+impl<const N: usize> Orientation<N> {
+    /// Whether an orientation kept can tell the assemblies apart at the evaluation `at` with
+    /// rounding floor `floor` (the weighted residual's): not where a whole turn of some
+    /// unknown angle moves every loop by less than the floor, for that angle is then
+    /// undetermined and the two assemblies (mirror images across a chord, or a line, that
+    /// the angle's link spans) lie within rounding of each other.
+    fn tells_apart<T: Real, P>(&self, at: &Linearisation<T, N, P>, floor: T) -> bool {
+        let Orientation::Kept { angles } = self else {
+            return false;
+        };
+        let turn = T::constant(core::f64::consts::TAU);
+        !angles.iter().enumerate().any(|(j, &angle)| {
+            angle
+                && at
+                    .jacobian
+                    .iter()
+                    .zip(&at.weights)
+                    .all(|(row, w)| turn * (row[j] * *w).abs() <= floor)
+        })
+    }
+}
+
 /// Whether a residual at the rounding floor is the attainable one (for a default solve):
 /// the step to it started within `√ε/κ` of the root (relative to `scale`), or the Jacobian is
 /// near singular.
@@ -391,12 +441,13 @@ pub fn stagnated<T: Real, const N: usize, P>(
 pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
     guess: [T; N],
     options: &NewtonOptions<T>,
-    keep_orientation: bool,
+    keep_orientation: impl Into<Orientation<N>>,
     mut linearise: impl FnMut(&[T; N]) -> Linearisation<T, N, P>,
     then: impl FnOnce(Converged<T, N, P>) -> R,
     otherwise: impl FnOnce() -> R,
 ) -> R {
     let tolerance = options.tolerance;
+    let keep_orientation = matches!(keep_orientation.into(), Orientation::Kept { .. });
     'common: {
         // Finite and not negative (false for NaN). A guess that is not finite is not tested
         // here: its residual is not finite either (every unknown moves the loops), so the

@@ -32,6 +32,7 @@ impl Generator<'_> {
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
         let (keep_orientation, branch_check) = self.branch_keeping(quote!(&#solved.value));
+        let orientation = self.orientation(keep_orientation, None);
         let branch_doc = if keep_orientation || branch_check.is_some() {
             " It keeps to the guess's assembly branch (for one loop, the orientation of the \
              Jacobian, which tells the branches apart; for several, [`Self::branch_of`]): \
@@ -94,7 +95,7 @@ impl Generator<'_> {
                 #input,
                 #guess.to_array(),
                 #options,
-                #keep_orientation,
+                #orientation,
                 #assembles,
                 #closure,
             )?;
@@ -125,7 +126,7 @@ impl Generator<'_> {
                 ::mechgen::__private::newton_common(
                     #guess.to_array(),
                     #options,
-                    #keep_orientation,
+                    #orientation,
                     #common_closure,
                     #[inline(always)]
                     |#converged| -> #result { #finish },
@@ -233,6 +234,20 @@ impl Generator<'_> {
         (keep_orientation, check)
     }
 
+    /// `Orientation::Kept` with which of `unknowns` are angles (every unknown where `None`),
+    /// or `Orientation::Free`.
+    pub(super) fn orientation(&self, keep: bool, unknowns: Option<&[usize]>) -> TokenStream {
+        if !keep {
+            return quote!(::mechgen::__private::Orientation::Free);
+        }
+        let all: Vec<usize> = (0..self.model.unknowns.len()).collect();
+        let angles = unknowns
+            .unwrap_or(&all)
+            .iter()
+            .map(|&u| self.model.unknowns[u].kind == crate::model::Kind::Angle);
+        quote!(::mechgen::__private::Orientation::Kept { angles: [#(#angles),*] })
+    }
+
     /// `motion_near(input, &guess, &options, rate, acceleration)`: Newton from `guess`, then
     /// the rates at its solution with the sines, cosines and factored Jacobian of its last
     /// evaluation, so nothing is evaluated or factored twice.
@@ -257,6 +272,7 @@ impl Generator<'_> {
         } = self.linearisation(&x, &guess);
         let (keep_orientation, branch_check) =
             self.branch_keeping(quote!(&#ty::from_array(#converged.solved.value)));
+        let orientation = self.orientation(keep_orientation, None);
 
         // The rates read the hoisted values and the last iteration's payload.
         let presets: Vec<(ExprId, Ident, usize)> = named
@@ -332,7 +348,7 @@ impl Generator<'_> {
                 ::mechgen::__private::newton_common(
                     #guess.to_array(),
                     #options,
-                    #keep_orientation,
+                    #orientation,
                     #common_closure,
                     #[inline(always)]
                     |#converged| -> ::core::result::Result<
@@ -352,7 +368,7 @@ impl Generator<'_> {
                     #input,
                     #guess.to_array(),
                     #options,
-                    #keep_orientation,
+                    #orientation,
                     #assembles,
                     #closure,
                 )?;

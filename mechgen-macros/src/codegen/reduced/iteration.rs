@@ -267,6 +267,7 @@ impl Generator<'_> {
             }
         });
         let check = quote!(self.mechgen_check_finite(#input)?;);
+        let orientation = self.orientation(true, Some(&reduction.iterated));
         let solve = quote! {
             ::mechgen::__private::finite(#guess.to_array(), "initial guess")?;
             #bindings
@@ -286,7 +287,7 @@ impl Generator<'_> {
                 #input,
                 [#(#guess.#iterated),*],
                 #options,
-                true,
+                #orientation,
                 || ::core::option::Option::None,
                 |#x: &[T; #n]| {
                     let [#(#iterated),*] = *#x;
