@@ -488,7 +488,13 @@ fn rows(ours: &Values, py: &Values, problem: &str, threshold: f64, threads: &str
             at_budget,
             best,
             note: format!(
-                "{} evaluations in {} s",
+                "median of {} runs, {} reached the threshold (times in s: {}); {} evaluations \
+                 in {} s",
+                py.get(&key("runs")).cloned().unwrap_or_default(),
+                py.get(&key("reached")).cloned().unwrap_or_default(),
+                py.get(&key("seconds_to_threshold_all"))
+                    .cloned()
+                    .unwrap_or_default(),
                 py.get(&key("evaluations")).cloned().unwrap_or_default(),
                 py.get(&key("run_seconds")).cloned().unwrap_or_default()
             ),
@@ -569,9 +575,10 @@ fn write() -> Result<(), Failure> {
          repository at commit `{commit}` on {}:\n\n```sh\ntests/reference/setup-pylinkage.sh   # once\n{WRITE_COMMAND}\n```\n\n\
          Our side is `tests/src/bin/synthesis.rs`, pylinkage's `{SCRIPT}`; both print `key value` \
          lines. The machine was shared with other jobs: times are the best of several runs for \
-         single calls, one run for the optimisers.\n",
+         single calls, the median of {} runs for the optimisers.\n",
         py.get("versions").cloned().unwrap_or_default(),
         machine(),
+        py.get("runs").cloned().unwrap_or_default(),
     );
     out.push_str(&format!(
         "\n## How it is measured\n\n\
@@ -581,7 +588,8 @@ fn write() -> Result<(), Failure> {
          the first objective evaluation within the threshold (each run stops at {} s, or once \
          past the budget with the threshold reached).\n\
          - **Best error within {BUDGET} s**: for a single call, its error if it returns within \
-         the budget; for an optimiser, the best objective value evaluated within it.\n\
+         the budget; for an optimiser, the best objective value evaluated within it (the \
+         median over its runs). \"Best rms error reached\" is the best over all runs.\n\
          - Errors are recomputed by each side from the linkage found: here with \
          `FourBar::assemble`/`points`, in Python with pylinkage's `circle_intersect`.\n\
          - The optimisers use pylinkage's `particle_swarm_optimization` (100 particles, its \
@@ -664,9 +672,9 @@ fn write() -> Result<(), Failure> {
          into the coupler's rotations between poses and solves Burmester's problem on those \
          poses; a four-bar's coupler does not turn with its crank, so these poses belong to no \
          four-bar of this kind.\n\
-         - An optimiser's run is one seeded run on a shared machine: its time to the \
-         threshold moves from run to run, more than the single calls' best-of-several times \
-         do. Rerun the command to see the spread.\n\
+         - An optimiser's time to the threshold moves a lot from run to run (its runs' times \
+         are in the notes; pylinkage's particle swarm draws from an unseeded generator), far \
+         more than the single calls' best-of-several times do.\n\
          - The problems are small and exactly solvable. Nothing here measures targets no \
          four-bar meets, path generation without timing, or constraints (crank, \
          transmission angle).\n",
@@ -687,7 +695,7 @@ fn tolerance_summary(ours: &Values, py: &Values) -> String {
         "- Tolerance analysis: the first-order worst case and root-sum-square take {}; a \
          10000-sample Monte Carlo on pylinkage's kinematics takes {}× as long per estimate, \
          and its estimates differ from ours by {} (θ4 worst case, uniform sampling: it falls \
-         short of the corners) and {} (θ4 RSS); our worst case is within {} of the exact \
+         short of the corners) and {} (θ4 RSS); our worst case differs by {} from the exact \
          nonlinear worst corner.\n",
         seconds(linear),
         ratio(get(py, "mc10000_seconds") / linear),
