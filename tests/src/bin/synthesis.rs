@@ -433,6 +433,8 @@ fn rows(ours: &Values, py: &Values, problem: &str, threshold: f64, threads: &str
             };
             let default = if restarts == Options::default().restarts {
                 ", default options"
+            } else if restarts == 0 && problem == "fg" {
+                " (Freudenstein's start only)"
             } else {
                 ""
             };
@@ -541,16 +543,17 @@ fn summary(name: &str, rows: &[Row], ours: f64, unit: &str) -> String {
         let method = row.method.trim_start_matches("pylinkage, ");
         parts.push(match row.to_threshold {
             Some(t) => {
-                let mut part = format!("{method} takes {}× as long", ratio(t / ours));
+                let mut part = format!("pylinkage's {method} takes {}× as long", ratio(t / ours));
                 if let Some((fast, _)) = fastest {
                     write!(part, " ({}× our fastest)", ratio(t / fast)).unwrap();
                 }
                 part
             }
-            None => format!(
-                "{method} never reaches the threshold (best {:.2e} {unit})",
+            None if row.best.is_finite() => format!(
+                "pylinkage's {method} never reaches the threshold (best {:.2e} {unit})",
                 row.best
             ),
+            None => format!("pylinkage's {method} finds no linkage"),
         });
     }
     out.push_str(&parts.join("; "));
@@ -668,7 +671,7 @@ fn write() -> Result<(), Failure> {
          restarts buy robustness on targets no four-bar meets exactly, which this problem \
          does not test.\n\
          - pylinkage's `path_generation_with_timing` found no linkage for these six timed \
-         points (nor for their first four or five). It turns the crank-angle differences \
+         points. It turns the crank-angle differences \
          into the coupler's rotations between poses and solves Burmester's problem on those \
          poses; a four-bar's coupler does not turn with its crank, so these poses belong to no \
          four-bar of this kind.\n\
