@@ -511,8 +511,10 @@ fn ratio(r: f64) -> String {
         format!("{r:.0}")
     } else if r >= 1.0 {
         format!("{r:.1}")
-    } else {
+    } else if r >= 0.1 {
         format!("{r:.2}")
+    } else {
+        format!("{r:.3}")
     }
 }
 
