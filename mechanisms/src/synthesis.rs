@@ -44,10 +44,15 @@ pub struct Options {
     /// a degenerate linkage (a crank shrinking to nothing, which follows a bad fit exactly
     /// enough) is discarded.
     pub max_ratio: f64,
+    /// An rms error that is good enough: where the classical start (Freudenstein's, for
+    /// function generation) reaches it and meets the constraints, its solution is returned
+    /// without the random restarts. `None` always runs them.
+    pub good_enough: Option<f64>,
 }
 
 impl Default for Options {
-    /// The open branch, 64 restarts from seed 1, no link more than 50 times another.
+    /// The open branch, 64 restarts from seed 1, no link more than 50 times another, every
+    /// restart run.
     fn default() -> Self {
         Options {
             branch: Branch::Open,
@@ -56,6 +61,7 @@ impl Default for Options {
             crank: false,
             transmission: None,
             max_ratio: 50.0,
+            good_enough: None,
         }
     }
 }
@@ -131,6 +137,49 @@ pub fn freudenstein(ground: f64, phi: [f64; 3], psi: [f64; 3]) -> Option<[f64; 4
     let rows = core::array::from_fn::<[f64; 3], 3, _>(|i| [psi[i].cos(), -phi[i].cos(), 1.0]);
     let rhs = core::array::from_fn::<f64, 3, _>(|i| (phi[i] - psi[i]).cos());
     let [k1, k2, k3] = solve3(rows, rhs)?;
+    lengths_from_freudenstein(ground, k1, k2, k3)
+}
+
+/// Freudenstein's equation over any number of precision points (three or more), in least
+/// squares: the normal equations of `K1·cos ψ − K2·cos φ + K3 = cos(φ − ψ)`, then the lengths
+/// as in [`freudenstein`] (the same for three points, to rounding). The classical start of
+/// [`function_generation`]; it minimises the equation's residual, not the angles' errors,
+/// which the least squares after it does.
+///
+/// ```
+/// use mechanisms::synthesis::freudenstein_least_squares;
+/// use mechanisms::FourBar;
+/// use mechgen::Branch;
+/// let example = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+/// let phi = [0.0, 0.8, 1.6, 2.4, 3.2];
+/// let psi = phi.map(|p| example.assemble(p, Branch::Open).unwrap().theta4);
+/// let [_, a, b, c] = freudenstein_least_squares(180.0, &phi, &psi).unwrap();
+/// assert!((a - 80.0).abs() < 1e-9 && (b - 200.0).abs() < 1e-9 && (c - 150.0).abs() < 1e-9);
+/// # Ok::<(), mechanisms::DimensionError<f64>>(())
+/// ```
+pub fn freudenstein_least_squares(ground: f64, phi: &[f64], psi: &[f64]) -> Option<[f64; 4]> {
+    if phi.len() != psi.len() || phi.len() < 3 {
+        return None;
+    }
+    // AᵀA and Aᵀb, with rows [cos ψ, −cos φ, 1] and right-hand sides cos(φ − ψ).
+    let mut normal = [[0.0; 3]; 3];
+    let mut rhs = [0.0; 3];
+    for (&phi, &psi) in phi.iter().zip(psi) {
+        let row = [psi.cos(), -phi.cos(), 1.0];
+        let b = (phi - psi).cos();
+        for i in 0..3 {
+            for j in 0..3 {
+                normal[i][j] += row[i] * row[j];
+            }
+            rhs[i] += row[i] * b;
+        }
+    }
+    let [k1, k2, k3] = solve3(normal, rhs)?;
+    lengths_from_freudenstein(ground, k1, k2, k3)
+}
+
+/// The lengths `[d, a, b, c]` of Freudenstein's `K1`, `K2`, `K3`, if they make a linkage.
+fn lengths_from_freudenstein(ground: f64, k1: f64, k2: f64, k3: f64) -> Option<[f64; 4]> {
     let (a, c) = (ground / k1, ground / k2);
     let b_squared = a * a + c * c + ground * ground - 2.0 * a * c * k3;
     (a > 0.0 && c > 0.0 && b_squared > 0.0 && b_squared.is_finite())
@@ -196,8 +245,7 @@ pub fn function_generation(
             "the ground length must be positive and every angle finite",
         ));
     }
-    let classical = freudenstein(ground, [phi[0], phi[1], phi[2]], [psi[0], psi[1], psi[2]])
-        .map(|[_, a, b, c]| [a, b, c]);
+    let classical = freudenstein_least_squares(ground, phi, psi).map(|[_, a, b, c]| [a, b, c]);
     let starts = starts(options, classical.into_iter().collect(), |random| {
         crank_rocker(ground, random)
     });
@@ -208,14 +256,14 @@ pub fn function_generation(
         branch: options.branch,
         x: DVector::from_iterator(3, start.iter().map(|l| l.ln())),
     };
-    let solved = starts.into_par_iter().map(|start| {
+    let solve = |start: [f64; 3]| {
         let (solved, report) = LevenbergMarquardt::new().minimize(problem(start));
         let linkage = solved.linkage()?;
         let errors = solved.errors()?;
         finished(&report.termination).then_some(())?;
         Some((linkage, (Vec2::default(), 0.0), errors, phi.to_vec()))
-    });
-    best(solved.collect(), options)
+    };
+    solved_with_restarts(starts, usize::from(classical.is_some()), solve, options)
 }
 
 /// Path generation: the four-bar and its placement (crank pivot, ground line's angle) whose
@@ -297,7 +345,7 @@ pub fn path_generation(
         }
         x
     });
-    let solved = starts.into_par_iter().map(|start| {
+    let solve = |start: Vec<f64>| {
         let problem = PathProblem {
             targets,
             timing,
@@ -311,8 +359,8 @@ pub fn path_generation(
         let x = &solved.x;
         let inputs = (0..n).map(|i| solved.input(i)).collect();
         Some((linkage, (Vec2 { x: x[0], y: x[1] }, x[2]), errors, inputs))
-    });
-    best(solved.collect(), options)
+    };
+    solved_with_restarts(starts, 0, solve, options)
 }
 
 /// The starts: `classical` first, then `options.restarts` random ones, each from its own
@@ -329,6 +377,29 @@ fn starts<S>(
         random_start(&mut generator)
     });
     classical.into_iter().chain(random).collect()
+}
+
+/// Every start solved by `solve` and the best kept; the first `classical` starts first, and
+/// alone where one of them is [good enough](Options::good_enough), the random ones after them
+/// in parallel.
+fn solved_with_restarts<S: Send>(
+    mut starts: Vec<S>,
+    classical: usize,
+    solve: impl Fn(S) -> Option<Solved> + Sync,
+    options: &Options,
+) -> Result<Synthesis, SynthesisError> {
+    let random = starts.split_off(classical.min(starts.len()));
+    let first: Vec<Option<Solved>> = starts.into_iter().map(&solve).collect();
+    if let Some(enough) = options.good_enough {
+        if let Ok(found) = best(first.clone(), options) {
+            if found.rms_error <= enough {
+                return Ok(found);
+            }
+        }
+    }
+    let mut solved = first;
+    solved.extend(random.into_par_iter().map(&solve).collect::<Vec<_>>());
+    best(solved, options)
 }
 
 /// A start's solution: the linkage, its placement, its errors at the targets and its crank

@@ -142,6 +142,7 @@ impl Common {
         Ok(Options {
             branch: Branch::Open,
             max_ratio: self.max_ratio,
+            good_enough: None,
             restarts: self.restarts,
             seed: self.seed,
             crank: self.crank_turns,
