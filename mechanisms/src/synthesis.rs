@@ -14,6 +14,7 @@
 //! The branch asked for is the one every target is solved on: a solution never switches
 //! assembly between targets.
 
+use std::vec;
 use std::vec::Vec;
 
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};
@@ -45,8 +46,8 @@ pub struct Options {
     /// enough) is discarded.
     pub max_ratio: f64,
     /// An rms error that is good enough: where the classical start (Freudenstein's, for
-    /// function generation) reaches it and meets the constraints, its solution is returned
-    /// without the random restarts. `None` always runs them.
+    /// function generation) reaches it and meets the constraints, as it is or once polished,
+    /// that solution is returned without the random restarts. `None` always runs them.
     pub good_enough: Option<f64>,
 }
 
@@ -256,6 +257,23 @@ pub fn function_generation(
         branch: options.branch,
         x: DVector::from_iterator(3, start.iter().map(|l| l.ln())),
     };
+    // The classical solution as it is, where that is good enough: no polish needed.
+    if let (Some(enough), Some(start)) = (options.good_enough, classical) {
+        let unpolished = problem(start);
+        if let (Some(linkage), Some(errors)) = (unpolished.linkage(), unpolished.errors()) {
+            if rms(&errors) <= enough && meets(&linkage, phi, options) {
+                return best(
+                    vec![Some((
+                        linkage,
+                        (Vec2::default(), 0.0),
+                        errors,
+                        phi.to_vec(),
+                    ))],
+                    options,
+                );
+            }
+        }
+    }
     let solve = |start: [f64; 3]| {
         let (solved, report) = LevenbergMarquardt::new().minimize(problem(start));
         let linkage = solved.linkage()?;

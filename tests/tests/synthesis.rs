@@ -5,7 +5,8 @@
 
 use mechanisms::FourBar;
 use mechanisms::synthesis::{
-    Options, SynthesisError, freudenstein, function_generation, path_generation,
+    Options, SynthesisError, freudenstein, freudenstein_least_squares, function_generation,
+    path_generation,
 };
 use mechgen::grashof::Inversion;
 use mechgen::{Branch, Vec2};
@@ -186,4 +187,30 @@ fn bad_targets_and_impossible_constraints_say_why() {
     assert!(matches!(not_finite, Err(SynthesisError::BadTargets(_))));
     let few_points = path_generation(&[Vec2 { x: 0.0, y: 0.0 }; 4], None, &Options::default());
     assert!(matches!(few_points, Err(SynthesisError::BadTargets(_))));
+}
+
+/// `good_enough`: the classical solution returned as it is where it is within the error
+/// asked for, polished where not, and the restarts run only where neither is.
+#[test]
+fn a_good_enough_classical_start_ends_the_search() {
+    let phi: Vec<f64> = (0..6).map(|k| 0.7 * f64::from(k)).collect();
+    let psi = outputs(&phi);
+    let classical = freudenstein_least_squares(180.0, &phi, &psi).unwrap();
+    let quick = Options {
+        good_enough: Some(1e-6),
+        ..Options::default()
+    };
+    let found = function_generation(180.0, &phi, &psi, &quick).unwrap();
+    // As it is (its lengths through their logarithms and back).
+    for (a, b) in found.linkage.lengths().iter().zip(classical) {
+        assert!((a - b).abs() <= 1e-13 * b, "{a} against {b}");
+    }
+    assert_eq!((found.converged, found.feasible), (1, 1));
+    // Asked for nothing it can reach, every start runs.
+    let exhaustive = Options {
+        good_enough: Some(0.0),
+        ..Options::default()
+    };
+    let found = function_generation(180.0, &phi, &psi, &exhaustive).unwrap();
+    assert!(found.converged > 1, "{}", found.converged);
 }

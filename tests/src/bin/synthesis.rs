@@ -489,7 +489,8 @@ fn rows(ours: &Values, py: &Values, problem: &str, threshold: f64, threads: &str
             error,
             threshold,
             format!(
-                "`good_enough`: the classical start within it, no restarts run; found {}",
+                "`good_enough`: Freudenstein's least squares within it as it is, no polish and \
+                 no restarts; found {}",
                 ours.get(&format!("{prefix}_lengths"))
                     .cloned()
                     .unwrap_or_default()
