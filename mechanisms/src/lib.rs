@@ -59,7 +59,8 @@ pub use jansen::{
 };
 pub use six_bar::{
     StephensonSixBar, StephensonSixBarPoints, StephensonSixBarUnknowns, WattSixBar,
-    WattSixBarBranches, WattSixBarOutput, WattSixBarPoints, WattSixBarScenes, WattSixBarUnknowns,
+    WattSixBarBranches, WattSixBarOutput, WattSixBarPoints, WattSixBarScenes,
+    WattSixBarSensitivities, WattSixBarUnknowns,
 };
 pub use slider_crank::{
     SliderCrank, SliderCrankPoints, SliderCrankScenes, SliderCrankSlider, SliderCrankState,

@@ -59,7 +59,7 @@ mechanism! {
         point extension_pin = l1 @ 0 + l5 @ (theta4 + beta);
         /// D, the output rocker's pin.
         point output_pin = g @ phi + l7 @ theta6;
-        generate: position, velocity, acceleration;
+        generate: position, velocity, acceleration, sensitivities;
         /// The output link's angle, rate and acceleration.
         scene output: theta6, theta6_dot, theta6_ddot;
     }
@@ -98,6 +98,31 @@ impl<T: Real> WattSixBar<T> {
             g: x.hypot(y),
             phi: y.atan2(x),
         })
+    }
+
+    /// The dimensions [`new`](Self::new) takes: the four-bar `[ground, crank, coupler,
+    /// rocker]`, the rocker's extension and its angle, the second dyad's coupler and rocker,
+    /// and the ground pivot O6 as `(x, y)` (from its distance and direction, to rounding).
+    ///
+    /// ```
+    /// use mechanisms::WattSixBar;
+    /// let watt = WattSixBar::new([180.0f64, 80.0, 200.0, 150.0], 100.0, 0.8, 220.0, 160.0, (300.0, 150.0))?;
+    /// let (four_bar, extension, _, coupler, rocker, (x, y)) = watt.dimensions();
+    /// assert_eq!((four_bar, extension, coupler, rocker), ([180.0, 80.0, 200.0, 150.0], 100.0, 220.0, 160.0));
+    /// assert!((x - 300.0).abs() < 1e-12 && (y - 150.0).abs() < 1e-12);
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
+    #[allow(clippy::type_complexity)]
+    pub fn dimensions(&self) -> ([T; 4], T, T, T, T, (T, T)) {
+        let (sin, cos) = self.phi.sin_cos();
+        (
+            [self.l1, self.l2, self.l3, self.l4],
+            self.l5,
+            self.beta,
+            self.l6,
+            self.l7,
+            (self.g * cos, self.g * sin),
+        )
     }
 }
 

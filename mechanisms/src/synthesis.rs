@@ -24,7 +24,7 @@ use nalgebra::storage::Owned;
 use nalgebra::{DMatrix, DVector, Dyn};
 use rayon::prelude::*;
 
-use crate::FourBar;
+use crate::{FourBar, WattSixBar, WattSixBarBranches};
 
 /// What a synthesis may return, and how hard it looks.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -700,6 +700,187 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for PathProblem<'_> {
                 let rates = linkage.velocity(theta2, &q, 1.0).ok()?;
                 let v = linkage.point_velocities(theta2, &q, 1.0, &rates).ok()?;
                 column(9 + i, v.coupler_point);
+            }
+        }
+        Some(jacobian)
+    }
+}
+
+/// A synthesised Watt six-bar and how well it meets its targets.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SixBarSynthesis {
+    /// The linkage.
+    pub linkage: WattSixBar<f64>,
+    /// The root-mean-square error of the output angle at the targets, radians.
+    pub rms_error: f64,
+    /// The largest error at a target, radians.
+    pub largest_error: f64,
+    /// How many starts converged.
+    pub converged: usize,
+    /// How many of those met the constraints (the links' ratio).
+    pub feasible: usize,
+}
+
+/// Function generation for the Watt six-bar: the linkage near `start` whose output angle θ6
+/// is `psi[i]` when its crank is at `phi[i]` (radians), on `branches`, with its ground, its
+/// output pivot and its crank's length held (they set the frame and the scale) and the
+/// other six dimensions fitted: the coupler, the rocker, the rocker's extension and its
+/// angle, and the second dyad's two links. Levenberg–Marquardt from `start` and from
+/// `options.restarts` random perturbations of it (each length times a factor within e^±0.4,
+/// the angle within ±0.4 rad), in parallel; `options.branch`, `crank` and `transmission`
+/// do not apply (the branches are `branches`), `max_ratio` and `good_enough` do.
+///
+/// ```
+/// use mechanisms::synthesis::{watt_function_generation, Options};
+/// use mechanisms::{WattSixBar, WattSixBarBranches};
+/// let target = WattSixBar::new([180.0, 80.0, 200.0, 150.0], 100.0, 0.8, 220.0, 160.0, (300.0, 150.0))?;
+/// let branches = WattSixBarBranches::default();
+/// let phi: Vec<f64> = (0..8).map(|k| 0.7 * k as f64).collect();
+/// let psi: Vec<f64> = phi.iter().map(|&p| target.assemble(p, branches).unwrap().theta6).collect();
+/// // From a start 10% off in every fitted dimension.
+/// let start = WattSixBar::new([180.0, 80.0, 220.0, 135.0], 110.0, 0.72, 242.0, 144.0, (300.0, 150.0))?;
+/// let found = watt_function_generation(&start, &phi, &psi, branches, &Options::default())?;
+/// assert!(found.rms_error < 1e-10);
+/// let ([_, _, coupler, rocker], _, _, second_coupler, _, _) = found.linkage.dimensions();
+/// assert!((coupler - 200.0).abs() < 1e-6 && (rocker - 150.0).abs() < 1e-6);
+/// assert!((second_coupler - 220.0).abs() < 1e-6);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn watt_function_generation(
+    start: &WattSixBar<f64>,
+    phi: &[f64],
+    psi: &[f64],
+    branches: WattSixBarBranches,
+    options: &Options,
+) -> Result<SixBarSynthesis, SynthesisError> {
+    if phi.len() != psi.len() || phi.len() < 6 {
+        return Err(SynthesisError::BadTargets(
+            "six-bar function generation needs six or more pairs of input and output angles",
+        ));
+    }
+    if phi.iter().chain(psi).any(|v| !v.is_finite()) {
+        return Err(SynthesisError::BadTargets("every angle must be finite"));
+    }
+    let problem = |x: [f64; 6]| WattProblem {
+        start: *start,
+        phi,
+        psi,
+        branches,
+        x: DVector::from_iterator(6, x),
+    };
+    let ([_, _, l3, l4], l5, beta, l6, l7, _) = start.dimensions();
+    let first = [l3.ln(), l4.ln(), l5.ln(), beta, l6.ln(), l7.ln()];
+    let starts = starts(options, vec![first], |random| {
+        core::array::from_fn(|k| first[k] + 0.8 * (random.unit() - 0.5))
+    });
+    let solve = |x: [f64; 6]| {
+        let (solved, report) = LevenbergMarquardt::new().minimize(problem(x));
+        let linkage = solved.linkage()?;
+        let errors = solved.errors()?;
+        finished(&report.termination).then_some(())?;
+        let ([l1, l2, l3, l4], l5, _, l6, l7, _) = linkage.dimensions();
+        let lengths = [l1, l2, l3, l4, l5, l6, l7];
+        let longest = lengths.iter().fold(0.0f64, |m, l| m.max(*l));
+        let shortest = lengths.iter().fold(f64::INFINITY, |m, l| m.min(*l));
+        (longest <= options.max_ratio * shortest).then_some((linkage, errors))
+    };
+    let mut starts = starts;
+    let random = starts.split_off(1);
+    let mut solved: Vec<_> = starts.into_iter().map(&solve).collect();
+    let first_good = solved[0]
+        .as_ref()
+        .is_some_and(|(_, e)| options.good_enough.is_some_and(|g| rms(e) <= g));
+    if !first_good {
+        solved.extend(random.into_par_iter().map(&solve).collect::<Vec<_>>());
+    }
+    let converged = solved.iter().flatten().count();
+    solved
+        .into_iter()
+        .flatten()
+        .map(|(linkage, errors)| SixBarSynthesis {
+            linkage,
+            rms_error: rms(&errors),
+            largest_error: errors.iter().fold(0.0f64, |m, e| m.max(e.abs())),
+            converged,
+            feasible: converged,
+        })
+        .min_by(|a, b| a.rms_error.total_cmp(&b.rms_error))
+        .ok_or(SynthesisError::NothingFeasible { converged })
+}
+
+/// The six-bar's least squares: `x = [ln l3, ln l4, ln l5, β, ln l6, ln l7]`, residuals
+/// `θ6(φ_i) − ψ_i` wrapped.
+struct WattProblem<'a> {
+    start: WattSixBar<f64>,
+    phi: &'a [f64],
+    psi: &'a [f64],
+    branches: WattSixBarBranches,
+    x: DVector<f64>,
+}
+
+impl WattProblem<'_> {
+    fn linkage(&self) -> Option<WattSixBar<f64>> {
+        let x = &self.x;
+        let ([l1, l2, _, _], _, _, _, _, pivot) = self.start.dimensions();
+        WattSixBar::new(
+            [l1, l2, x[0].exp(), x[1].exp()],
+            x[2].exp(),
+            x[3],
+            x[4].exp(),
+            x[5].exp(),
+            pivot,
+        )
+        .ok()
+    }
+
+    fn errors(&self) -> Option<Vec<f64>> {
+        let linkage = self.linkage()?;
+        self.phi
+            .iter()
+            .zip(self.psi)
+            .map(|(&phi, &psi)| {
+                let q = linkage.assemble(phi, self.branches).ok()?;
+                Some(wrapped(q.theta6 - psi))
+            })
+            .collect()
+    }
+}
+
+impl LeastSquaresProblem<f64, Dyn, Dyn> for WattProblem<'_> {
+    type ResidualStorage = Owned<f64, Dyn>;
+    type JacobianStorage = Owned<f64, Dyn, Dyn>;
+    type ParameterStorage = Owned<f64, Dyn>;
+
+    fn set_params(&mut self, x: &DVector<f64>) {
+        self.x.copy_from(x);
+    }
+
+    fn params(&self) -> DVector<f64> {
+        self.x.clone()
+    }
+
+    fn residuals(&self) -> Option<DVector<f64>> {
+        Some(not_assembled(self.errors(), self.phi.len()))
+    }
+
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        let l = self.linkage()?;
+        let mut jacobian = DMatrix::zeros(self.phi.len(), 6);
+        for (i, &phi) in self.phi.iter().enumerate() {
+            let q = l.assemble(phi, self.branches).ok()?;
+            let s = l.sensitivities(phi, &q).ok()?;
+            // ∂/∂ln l = l·∂/∂l; β as it is.
+            let ([_, _, l3, l4], l5, _, l6, l7, _) = l.dimensions();
+            let columns = [
+                l3 * s.l3.theta6,
+                l4 * s.l4.theta6,
+                l5 * s.l5.theta6,
+                s.beta.theta6,
+                l6 * s.l6.theta6,
+                l7 * s.l7.theta6,
+            ];
+            for (k, c) in columns.into_iter().enumerate() {
+                jacobian[(i, k)] = c;
             }
         }
         Some(jacobian)
