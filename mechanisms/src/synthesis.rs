@@ -275,10 +275,10 @@ pub fn function_generation(
         }
     }
     let solve = |start: [f64; 3]| {
-        let (solved, report) = LevenbergMarquardt::new().minimize(problem(start));
+        let (solved, finished) = minimise(problem(start));
         let linkage = solved.linkage()?;
         let errors = solved.errors()?;
-        finished(&report.termination).then_some(())?;
+        finished.then_some(())?;
         Some((linkage, (Vec2::default(), 0.0), errors, phi.to_vec()))
     };
     solved_with_restarts(starts, usize::from(classical.is_some()), solve, options)
@@ -370,10 +370,10 @@ pub fn path_generation(
             branch: options.branch,
             x: DVector::from_vec(start),
         };
-        let (solved, report) = LevenbergMarquardt::new().minimize(problem);
+        let (solved, finished) = minimise(problem);
         let linkage = solved.linkage()?;
         let errors = solved.errors()?;
-        finished(&report.termination).then_some(())?;
+        finished.then_some(())?;
         let x = &solved.x;
         let inputs = (0..n).map(|i| solved.input(i)).collect();
         Some((linkage, (Vec2 { x: x[0], y: x[1] }, x[2]), errors, inputs))
@@ -482,6 +482,50 @@ fn meets(linkage: &FourBar<f64>, inputs: &[f64], options: &Options) -> bool {
     }
 }
 
+/// A least-squares problem in its unknowns `x`, as each synthesis poses it.
+trait Residuals {
+    fn x(&self) -> &DVector<f64>;
+    fn x_mut(&mut self) -> &mut DVector<f64>;
+    /// How many residuals there are.
+    fn count(&self) -> usize;
+    /// The residuals at `x`, or `None` where some target cannot be reached.
+    fn errors(&self) -> Option<Vec<f64>>;
+    /// Their Jacobian at `x`, from the generated derivatives.
+    fn derivatives(&self) -> Option<DMatrix<f64>>;
+}
+
+/// A [`Residuals`] as Levenberg–Marquardt takes it.
+struct Fit<R>(R);
+
+impl<R: Residuals> LeastSquaresProblem<f64, Dyn, Dyn> for Fit<R> {
+    type ResidualStorage = Owned<f64, Dyn>;
+    type JacobianStorage = Owned<f64, Dyn, Dyn>;
+    type ParameterStorage = Owned<f64, Dyn>;
+
+    fn set_params(&mut self, x: &DVector<f64>) {
+        self.0.x_mut().copy_from(x);
+    }
+
+    fn params(&self) -> DVector<f64> {
+        self.0.x().clone()
+    }
+
+    fn residuals(&self) -> Option<DVector<f64>> {
+        Some(not_assembled(self.0.errors(), self.0.count()))
+    }
+
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        self.0.derivatives()
+    }
+}
+
+/// `problem` solved by Levenberg–Marquardt from its `x`: the problem at the solution, and
+/// whether it stopped at a minimum.
+fn minimise<R: Residuals>(problem: R) -> (R, bool) {
+    let (Fit(solved), report) = LevenbergMarquardt::new().minimize(Fit(problem));
+    (solved, finished(&report.termination))
+}
+
 /// Whether Levenberg–Marquardt stopped at a minimum: converged by its tests, or unable to
 /// improve further in the float's precision (where a fit that is not exact ends), not out
 /// of evaluations nor on a non-finite value.
@@ -556,24 +600,24 @@ impl FunctionProblem<'_> {
     }
 }
 
-impl LeastSquaresProblem<f64, Dyn, Dyn> for FunctionProblem<'_> {
-    type ResidualStorage = Owned<f64, Dyn>;
-    type JacobianStorage = Owned<f64, Dyn, Dyn>;
-    type ParameterStorage = Owned<f64, Dyn>;
-
-    fn set_params(&mut self, x: &DVector<f64>) {
-        self.x.copy_from(x);
+impl Residuals for FunctionProblem<'_> {
+    fn x(&self) -> &DVector<f64> {
+        &self.x
     }
 
-    fn params(&self) -> DVector<f64> {
-        self.x.clone()
+    fn x_mut(&mut self) -> &mut DVector<f64> {
+        &mut self.x
     }
 
-    fn residuals(&self) -> Option<DVector<f64>> {
-        Some(not_assembled(self.errors(), self.phi.len()))
+    fn count(&self) -> usize {
+        self.phi.len()
     }
 
-    fn jacobian(&self) -> Option<DMatrix<f64>> {
+    fn errors(&self) -> Option<Vec<f64>> {
+        self.errors()
+    }
+
+    fn derivatives(&self) -> Option<DMatrix<f64>> {
         let linkage = self.linkage()?;
         let [_, a, b, c] = linkage.lengths();
         let mut jacobian = DMatrix::zeros(self.phi.len(), 3);
@@ -638,24 +682,24 @@ impl PathProblem<'_> {
     }
 }
 
-impl LeastSquaresProblem<f64, Dyn, Dyn> for PathProblem<'_> {
-    type ResidualStorage = Owned<f64, Dyn>;
-    type JacobianStorage = Owned<f64, Dyn, Dyn>;
-    type ParameterStorage = Owned<f64, Dyn>;
-
-    fn set_params(&mut self, x: &DVector<f64>) {
-        self.x.copy_from(x);
+impl Residuals for PathProblem<'_> {
+    fn x(&self) -> &DVector<f64> {
+        &self.x
     }
 
-    fn params(&self) -> DVector<f64> {
-        self.x.clone()
+    fn x_mut(&mut self) -> &mut DVector<f64> {
+        &mut self.x
     }
 
-    fn residuals(&self) -> Option<DVector<f64>> {
-        Some(not_assembled(self.errors(), 2 * self.targets.len()))
+    fn count(&self) -> usize {
+        2 * self.targets.len()
     }
 
-    fn jacobian(&self) -> Option<DMatrix<f64>> {
+    fn errors(&self) -> Option<Vec<f64>> {
+        self.errors()
+    }
+
+    fn derivatives(&self) -> Option<DMatrix<f64>> {
         let linkage = self.linkage()?;
         let [l1, l2, l3, l4] = linkage.lengths();
         let (a, _) = linkage.coupler_point();
@@ -774,10 +818,10 @@ pub fn watt_function_generation(
         core::array::from_fn(|k| first[k] + 0.8 * (random.unit() - 0.5))
     });
     let solve = |x: [f64; 6]| {
-        let (solved, report) = LevenbergMarquardt::new().minimize(problem(x));
+        let (solved, finished) = minimise(problem(x));
         let linkage = solved.linkage()?;
         let errors = solved.errors()?;
-        finished(&report.termination).then_some(())?;
+        finished.then_some(())?;
         let ([l1, l2, l3, l4], l5, _, l6, l7, _) = linkage.dimensions();
         let lengths = [l1, l2, l3, l4, l5, l6, l7];
         let longest = lengths.iter().fold(0.0f64, |m, l| m.max(*l));
@@ -846,24 +890,24 @@ impl WattProblem<'_> {
     }
 }
 
-impl LeastSquaresProblem<f64, Dyn, Dyn> for WattProblem<'_> {
-    type ResidualStorage = Owned<f64, Dyn>;
-    type JacobianStorage = Owned<f64, Dyn, Dyn>;
-    type ParameterStorage = Owned<f64, Dyn>;
-
-    fn set_params(&mut self, x: &DVector<f64>) {
-        self.x.copy_from(x);
+impl Residuals for WattProblem<'_> {
+    fn x(&self) -> &DVector<f64> {
+        &self.x
     }
 
-    fn params(&self) -> DVector<f64> {
-        self.x.clone()
+    fn x_mut(&mut self) -> &mut DVector<f64> {
+        &mut self.x
     }
 
-    fn residuals(&self) -> Option<DVector<f64>> {
-        Some(not_assembled(self.errors(), self.phi.len()))
+    fn count(&self) -> usize {
+        self.phi.len()
     }
 
-    fn jacobian(&self) -> Option<DMatrix<f64>> {
+    fn errors(&self) -> Option<Vec<f64>> {
+        self.errors()
+    }
+
+    fn derivatives(&self) -> Option<DMatrix<f64>> {
         let l = self.linkage()?;
         let mut jacobian = DMatrix::zeros(self.phi.len(), 6);
         for (i, &phi) in self.phi.iter().enumerate() {

@@ -8,3 +8,4 @@ pub mod kernels;
 pub mod oracle;
 pub mod reference;
 pub mod scenes;
+pub mod stamp;

@@ -86,11 +86,7 @@ impl Generator<'_> {
             let field = &param.name;
             quote!(#field: #unknowns::from_array(#x))
         });
-        let phantom = self
-            .model
-            .params
-            .is_empty()
-            .then(|| quote!(_values: ::core::marker::PhantomData,));
+        let phantom = self.no_parameters_value();
         let body = quote! {
             #prologue
             #solves
@@ -167,11 +163,7 @@ impl Generator<'_> {
             fields.push(quote!(#field: #points_type { #(#point_fields),* }));
         }
         let (names, expressions): (Vec<Ident>, Vec<TokenStream>) = values.into_iter().unzip();
-        let phantom = self
-            .model
-            .params
-            .is_empty()
-            .then(|| quote!(_values: ::core::marker::PhantomData,));
+        let phantom = self.no_parameters_value();
         let body = quote! {
             #prologue_outputs
             #solves
@@ -187,6 +179,14 @@ impl Generator<'_> {
              [`Self::sensitivities`].";
         let output = quote!(#ty<#points_type<::mechgen::Vec2<T>>>);
         self.checked_function("point_sensitivities", docs, 2, &output, body)
+    }
+
+    /// The placeholder field of a sensitivities value for a declaration without parameters.
+    fn no_parameters_value(&self) -> Option<TokenStream> {
+        self.model
+            .params
+            .is_empty()
+            .then(|| quote!(_values: ::core::marker::PhantomData,))
     }
 
     /// The Jacobian factored once and one solve per parameter's right-hand side `rhs[k]`,

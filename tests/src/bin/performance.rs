@@ -37,6 +37,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use mechgen_tests::kernels::{self, Group, KERNELS, Kernel, Origin, STEPS, SWEEPS};
+use mechgen_tests::stamp::{self, commit};
 
 const REPORT: &str = "docs/PERFORMANCE.md";
 const FRONTIER: &str = "docs/frontier.svg";
@@ -288,25 +289,6 @@ fn instruction_counts(driver: &Path) -> Result<(BTreeMap<String, f64>, u64), Fai
         .map(|(name, total)| (name, (total as f64 - none as f64) / CALLS))
         .collect();
     Ok((per_call, none))
-}
-
-/// The short hash of HEAD, with `-dirty` if a tracked file differs from it.
-fn commit() -> String {
-    let git = |args: &[&str]| {
-        Command::new("git")
-            .args(args)
-            .output()
-            .ok()
-            .filter(|o| o.status.success())
-            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-    };
-    let Some(hash) = git(&["rev-parse", "--short", "HEAD"]) else {
-        return "unknown".into();
-    };
-    match git(&["status", "--porcelain", "--untracked-files=no"]) {
-        Some(s) if s.is_empty() => hash,
-        _ => format!("{hash}-dirty"),
-    }
 }
 
 fn stamp(commit: &str) -> String {
@@ -990,32 +972,8 @@ fn frontier_svg(points: &[(&Kernel, f64, f64)], commit: &str) -> String {
     svg
 }
 
-fn tool_version(program: &str, args: &[&str]) -> String {
-    Command::new(program)
-        .args(args)
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        .unwrap_or_else(|| "unknown".into())
-}
-
 fn machine() -> String {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|m| m.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
-    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
-    format!(
-        "{cpu}, {cores} cores; {}; {}",
-        tool_version("rustc", &["--version"]),
-        tool_version("valgrind", &["--version"])
-    )
+    stamp::machine(&[("rustc", &["--version"]), ("valgrind", &["--version"])])
 }
 
 fn write() -> Result<(), Failure> {

@@ -26,6 +26,7 @@ use std::time::Instant;
 use mechanisms::synthesis::{Options, Synthesis, function_generation, path_generation};
 use mechanisms::{FourBar, FourBarTolerances};
 use mechgen::{Branch, Vec2};
+use mechgen_tests::stamp::{self, commit};
 
 const REPORT: &str = "docs/SYNTHESIS.md";
 const WRITE_COMMAND: &str = "cargo run --release -p mechgen-tests --bin synthesis -- write";
@@ -310,46 +311,8 @@ fn measure() -> Result<Values, Failure> {
     Ok(out)
 }
 
-/// The short hash of HEAD, with `-dirty` if a tracked file differs from it.
-fn commit() -> String {
-    let git = |args: &[&str]| {
-        Command::new("git")
-            .args(args)
-            .output()
-            .ok()
-            .filter(|o| o.status.success())
-            .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-    };
-    let Some(hash) = git(&["rev-parse", "--short", "HEAD"]) else {
-        return "unknown".into();
-    };
-    match git(&["status", "--porcelain", "--untracked-files=no"]) {
-        Some(s) if s.is_empty() => hash,
-        _ => format!("{hash}-dirty"),
-    }
-}
-
 fn machine() -> String {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|m| m.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
-    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
-    let rustc = Command::new("rustc")
-        .arg("--version")
-        .output()
-        .ok()
-        .filter(|o| o.status.success())
-        .map_or_else(
-            || "unknown rustc".into(),
-            |o| String::from_utf8_lossy(&o.stdout).trim().to_string(),
-        );
-    format!("{cpu}, {cores} cores; {rustc}")
+    stamp::machine(&[("rustc", &["--version"])])
 }
 
 /// pylinkage's side, from the Python script.
