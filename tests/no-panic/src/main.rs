@@ -29,10 +29,11 @@
 use core::hint::black_box;
 
 use mechanisms::{
-    FourBar, FourBarPoints, FourBarUnknowns, InvertedSliderCrank, InvertedSliderCrankPoints,
-    InvertedSliderCrankUnknowns, JansenLeg, JansenLegPoints, JansenLegUnknowns, SliderCrank,
-    SliderCrankPoints, SliderCrankUnknowns, StephensonSixBar, StephensonSixBarPoints,
-    StephensonSixBarUnknowns, WattSixBar, WattSixBarPoints, WattSixBarUnknowns,
+    FourBar, FourBarPoints, FourBarSensitivities, FourBarUnknowns, InvertedSliderCrank,
+    InvertedSliderCrankPoints, InvertedSliderCrankUnknowns, JansenLeg, JansenLegPoints,
+    JansenLegUnknowns, SliderCrank, SliderCrankPoints, SliderCrankUnknowns, StephensonSixBar,
+    StephensonSixBarPoints, StephensonSixBarUnknowns, WattSixBar, WattSixBarPoints,
+    WattSixBarSensitivities, WattSixBarUnknowns,
 };
 use mechgen::{AccelerationParts, Branch, Error, Motion, NewtonOptions, Solved, Vec2};
 #[cfg(not(debug_assertions))]
@@ -46,11 +47,12 @@ type Module = (&'static str, fn() -> Kernels);
 /// Wraps one mechanism's kernels at one scalar type in a module of `#[no_panic]` functions,
 /// and lists them (name and address, so each is compiled and linked) in `kernels()`.
 /// `closed:` adds the closed-form kernels (`assemble`, `motion`, `branch_of`) with their branch
-/// type.
+/// type; `sensitivities:` adds `sensitivities` and `point_sensitivities` with theirs.
 macro_rules! check {
     (
         $module:ident: $mech:ident<$t:ty>, $unknowns:ident, $points:ident, $n:literal
         $(, closed: $branches:ty)?
+        $(, sensitivities: $sensitivities:ident)?
     ) => {
         mod $module {
             use super::*;
@@ -209,6 +211,24 @@ macro_rules! check {
                 }
             )?
 
+            $(
+                #[cfg_attr(not(debug_assertions), no_panic)]
+                #[inline(never)]
+                pub fn sensitivities(m: &$mech<T>, input: T, q: &U) -> Result<$sensitivities<U>, Error<T>> {
+                    m.sensitivities(input, q)
+                }
+
+                #[cfg_attr(not(debug_assertions), no_panic)]
+                #[inline(never)]
+                pub fn point_sensitivities(
+                    m: &$mech<T>,
+                    input: T,
+                    q: &U,
+                ) -> Result<$sensitivities<$points<Vec2<T>>>, Error<T>> {
+                    m.point_sensitivities(input, q)
+                }
+            )?
+
             /// Every wrapper's name and address.
             pub fn kernels() -> Kernels {
                 #[allow(unused_mut)]
@@ -234,14 +254,25 @@ macro_rules! check {
                     list.push(("branch_of", branch_of as *const ()));
                     list.push(("motion", motion as *const ()));
                 )?
+                $(
+                    let _: Option<$sensitivities<()>> = None;
+                    list.push(("sensitivities", sensitivities as *const ()));
+                    list.push(("point_sensitivities", point_sensitivities as *const ()));
+                )?
                 list
             }
         }
     };
 }
 
-check!(four_bar_f64: FourBar<f64>, FourBarUnknowns, FourBarPoints, 2, closed: Branch);
-check!(four_bar_f32: FourBar<f32>, FourBarUnknowns, FourBarPoints, 2, closed: Branch);
+check!(
+    four_bar_f64: FourBar<f64>, FourBarUnknowns, FourBarPoints, 2, closed: Branch,
+    sensitivities: FourBarSensitivities
+);
+check!(
+    four_bar_f32: FourBar<f32>, FourBarUnknowns, FourBarPoints, 2, closed: Branch,
+    sensitivities: FourBarSensitivities
+);
 check!(slider_crank_f64: SliderCrank<f64>, SliderCrankUnknowns, SliderCrankPoints, 2, closed: Branch);
 check!(slider_crank_f32: SliderCrank<f32>, SliderCrankUnknowns, SliderCrankPoints, 2, closed: Branch);
 check!(
@@ -252,8 +283,14 @@ check!(
     inverted_slider_crank_f32: InvertedSliderCrank<f32>,
     InvertedSliderCrankUnknowns, InvertedSliderCrankPoints, 2, closed: Branch
 );
-check!(watt_six_bar_f64: WattSixBar<f64>, WattSixBarUnknowns, WattSixBarPoints, 4, closed: [Branch; 2]);
-check!(watt_six_bar_f32: WattSixBar<f32>, WattSixBarUnknowns, WattSixBarPoints, 4, closed: [Branch; 2]);
+check!(
+    watt_six_bar_f64: WattSixBar<f64>, WattSixBarUnknowns, WattSixBarPoints, 4,
+    closed: [Branch; 2], sensitivities: WattSixBarSensitivities
+);
+check!(
+    watt_six_bar_f32: WattSixBar<f32>, WattSixBarUnknowns, WattSixBarPoints, 4,
+    closed: [Branch; 2], sensitivities: WattSixBarSensitivities
+);
 check!(
     stephenson_six_bar_f64: StephensonSixBar<f64>,
     StephensonSixBarUnknowns, StephensonSixBarPoints, 4
