@@ -1,5 +1,7 @@
-//! Dimensional synthesis of the four-bar: the dimensions that make its output follow a wanted
-//! function of its input, or its coupler point pass through wanted points.
+//! Dimensional synthesis: the four-bar's dimensions that make its output follow a wanted
+//! function of its input ([`function_generation`]) or its coupler point pass through wanted
+//! points ([`path_generation`]), and the Watt six-bar's for a function
+//! ([`watt_function_generation`]).
 //!
 //! Each problem is least squares, solved by Levenberg–Marquardt (the `levenberg-marquardt`
 //! crate) on the exact derivatives the macro generates (`generate: sensitivities`, and the
@@ -8,8 +10,9 @@
 //! whose solution breaks a constraint (a crank that must turn fully, a transmission angle
 //! that must stay within bounds), is discarded: random restarts, run in parallel on every
 //! core (rayon) and reproducible from a seed, guard against local minima and infeasible
-//! solutions, and the classical precision-point solution seeds function generation where
-//! there is one (Freudenstein's, [`freudenstein`]).
+//! solutions, and the classical precision-point solution seeds the four-bar's function
+//! generation (Freudenstein's, [`freudenstein`] for three points and
+//! [`freudenstein_least_squares`] for more).
 //!
 //! The branch asked for is the one every target is solved on: a solution never switches
 //! assembly between targets.
@@ -77,7 +80,7 @@ pub struct Synthesis {
     /// frame; for function generation, the origin and 0.
     pub placement: (Vec2<f64>, f64),
     /// The root-mean-square error at the targets (radians for function generation, lengths
-    /// for path generation), and the largest.
+    /// for path generation).
     pub rms_error: f64,
     /// The largest error at a target.
     pub largest_error: f64,
