@@ -168,7 +168,10 @@ fn everything_keeps_the_contract() {
 ///   `CannotAssemble`);
 /// - 28734: an f32 Watt six-bar whose four-bar loop is 1e5 times smaller than its dyad's,
 ///   `Ok` 4,110 units of rounding beyond the four-bar's range: Newton's floor summed both
-///   loops' magnitudes, so the small loop passed at the large one's rounding.
+///   loops' magnitudes, so the small loop passed at the large one's rounding;
+/// - 993557: an f32 four-bar 16ε to 64ε from flat, which moves, refused by the constructor;
+/// - 690944: an f32 slider-crank whose rod is shorter than rounding of its crank, where
+///   Newton said `OtherBranch` though the two assemblies are the same position to rounding.
 #[test]
 fn the_large_runs_reproducers_keep_the_contract() {
     let family = draw::family("everything").expect("a family");
