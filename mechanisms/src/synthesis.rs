@@ -568,6 +568,19 @@ fn rms(errors: &[f64]) -> f64 {
     (errors.iter().map(|e| e * e).sum::<f64>() / errors.len().max(1) as f64).sqrt()
 }
 
+/// Each precision point's output error, `output(φ_i) − ψ_i` wrapped to (−π, π], or `None`
+/// where the linkage does not reach one of them.
+fn output_errors(
+    phi: &[f64],
+    psi: &[f64],
+    output: impl Fn(f64) -> Option<f64>,
+) -> Option<Vec<f64>> {
+    phi.iter()
+        .zip(psi)
+        .map(|(&phi, &psi)| Some(wrapped(output(phi)? - psi)))
+        .collect()
+}
+
 /// `angle` wrapped to (−π, π].
 fn wrapped(angle: f64) -> f64 {
     let tau = core::f64::consts::TAU;
@@ -592,14 +605,9 @@ impl FunctionProblem<'_> {
 
     fn errors(&self) -> Option<Vec<f64>> {
         let linkage = self.linkage()?;
-        self.phi
-            .iter()
-            .zip(self.psi)
-            .map(|(&phi, &psi)| {
-                let q = linkage.assemble(phi, self.branch).ok()?;
-                Some(wrapped(q.theta4 - psi))
-            })
-            .collect()
+        output_errors(self.phi, self.psi, |phi| {
+            linkage.assemble(phi, self.branch).ok().map(|q| q.theta4)
+        })
     }
 }
 
@@ -882,14 +890,9 @@ impl WattProblem<'_> {
 
     fn errors(&self) -> Option<Vec<f64>> {
         let linkage = self.linkage()?;
-        self.phi
-            .iter()
-            .zip(self.psi)
-            .map(|(&phi, &psi)| {
-                let q = linkage.assemble(phi, self.branches).ok()?;
-                Some(wrapped(q.theta6 - psi))
-            })
-            .collect()
+        output_errors(self.phi, self.psi, |phi| {
+            linkage.assemble(phi, self.branches).ok().map(|q| q.theta6)
+        })
     }
 }
 
