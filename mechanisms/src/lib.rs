@@ -36,6 +36,7 @@ mod dimensions;
 mod four_bar;
 mod inverted_slider_crank;
 mod jansen;
+mod random;
 mod six_bar;
 mod slider_crank;
 #[cfg(feature = "std")]

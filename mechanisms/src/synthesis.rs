@@ -27,6 +27,7 @@ use nalgebra::storage::Owned;
 use nalgebra::{DMatrix, DVector, Dyn};
 use rayon::prelude::*;
 
+use crate::random::SplitMix64;
 use crate::{FourBar, WattSixBar, WattSixBarBranches};
 
 /// What a synthesis may return, and how hard it looks.
@@ -349,19 +350,19 @@ pub fn path_generation(
     // [x0, y0, θ1, ln l1, ln l2, ln l3, ln l4, ln a, δ] and, without timing, each θ2.
     let starts = starts(options, Vec::new(), |random| {
         let mut x = Vec::with_capacity(9 + n);
-        let radius = spread * (1.0 + 2.0 * random.unit());
-        let around = tau * random.unit();
+        let radius = spread * (1.0 + 2.0 * random.fraction());
+        let around = tau * random.fraction();
         x.push(centre.x + radius * around.cos());
         x.push(centre.y + radius * around.sin());
-        x.push(tau * random.unit());
-        let ground = spread * (0.5 + 1.5 * random.unit());
+        x.push(tau * random.fraction());
+        let ground = spread * (0.5 + 1.5 * random.fraction());
         x.push(ground.ln());
         x.extend(crank_rocker(ground, random).map(f64::ln));
-        x.push((spread * (0.1 + 1.9 * random.unit())).ln());
-        x.push(tau * random.unit());
+        x.push((spread * (0.1 + 1.9 * random.fraction())).ln());
+        x.push(tau * random.fraction());
         if timing.is_none() {
             // In order round the turn, from a random start.
-            let first = tau * random.unit();
+            let first = tau * random.fraction();
             x.extend((0..n).map(|i| first + tau * i as f64 / n as f64));
         }
         x
@@ -549,8 +550,8 @@ fn not_assembled(errors: Option<Vec<f64>>, count: usize) -> DVector<f64> {
 fn crank_rocker(ground: f64, random: &mut SplitMix64) -> [f64; 3] {
     let mut lengths = [0.0; 3];
     for _ in 0..64 {
-        let crank = ground * (0.1 + 0.5 * random.unit());
-        let [coupler, rocker] = [0; 2].map(|_| ground * (0.4 + 1.6 * random.unit()));
+        let crank = ground * (0.1 + 0.5 * random.fraction());
+        let [coupler, rocker] = [0; 2].map(|_| ground * (0.4 + 1.6 * random.fraction()));
         lengths = [crank, coupler, rocker];
         let sorted = {
             let mut all = [ground, crank, coupler, rocker];
@@ -826,7 +827,7 @@ pub fn watt_function_generation(
     let ([_, _, l3, l4], l5, beta, l6, l7, _) = start.dimensions();
     let first = [l3.ln(), l4.ln(), l5.ln(), beta, l6.ln(), l7.ln()];
     let starts = starts(options, vec![first], |random| {
-        core::array::from_fn(|k| first[k] + 0.8 * (random.unit() - 0.5))
+        core::array::from_fn(|k| first[k] + 0.8 * (random.fraction() - 0.5))
     });
     let solve = |x: [f64; 6]| {
         let (solved, finished) = minimise(problem(x));
@@ -934,19 +935,5 @@ impl Residuals for WattProblem<'_> {
             }
         }
         Some(jacobian)
-    }
-}
-
-/// Steele, Lea and Flood's SplitMix64, for reproducible starts.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        (z ^ (z >> 31)) as f64 / 2f64.powi(64)
     }
 }

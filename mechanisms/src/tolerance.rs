@@ -20,6 +20,7 @@
 use mechgen::{Branch, Error, Real, Vec2};
 
 use crate::four_bar::{FourBar, FourBarSensitivities};
+use crate::random::SplitMix64;
 
 /// The ± tolerance of each of a four-bar's dimensions: lengths in its units, the coupler
 /// point's angle in radians. Zero for a dimension taken as exact.
@@ -289,31 +290,6 @@ fn varied<T: Real>(t: &[T; 6]) -> ([usize; 6], usize) {
         }
     }
     (indices, count)
-}
-
-/// Steele, Lea and Flood's SplitMix64: a small, well-mixed generator, enough for sampling.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in (0, 1]: 53 random bits.
-    fn unit(&mut self) -> f64 {
-        ((self.next() >> 11) + 1) as f64 / (1u64 << 53) as f64
-    }
-
-    /// A standard normal deviate (Box–Muller).
-    fn normal<T: Real>(&mut self) -> T {
-        let (u, v) = (self.unit(), self.unit());
-        let (u, v) = (T::constant(u), T::constant(v));
-        (T::constant(-2.0) * u.ln()).sqrt() * (T::constant(core::f64::consts::TAU) * v).cos()
-    }
 }
 
 /// The per-parameter values in the four-bar's parameter order.
