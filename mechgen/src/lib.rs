@@ -50,7 +50,7 @@ pub mod __private {
     pub use crate::linear::{Factored, orientation, solve_lu, solve2};
     pub use crate::newton::{
         Linearisation, Orientation, Started, Turning, Turnings, all_finite, check_all_finite,
-        check_finite, finite, loop_weight, newton, newton_common, sin_cos, stagnated,
+        check_finite, finite, loop_weight, newton, newton_common, same_sides, sin_cos, stagnated,
     };
     pub use core::result::Result::{Err, Ok};
 }

@@ -340,6 +340,19 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     }
 }
 
+/// Whether a solution keeps its guess's branches, loop by loop, from their sides (the
+/// `closed::*_side` values: a branch sign, or zero where the branch is within the position's
+/// error of the loop's tangency). Only a loop decided both at the guess and at the solution,
+/// and opposite, is another assembly; at a tangency the two branches meet, and the solution
+/// is on both to within its accuracy.
+pub fn same_sides<T: Real, const N: usize>(guess: [T; N], solution: [T; N]) -> bool {
+    let zero = T::zero();
+    guess
+        .iter()
+        .zip(&solution)
+        .all(|(g, s)| !((*g > zero && *s < zero) || (*g < zero && *s > zero)))
+}
+
 /// Whether Newton keeps the Jacobian's orientation (see [`newton`]), and which unknowns are
 /// angles. `true` keeps it with every unknown an angle, `false` leaves it free.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

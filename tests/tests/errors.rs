@@ -267,3 +267,57 @@ fn a_far_guess_never_makes_an_assemblable_input_cannot_assemble() {
     // Some guesses do stall (this is what the test is about): 0 would mean it tests nothing.
     assert!(stalled > 0);
 }
+
+/// The same for several loops, whose branches Newton checks loop by loop: guesses between the
+/// Watt six-bar's two dyad assemblies, and about them, never come back `Ok` on the other
+/// one, and those Newton carries across say `OtherBranch`. Only where the dyad is within the
+/// position's error of its toggle (the two assemblies meet) do the branches count as the same.
+#[test]
+fn newton_on_several_loops_keeps_each_loop_s_branch_or_says_other_branch() {
+    use mechgen::Branch::{Crossed, Open};
+    let linkage = mechanisms::WattSixBar::new(
+        [180.0, 80.0, 200.0, 150.0],
+        100.0,
+        0.8,
+        220.0,
+        160.0,
+        (300.0, 150.0),
+    )
+    .unwrap();
+    let theta2 = 1.0;
+    let open = linkage.assemble(theta2, [Open, Open]).unwrap();
+    let crossed = linkage.assemble(theta2, [Open, Crossed]).unwrap();
+    let options = NewtonOptions::default();
+    let (mut other_branch, mut solved) = (0, 0);
+    for k in -10..=20 {
+        for wobble in [-0.3, 0.0, 0.3] {
+            let t = f64::from(k) / 10.0;
+            let guess = mechanisms::WattSixBarUnknowns {
+                theta5: open.theta5 + t * (crossed.theta5 - open.theta5) + wobble,
+                theta6: open.theta6 + t * (crossed.theta6 - open.theta6) - wobble,
+                ..open
+            };
+            let wanted = linkage.branch_of(theta2, &guess);
+            match linkage.position(theta2, &guess, &options) {
+                Ok(found) => {
+                    solved += 1;
+                    assert_eq!(
+                        linkage.branch_of(theta2, &found.value),
+                        wanted,
+                        "from {guess:?}"
+                    );
+                }
+                Err(Error::OtherBranch) => other_branch += 1,
+                // A guess with the dyad straight, where its Jacobian is singular.
+                Err(Error::Singular { .. }) => assert!(
+                    (guess.theta5 - guess.theta6).sin().abs() < 1e-12,
+                    "{guess:?}"
+                ),
+                Err(error) => panic!("guess {guess:?}: {error}"),
+            }
+        }
+    }
+    // 62 solved, 30 OtherBranch and 1 Singular today, of the 93 guesses.
+    assert!(solved > 40, "{solved} solved");
+    assert!(other_branch > 0, "no guess needed OtherBranch");
+}

@@ -565,3 +565,71 @@ mod declarations {
         }
     }
 }
+
+/// A scene whose outputs come out non-finite although every step passed says what the
+/// general functions say (edge run cases 935685 and 545141): an f32 Watt six-bar whose
+/// dyad's rocker is 1e7 times shorter than its coupler, below f32's rounding of it, has no
+/// correct digit in its rates, which `motion` reports as `Inaccurate`; the scene used to say
+/// `NonFinite`, though the true rates are finite. In f64 the same linkage's scene answers.
+#[test]
+fn a_scene_that_overflows_says_why_as_the_general_functions_do() {
+    let dims = [
+        6.697676e-18,
+        1.456019e-18,
+        8.821934e-18,
+        5.054329e-18,
+        2.377995e-16,
+        1.746128,
+        2.2737368e-13,
+        1.7613396e-20,
+        1.6977742e-14,
+        2.2674538e-13,
+    ];
+    for scale in [1.0, 5.316911983139664e36] {
+        let length = |k: usize| if k == 5 { dims[k] } else { dims[k] * scale };
+        let (theta2, w, a) = (2.0725276, 0.5736379, -0.55499685);
+        let branches = [Branch::Crossed, Branch::Open];
+        let f32_linkage = WattSixBar::<f32>::new(
+            [0, 1, 2, 3].map(|k| length(k) as f32),
+            length(4) as f32,
+            length(5) as f32,
+            length(6) as f32,
+            length(7) as f32,
+            (length(8) as f32, length(9) as f32),
+        )
+        .unwrap();
+        let scene =
+            f32_linkage
+                .scenes()
+                .unwrap()
+                .output(theta2 as f32, branches, w as f32, a as f32);
+        let general = f32_linkage.motion(theta2 as f32, branches, w as f32, a as f32);
+        assert!(
+            matches!(scene, Err(Error::Inaccurate { .. })),
+            "× {scale:e}: {scene:?}"
+        );
+        assert_eq!(scene.unwrap_err(), general.unwrap_err(), "× {scale:e}");
+
+        let f64_linkage = WattSixBar::<f64>::new(
+            [0, 1, 2, 3].map(length),
+            length(4),
+            length(5),
+            length(6),
+            length(7),
+            (length(8), length(9)),
+        )
+        .unwrap();
+        let scene = f64_linkage
+            .scenes()
+            .unwrap()
+            .output(theta2, branches, w, a)
+            .unwrap();
+        let position = f64_linkage.assemble(theta2, branches).unwrap();
+        // The rocker is 1e7 times shorter than the linkage: its angle holds about ε·1e7.
+        close("θ6", theta2, scene.theta6, position.theta6, 1.0, 1e-8);
+        assert!(
+            scene.theta6_dot.is_finite() && scene.theta6_ddot.is_finite(),
+            "{scene:?}"
+        );
+    }
+}

@@ -2,7 +2,7 @@
 //! the runtime's `mechgen::closed` solvers for each loop's case.
 
 use proc_macro2::{Ident, Literal, TokenStream};
-use quote::quote;
+use quote::{format_ident, quote};
 use syn::ext::IdentExt;
 
 use super::docs::doc;
@@ -120,7 +120,7 @@ impl Generator<'_> {
     }
 
     /// The `branch` or `branches` argument a closed-form function passes on.
-    fn branch_argument(&self, steps: &[Step]) -> TokenStream {
+    pub(super) fn branch_argument(&self, steps: &[Step]) -> TokenStream {
         match steps.iter().filter(|s| s.case.has_branches()).count() {
             0 => TokenStream::new(),
             1 => {
@@ -135,7 +135,8 @@ impl Generator<'_> {
     }
 
     /// `branch_of(input, position)`: the branch each branching loop is on, by the sign its
-    /// closed form documents.
+    /// closed form documents; and, where Newton checks its solution by it (several loops),
+    /// the check.
     pub(super) fn branch_of(&self, steps: &[Step]) -> TokenStream {
         let branching: Vec<&Step> = steps.iter().filter(|s| s.case.has_branches()).collect();
         if branching.is_empty() {
@@ -144,39 +145,10 @@ impl Generator<'_> {
         let input = &self.model.input.name;
         let position = arg("position");
         let (unknowns, _, _) = self.signature_types();
-        let signs: Vec<TokenStream> = branching
-            .iter()
-            .map(|step| {
-                // Only the coefficients the sign reads, so no unused locals are bound.
-                let (needed, function) = match &step.case {
-                    Case::LengthAndOwnAngle { w0, w1, .. } => {
-                        ([w0, w1], "length_and_own_angle_sign")
-                    }
-                    Case::LengthAndOtherAngle { k, v, .. } => {
-                        ([k, v], "length_and_other_angle_sign")
-                    }
-                    Case::TwoAngles { k, w1, .. } => ([k, w1], "two_angles_sign"),
-                    Case::TwoLengths { .. } => unreachable!("filtered out above"),
-                };
-                let needed: Vec<ExprId> = needed.into_iter().flatten().copied().collect();
-                let (prologue, coefficients) = self.block(&needed);
-                let vectors = complex_values(&coefficients);
-                let first = &self.model.unknowns[step.unknowns[0]].name;
-                // A flipped angle's case reads `q' = −q`.
-                let first = if step.flipped[0] {
-                    quote!(-#position.#first)
-                } else {
-                    quote!(#position.#first)
-                };
-                let function = Ident::new(function, proc_macro2::Span::call_site());
-                let sign = quote!(::mechgen::closed::#function(#(#vectors),*, #first));
-                quote! {
-                    {
-                        #prologue
-                        ::mechgen::Branch::from_sign(#sign)
-                    }
-                }
-            })
+        let signs: Vec<TokenStream> = self
+            .branch_signs(&branching, None)
+            .into_iter()
+            .map(|sign| quote!(::mechgen::Branch::from_sign(#sign)))
             .collect();
         let (output, value) = match &signs[..] {
             [sign] => (quote!(::mechgen::Branch), sign.clone()),
@@ -189,12 +161,84 @@ impl Generator<'_> {
             "The assembly branch a solved position at `{input}` is on, by the signs \
              [`Self::assemble`] documents. A raw evaluation: it does not check its arguments."
         ));
+        let keeps = (self.model.loops.len() > 1).then(|| self.keeps_branches(&branching));
         quote! {
             #docs
             pub fn branch_of(&self, #input: T, #position: &#unknowns) -> #output {
                 #value
             }
+            #keeps
         }
+    }
+
+    /// `mechgen_keeps_branches(input, guess, solution, condition)`: whether Newton's
+    /// solution, whose condition estimate is `condition`, is on the guess's branches. A loop
+    /// counts as switched only where its sign is decided at both, beyond the position's
+    /// error estimate (`32·ε·κ` of the size): at a tangency the branches meet.
+    fn keeps_branches(&self, branching: &[&Step]) -> TokenStream {
+        let input = &self.model.input.name;
+        let (position, guess) = (arg("position"), arg("guess"));
+        let (solution, condition, margin) =
+            (local("solution"), local("condition"), local("margin"));
+        let (unknowns, _, _) = self.signature_types();
+        let sides = self.branch_signs(branching, Some(&margin));
+        let n = Literal::usize_unsuffixed(sides.len());
+        let size = self.accuracy_size();
+        let docs = doc("Whether Newton's `solution` keeps `guess`'s branches (see \
+             `mechgen::__private::same_sides`).");
+        quote! {
+            #docs
+            fn mechgen_keeps_branches(
+                &self,
+                #input: T,
+                #guess: &#unknowns,
+                #solution: &#unknowns,
+                #condition: T,
+            ) -> bool {
+                let #margin = T::constant(32.0) * T::epsilon() * #condition * (#size);
+                let sides = |#position: &#unknowns| -> [T; #n] { [#(#sides),*] };
+                ::mechgen::__private::same_sides(sides(#guess), sides(#solution))
+            }
+        }
+    }
+
+    /// Each of `branching`'s branch signs at `position`, as a block: the sign itself, or
+    /// with a `margin` its side (zero within the margin of the loop's tangency).
+    fn branch_signs(&self, branching: &[&Step], margin: Option<&Ident>) -> Vec<TokenStream> {
+        let position = arg("position");
+        branching
+            .iter()
+            .map(|step| {
+                // Only the coefficients the sign reads, so no unused locals are bound.
+                let (needed, function) = match &step.case {
+                    Case::LengthAndOwnAngle { w0, w1, .. } => ([w0, w1], "length_and_own_angle"),
+                    Case::LengthAndOtherAngle { k, v, .. } => ([k, v], "length_and_other_angle"),
+                    Case::TwoAngles { k, w1, .. } => ([k, w1], "two_angles"),
+                    Case::TwoLengths { .. } => unreachable!("only loops with branches"),
+                };
+                let needed: Vec<ExprId> = needed.into_iter().flatten().copied().collect();
+                let (prologue, coefficients) = self.block(&needed);
+                let vectors = complex_values(&coefficients);
+                let first = &self.model.unknowns[step.unknowns[0]].name;
+                // A flipped angle's case reads `q' = −q`.
+                let first = if step.flipped[0] {
+                    quote!(-#position.#first)
+                } else {
+                    quote!(#position.#first)
+                };
+                let (suffix, margin) = match margin {
+                    Some(margin) => ("side", quote!(, #margin)),
+                    None => ("sign", TokenStream::new()),
+                };
+                let function = format_ident!("{function}_{suffix}");
+                quote! {
+                    {
+                        #prologue
+                        ::mechgen::closed::#function(#(#vectors),*, #first #margin)
+                    }
+                }
+            })
+            .collect()
     }
 
     /// `motion(input, branch, rate, acceleration)`: position, velocity and acceleration in one

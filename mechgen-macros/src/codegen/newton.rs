@@ -31,7 +31,8 @@ impl Generator<'_> {
         let converged = arg("converged");
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
-        let (keep_orientation, branch_check) = self.branch_keeping(quote!(&#solved.value));
+        let (keep_orientation, branch_check) =
+            self.branch_keeping(quote!(&#solved.value), quote!(#solved.condition));
         let orientation = self.orientation(keep_orientation, None);
         let branch_doc = if keep_orientation || branch_check.is_some() {
             " It keeps to the guess's assembly branch (for one loop, the orientation of the \
@@ -216,8 +217,12 @@ impl Generator<'_> {
     /// loop, or loops none of which has a closed form with branches: the sign of the
     /// determinant cannot change along a branch, so a change means another assembly), and
     /// the check after it otherwise (several loops with closed-form branches), comparing
-    /// `solution` with the guess.
-    fn branch_keeping(&self, solution: TokenStream) -> (bool, Option<TokenStream>) {
+    /// `solution`, of condition estimate `condition`, with the guess.
+    fn branch_keeping(
+        &self,
+        solution: TokenStream,
+        condition: TokenStream,
+    ) -> (bool, Option<TokenStream>) {
         let input = &self.model.input.name;
         let guess = arg("guess");
         let branching = self.equations.closed_form.as_ref().map_or(0, |steps| {
@@ -226,7 +231,7 @@ impl Generator<'_> {
         let keep_orientation = self.model.loops.len() == 1 || branching == 0;
         let check = (branching > 0 && !keep_orientation).then(|| {
             quote! {
-                if self.branch_of(#input, #solution) != self.branch_of(#input, #guess) {
+                if !self.mechgen_keeps_branches(#input, #guess, #solution, #condition) {
                     return ::core::result::Result::Err(::mechgen::Error::OtherBranch);
                 }
             }
@@ -270,8 +275,10 @@ impl Generator<'_> {
             named,
             used: bound,
         } = self.linearisation(&x, &guess);
-        let (keep_orientation, branch_check) =
-            self.branch_keeping(quote!(&#ty::from_array(#converged.solved.value)));
+        let (keep_orientation, branch_check) = self.branch_keeping(
+            quote!(&#ty::from_array(#converged.solved.value)),
+            quote!(#converged.solved.condition),
+        );
         let orientation = self.orientation(keep_orientation, None);
 
         // The rates read the hoisted values and the last iteration's payload.

@@ -280,6 +280,8 @@ impl Generator<'_> {
                  kernel's way out, which says why it failed.",
                 name.unraw()
             ));
+            let general = local("general");
+            let general_check = self.general_check(scene);
             return quote! {
                 #docs
                 #[cold]
@@ -289,9 +291,22 @@ impl Generator<'_> {
                     #input: T #branch_parameter,
                     #(#arguments)*
                 ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
+                    // Before `computed`, which may shadow a length input with its scaled value.
+                    let #general = || -> ::core::result::Result<(), ::mechgen::Error<T>> {
+                        #general_check
+                    };
                     #computed
-                    let #checked_values = ::mechgen::__private::finite_all([#(#checked),*], "scene output")
-                        .map_err(|error| ::mechgen::__private::blame(#inputs, error))?;
+                    let #checked_values = match ::mechgen::__private::finite_all([#(#checked),*], "scene output") {
+                        ::core::result::Result::Ok(values) => values,
+                        ::core::result::Result::Err(error) => {
+                            // Every step passed and still an output is not finite: a rate
+                            // too large for the float type, or one no digit of which holds
+                            // (a link shorter than the others' rounding); the general
+                            // functions, with their accuracy estimate, tell which.
+                            #general()?;
+                            return ::core::result::Result::Err(::mechgen::__private::blame(#inputs, error));
+                        }
+                    };
                     ::core::result::Result::Ok(#output_type { #(#fields),* })
                 }
             };
@@ -352,6 +367,32 @@ impl Generator<'_> {
 
     /// The kernel's arguments after the input, by name: the branch choice, if any, and the
     /// input's rate and acceleration, as far as the scene's order reads them.
+    /// The body of the checked kernel's last resort: the general functions' answer at the
+    /// scene's arguments as given (`Ok(())` if they have none to give, or are not generated),
+    /// so that a scene's errors are theirs.
+    fn general_check(&self, scene: &Scene) -> TokenStream {
+        let outputs = self.model.outputs;
+        let input = &self.model.input.name;
+        let steps = self.equations.closed_form.as_deref().unwrap_or_default();
+        let branches = self.branch_argument(steps);
+        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let position = quote!(self.mechanism.assemble(#input #branches)?);
+        let check = match scene.order() {
+            Order::Acceleration if outputs.acceleration => quote! {
+                self.mechanism.motion(#input #branches, #input_dot, #input_ddot)?;
+            },
+            Order::Rate if outputs.velocity => quote! {
+                let position = #position;
+                self.mechanism.velocity(#input, &position, #input_dot)?;
+            },
+            _ => quote!(#position;),
+        };
+        quote! {
+            #check
+            ::core::result::Result::Ok(())
+        }
+    }
+
     pub(super) fn checked_arguments(&self, scene: &Scene) -> Vec<Ident> {
         let order = scene.order();
         let steps = self.equations.closed_form.as_deref().unwrap_or_default();
