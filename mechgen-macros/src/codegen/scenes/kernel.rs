@@ -365,8 +365,6 @@ impl Generator<'_> {
         }
     }
 
-    /// The kernel's arguments after the input, by name: the branch choice, if any, and the
-    /// input's rate and acceleration, as far as the scene's order reads them.
     /// The body of the checked kernel's last resort: the general functions' answer at the
     /// scene's arguments as given (`Ok(())` if they have none to give, or are not generated),
     /// so that a scene's errors are theirs.
@@ -376,16 +374,17 @@ impl Generator<'_> {
         let steps = self.equations.closed_form.as_deref().unwrap_or_default();
         let branches = self.branch_argument(steps);
         let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
-        let position = quote!(self.mechanism.assemble(#input #branches)?);
+        let assembled = quote!(self.mechanism.assemble(#input #branches)?);
+        let position = local("position");
         let check = match scene.order() {
             Order::Acceleration if outputs.acceleration => quote! {
                 self.mechanism.motion(#input #branches, #input_dot, #input_ddot)?;
             },
             Order::Rate if outputs.velocity => quote! {
-                let position = #position;
-                self.mechanism.velocity(#input, &position, #input_dot)?;
+                let #position = #assembled;
+                self.mechanism.velocity(#input, &#position, #input_dot)?;
             },
-            _ => quote!(#position;),
+            _ => quote!(#assembled;),
         };
         quote! {
             #check
@@ -393,6 +392,8 @@ impl Generator<'_> {
         }
     }
 
+    /// The kernel's arguments after the input, by name: the branch choice, if any, and the
+    /// input's rate and acceleration, as far as the scene's order reads them.
     pub(super) fn checked_arguments(&self, scene: &Scene) -> Vec<Ident> {
         let order = scene.order();
         let steps = self.equations.closed_form.as_deref().unwrap_or_default();
