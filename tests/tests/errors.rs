@@ -275,15 +275,7 @@ fn a_far_guess_never_makes_an_assemblable_input_cannot_assemble() {
 #[test]
 fn newton_on_several_loops_keeps_each_loop_s_branch_or_says_other_branch() {
     use mechgen::Branch::{Crossed, Open};
-    let linkage = mechanisms::WattSixBar::new(
-        [180.0, 80.0, 200.0, 150.0],
-        100.0,
-        0.8,
-        220.0,
-        160.0,
-        (300.0, 150.0),
-    )
-    .unwrap();
+    let linkage = watt_six_bar::<f64>();
     let theta2 = 1.0;
     let open = linkage.assemble(theta2, [Open, Open]).unwrap();
     let crossed = linkage.assemble(theta2, [Open, Crossed]).unwrap();

@@ -345,15 +345,7 @@ fn slider_crank_backwards_matches_the_shipped_one() {
 }
 
 fn watt() -> WattSixBar<f64> {
-    WattSixBar::new(
-        [180.0, 80.0, 200.0, 150.0],
-        100.0,
-        0.8,
-        220.0,
-        160.0,
-        (300.0, 150.0),
-    )
-    .unwrap()
+    common::watt_six_bar()
 }
 
 #[test]

@@ -148,16 +148,7 @@ fn inverted_slider_crank_scenes_agree_with_the_general_functions() {
 }
 
 fn watt<T: Real>() -> WattSixBar<T> {
-    let c = T::constant;
-    WattSixBar::new(
-        [c(180.0), c(80.0), c(200.0), c(150.0)],
-        c(100.0),
-        c(0.8),
-        c(220.0),
-        c(160.0),
-        (c(300.0), c(150.0)),
-    )
-    .unwrap()
+    common::watt_six_bar()
 }
 
 fn watt_scene_agrees<T: Real>() {

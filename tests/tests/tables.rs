@@ -239,15 +239,7 @@ fn jansen_leg_full_turn() {
 
 #[test]
 fn watt_six_bar_full_turn() {
-    let linkage = mechanisms::WattSixBar::new(
-        [180.0, 80.0, 200.0, 150.0],
-        100.0,
-        0.8,
-        220.0,
-        160.0,
-        (300.0, 150.0),
-    )
-    .unwrap();
+    let linkage = watt_six_bar::<f64>();
     let header = unknown_header(&["theta3", "theta4", "theta5", "theta6"], "output_pin");
     let header: Vec<&str> = header.iter().map(String::as_str).collect();
     let drawn = [mechgen::Branch::Open, mechgen::Branch::Open];

@@ -181,6 +181,21 @@ pub fn inverted_slider_crank<T: mechgen::Real>() -> mechanisms::InvertedSliderCr
         .expect("valid dimensions")
 }
 
+/// The Watt six-bar the tests and tables use: Example 1's four-bar, its rocker extended by 100
+/// at 0.8 rad, and a dyad of 220 and 160 to the pivot (300, 150).
+pub fn watt_six_bar<T: mechgen::Real>() -> mechanisms::WattSixBar<T> {
+    let c = T::constant;
+    mechanisms::WattSixBar::new(
+        [c(180.0), c(80.0), c(200.0), c(150.0)],
+        c(100.0),
+        c(0.8),
+        c(220.0),
+        c(160.0),
+        (c(300.0), c(150.0)),
+    )
+    .expect("valid dimensions")
+}
+
 /// The seeds' Example 1 four-bar (180, 80, 200, 150 mm) with a coupler point, in the float
 /// type `T`.
 pub fn example_1<T: mechgen::Real>() -> mechanisms::FourBar<T> {
