@@ -280,8 +280,23 @@ impl Generator<'_> {
                  kernel's way out, which says why it failed.",
                 name.unraw()
             ));
-            let general = local("general");
-            let general_check = self.general_check(scene);
+            // Rates: the general functions, asked before `computed` (which may shadow a length
+            // input with its scaled value), say whether they overflow or hold no digit.
+            let (general, ask_general) = match self.general_check(scene) {
+                Some(check) => {
+                    let general = local("general");
+                    (
+                        quote! {
+                            let #general = || -> ::core::result::Result<(), ::mechgen::Error<T>> {
+                                #check
+                                ::core::result::Result::Ok(())
+                            };
+                        },
+                        quote!(#general()?;),
+                    )
+                }
+                None => (TokenStream::new(), TokenStream::new()),
+            };
             return quote! {
                 #docs
                 #[cold]
@@ -291,19 +306,12 @@ impl Generator<'_> {
                     #input: T #branch_parameter,
                     #(#arguments)*
                 ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
-                    // Before `computed`, which may shadow a length input with its scaled value.
-                    let #general = || -> ::core::result::Result<(), ::mechgen::Error<T>> {
-                        #general_check
-                    };
+                    #general
                     #computed
                     let #checked_values = match ::mechgen::__private::finite_all([#(#checked),*], "scene output") {
                         ::core::result::Result::Ok(values) => values,
                         ::core::result::Result::Err(error) => {
-                            // Every step passed and still an output is not finite: a rate
-                            // too large for the float type, or one no digit of which holds
-                            // (a link shorter than the others' rounding); the general
-                            // functions, with their accuracy estimate, tell which.
-                            #general()?;
+                            #ask_general
                             return ::core::result::Result::Err(::mechgen::__private::blame(#inputs, error));
                         }
                     };
@@ -365,30 +373,28 @@ impl Generator<'_> {
         }
     }
 
-    /// The body of the checked kernel's last resort: the general functions' answer at the
-    /// scene's arguments as given (`Ok(())` if they have none to give, or are not generated),
-    /// so that a scene's errors are theirs.
-    fn general_check(&self, scene: &Scene) -> TokenStream {
+    /// What the checked kernel of a scene with rates asks the general functions where every
+    /// step passed and still an output is not finite: the rates are then too large for the
+    /// float type, or hold no correct digit (an f32 link shorter than the others' rounding),
+    /// and the general functions' accuracy estimate tells which. `None` for a scene of
+    /// positions, whose outputs overflow only with the lengths (and as the general functions'
+    /// would), or where the general rates are not generated.
+    fn general_check(&self, scene: &Scene) -> Option<TokenStream> {
         let outputs = self.model.outputs;
         let input = &self.model.input.name;
         let steps = self.equations.closed_form.as_deref().unwrap_or_default();
         let branches = self.branch_argument(steps);
         let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
-        let assembled = quote!(self.mechanism.assemble(#input #branches)?);
         let position = local("position");
-        let check = match scene.order() {
-            Order::Acceleration if outputs.acceleration => quote! {
+        match scene.order() {
+            Order::Acceleration if outputs.acceleration => Some(quote! {
                 self.mechanism.motion(#input #branches, #input_dot, #input_ddot)?;
-            },
-            Order::Rate if outputs.velocity => quote! {
-                let #position = #assembled;
+            }),
+            Order::Rate if outputs.velocity => Some(quote! {
+                let #position = self.mechanism.assemble(#input #branches)?;
                 self.mechanism.velocity(#input, &#position, #input_dot)?;
-            },
-            _ => quote!(#assembled;),
-        };
-        quote! {
-            #check
-            ::core::result::Result::Ok(())
+            }),
+            _ => None,
         }
     }
 
