@@ -120,7 +120,7 @@ impl Generator<'_> {
     }
 
     /// The `branch` or `branches` argument a closed-form function passes on.
-    pub(super) fn branch_argument(&self, steps: &[Step]) -> TokenStream {
+    fn branch_argument(&self, steps: &[Step]) -> TokenStream {
         match steps.iter().filter(|s| s.case.has_branches()).count() {
             0 => TokenStream::new(),
             1 => {

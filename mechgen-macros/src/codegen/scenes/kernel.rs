@@ -280,23 +280,6 @@ impl Generator<'_> {
                  kernel's way out, which says why it failed.",
                 name.unraw()
             ));
-            // Rates: the general functions, asked before `computed` (which may shadow a length
-            // input with its scaled value), say whether they overflow or hold no digit.
-            let (general, ask_general) = match self.general_check(scene) {
-                Some(check) => {
-                    let general = local("general");
-                    (
-                        quote! {
-                            let #general = || -> ::core::result::Result<(), ::mechgen::Error<T>> {
-                                #check
-                                ::core::result::Result::Ok(())
-                            };
-                        },
-                        quote!(#general()?;),
-                    )
-                }
-                None => (TokenStream::new(), TokenStream::new()),
-            };
             return quote! {
                 #docs
                 #[cold]
@@ -306,15 +289,9 @@ impl Generator<'_> {
                     #input: T #branch_parameter,
                     #(#arguments)*
                 ) -> ::core::result::Result<#output_type<T>, ::mechgen::Error<T>> {
-                    #general
                     #computed
-                    let #checked_values = match ::mechgen::__private::finite_all([#(#checked),*], "scene output") {
-                        ::core::result::Result::Ok(values) => values,
-                        ::core::result::Result::Err(error) => {
-                            #ask_general
-                            return ::core::result::Result::Err(::mechgen::__private::blame(#inputs, error));
-                        }
-                    };
+                    let #checked_values = ::mechgen::__private::finite_all([#(#checked),*], "scene output")
+                        .map_err(|error| ::mechgen::__private::blame(#inputs, error))?;
                     ::core::result::Result::Ok(#output_type { #(#fields),* })
                 }
             };
@@ -370,31 +347,6 @@ impl Generator<'_> {
                     self.#checked_name(#(#given),*)
                 }
             }
-        }
-    }
-
-    /// What the checked kernel of a scene with rates asks the general functions where every
-    /// step passed and still an output is not finite: the rates are then too large for the
-    /// float type, or hold no correct digit (an f32 link shorter than the others' rounding),
-    /// and the general functions' accuracy estimate tells which. `None` for a scene of
-    /// positions, whose outputs overflow only with the lengths (and as the general functions'
-    /// would), or where the general rates are not generated.
-    fn general_check(&self, scene: &Scene) -> Option<TokenStream> {
-        let outputs = self.model.outputs;
-        let input = &self.model.input.name;
-        let steps = self.equations.closed_form.as_deref().unwrap_or_default();
-        let branches = self.branch_argument(steps);
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
-        let position = local("position");
-        match scene.order() {
-            Order::Acceleration if outputs.acceleration => Some(quote! {
-                self.mechanism.motion(#input #branches, #input_dot, #input_ddot)?;
-            }),
-            Order::Rate if outputs.velocity => Some(quote! {
-                let #position = self.mechanism.assemble(#input #branches)?;
-                self.mechanism.velocity(#input, &#position, #input_dot)?;
-            }),
-            _ => None,
         }
     }
 
