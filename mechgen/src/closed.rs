@@ -985,4 +985,37 @@ mod tests {
             0.0
         );
     }
+
+    /// Found by mutation testing: where one length is zero, the loop's residual (rounding of
+    /// the other) is still held to the magnitudes of all three vectors; a tolerance from
+    /// `|k| + |l1| − |l2|`, zero there, rejects it.
+    #[test]
+    fn two_lengths_close_where_one_of_them_is_zero() {
+        for turn in [0.1, 0.137, 0.248] {
+            let (v1, v2) = (turned(turn, v(1.0, 0.0)), turned(turn, v(0.3, 0.8)));
+            for lengths in [[0.0, 0.7], [1.3, 0.0]] {
+                let k = scaled(scaled(v1, lengths[0]) + scaled(v2, lengths[1]), -1.0);
+                let solved = two_lengths(k, v1, v2).unwrap();
+                for (l, want) in solved.iter().zip(lengths) {
+                    assert!((l - want).abs() < 1e-14, "{solved:?} != {lengths:?}");
+                }
+            }
+        }
+    }
+
+    /// Found by mutation testing: a side is undecided within its own rounding (4ε of the
+    /// two vectors' lengths at unit scale), even with no margin; and a slide's side is that
+    /// of the point it reaches, its offset included.
+    #[test]
+    fn a_side_within_its_own_rounding_is_undecided() {
+        let e = f64::EPSILON;
+        // (0.5, 0) × (0.5, δ) = δ/2 against 4ε·0.5·0.5 = ε: exactly at it for δ = 2ε,
+        // beyond it for δ = 4ε.
+        assert_eq!(side(v(0.5, 0.0), v(0.5, 2.0 * e), 0.0, cross), 0.0);
+        assert_eq!(side(v(0.5, 0.0), v(0.5, 4.0 * e), 0.0, cross), 2.0 * e);
+        assert_eq!(side(v(0.5, 0.0), v(0.5, -4.0 * e), 0.0, cross), -2.0 * e);
+        // A slide 3 along (1, 0) from an offset 5 back reaches (−2, 0), behind its direction.
+        assert!(length_and_own_angle_side(v(-5.0, 0.0), v(1.0, 0.0), 3.0, 0.0) < 0.0);
+        assert!(length_and_own_angle_side(v(-1.0, 0.0), v(1.0, 0.0), 3.0, 0.0) > 0.0);
+    }
 }

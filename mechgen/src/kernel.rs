@@ -373,6 +373,43 @@ mod tests {
         assert!(!as_given(&[3e7f32]));
     }
 
+    /// Found by mutation testing: a mechanism solved at another scale comes back in its own
+    /// units, lengths multiplied and angles left alone, and so does Newton's residual.
+    #[test]
+    fn lengths_go_to_the_scaled_mechanism_and_back_and_angles_stay() {
+        let lengths = [true, false, true];
+        assert_eq!(scaled([1.5, 0.25, -3.0], lengths, 4.0), [6.0, 0.25, -12.0]);
+        assert_eq!(
+            unscaled([6.0, 0.25, -12.0], lengths, 0.25, "position"),
+            Ok([1.5, 0.25, -3.0])
+        );
+        assert_eq!(
+            unscaled([f64::MAX, 0.25, 1.0], lengths, 4.0, "position"),
+            Err(Error::NonFinite {
+                quantity: "position"
+            })
+        );
+        let stalled = Error::NoConvergence {
+            iterations: 7,
+            residual_norm: 3.0,
+        };
+        assert_eq!(
+            newton_at_scale(stalled, 0.5, 2.0),
+            Error::NoConvergence {
+                iterations: 7,
+                residual_norm: 1.5
+            }
+        );
+        assert_eq!(
+            newton_at_scale(Error::CannotAssemble { input: 1.0 }, 0.5, 2.0),
+            Error::CannotAssemble { input: 2.0 }
+        );
+        assert_eq!(
+            newton_at_scale(Error::OtherBranch, 0.5, 2.0),
+            Error::OtherBranch
+        );
+    }
+
     #[test]
     fn triangle_roots_close_at_a_tangency_within_rounding_only() {
         let e = f64::EPSILON;

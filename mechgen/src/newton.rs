@@ -1338,6 +1338,101 @@ mod tests {
         }
     }
 
+    /// Found by mutation testing: running out of iterations far from any root, after at least
+    /// 16 of them, is decided as stagnation is, by Kantorovich's test.
+    #[test]
+    fn iterates_still_outside_kantorovichs_ball_at_a_cap_of_16_press_against_a_toggle() {
+        // A Jacobian twice the residual's slope: each step halves the residual, which goes
+        // on lowering and never reaches the floor. From x = (2^k, 0), after 16 steps
+        // Kantorovich's h is |f|/2 = 2^(k−17).
+        let creeping = |x: &[f64; 2]| Linearisation {
+            residual: *x,
+            jacobian: [[2.0, 0.0], [0.0, 2.0]],
+            scale: 1.0,
+            weights: [1.0; 2],
+            payload: (),
+        };
+        let at = |k: i32| [2f64.powi(k), 0.0];
+        assert_eq!(kantorovich(&creeping(&at(-1)), 1.0), 0.25);
+        let solve = |k, cap| {
+            let options = NewtonOptions::new(0.0, cap);
+            newton(0.5, at(k), &options, true, || None, creeping).map(|c| c.solved)
+        };
+        let stalled = |iterations, k| Error::NoConvergence {
+            iterations,
+            residual_norm: 2f64.powi(k),
+        };
+        assert_eq!(solve(16, 16), Err(Error::CannotAssemble { input: 0.5 }));
+        // h at 1/4 is within the ball; 15 iterations say nothing of the loops.
+        assert_eq!(solve(15, 16), Err(stalled(16, -1)));
+        assert_eq!(solve(16, 15), Err(stalled(15, 1)));
+    }
+
+    /// Found by mutation testing: a default solve from a guess already at the rounding floor
+    /// takes one more step (no step led there, so nothing says it is the attainable
+    /// accuracy), and the common path does the same.
+    #[test]
+    fn a_default_solve_takes_a_step_from_a_guess_already_at_the_floor() {
+        // The residual x − (1, 2), with its exact Jacobian: one step lands on the root.
+        let line = |x: &[f64; 2]| Linearisation {
+            residual: [x[0] - 1.0, x[1] - 2.0],
+            jacobian: [[1.0, 0.0], [0.0, 1.0]],
+            scale: 1.0,
+            weights: [1.0; 2],
+            payload: (),
+        };
+        // A residual of 4ε, under the floor of 16ε.
+        let near = [1.0 + 4.0 * f64::EPSILON, 2.0];
+        let default = NewtonOptions::default();
+        let solved = newton(0.0, near, &default, true, || None, line).unwrap();
+        let common = newton_common(near, &default, true, line, Some, || None).unwrap();
+        for solved in [solved.solved, common.solved] {
+            assert_eq!(
+                (solved.value, solved.iterations, solved.residual_norm),
+                ([1.0, 2.0], 1, 0.0)
+            );
+        }
+        // A stated tolerance is met at the floor at once.
+        let stated = NewtonOptions::new(1e-9, 50);
+        let solved = newton(0.0, near, &stated, true, || None, line).unwrap();
+        assert_eq!((solved.solved.value, solved.solved.iterations), (near, 0));
+    }
+
+    /// Found by mutation testing: a default solve stops at the floor only after a step that
+    /// started within `√ε·scale/κ` of the root, where the loops' curvature leaves less than
+    /// the floor (see `polished`).
+    #[test]
+    fn a_default_solve_stops_at_the_floor_after_a_step_from_within_root_epsilon_over_kappa() {
+        // The residual A·x, A = [[1, 16], [0, 1]] (κ = √257), with a Jacobian 1 + 2⁻³⁰ times
+        // A: each step leaves 2⁻³⁰ of the error. From x = (√ε, 0) the first step lands
+        // under the floor, but it started √257·√ε from the root, relative to a scale of 1:
+        // one more step. Relative to a scale of 32, it started near enough.
+        let skewed = |scale: f64| {
+            move |x: &[f64; 2]| {
+                let d = 1.0 + 2f64.powi(-30);
+                Linearisation {
+                    residual: [x[0] + 16.0 * x[1], x[1]],
+                    jacobian: [[d, 16.0 * d], [0.0, d]],
+                    scale,
+                    weights: [1.0; 2],
+                    payload: (),
+                }
+            }
+        };
+        let guess = [f64::EPSILON.sqrt(), 0.0];
+        let default = NewtonOptions::default();
+        for (scale, iterations) in [(1.0, 2), (32.0, 1)] {
+            let solved = newton(0.0, guess, &default, true, || None, skewed(scale)).unwrap();
+            let common =
+                newton_common(guess, &default, true, skewed(scale), Some, || None).unwrap();
+            for solved in [solved.solved, common.solved] {
+                assert_eq!(solved.iterations, iterations, "scale {scale}");
+                assert!((solved.condition - 257f64.sqrt()).abs() < 1e-12);
+                assert!(solved.residual_norm <= 16.0 * f64::EPSILON * scale);
+            }
+        }
+    }
+
     #[test]
     fn a_step_that_overflows_is_an_error_saying_why() {
         // A finite residual, a Jacobian that factors, and a step of 1e318.
@@ -1475,6 +1570,49 @@ mod tests {
             )
             .is_none()
         );
+    }
+
+    #[test]
+    fn a_solution_is_on_another_assembly_only_where_a_loop_is_decided_both_times_and_opposite() {
+        assert!(same_sides([1.0, -1.0], [2.0, -0.5]));
+        assert!(!same_sides([1.0, -1.0], [1.0, 1.0]));
+        assert!(!same_sides([1.0, 1.0], [-1.0, 1.0]));
+        // Undecided (zero) at the guess or at the solution: a tangency, on both branches.
+        assert!(same_sides([0.0, 1.0], [-1.0, 1.0]));
+        assert!(same_sides([0.0, 1.0], [1.0, 1.0]));
+        assert!(same_sides([1.0, -1.0], [0.0, 0.0]));
+        assert!(same_sides::<f64, 0>([], []));
+    }
+
+    #[test]
+    fn assemblies_are_told_apart_unless_a_turn_of_an_angle_moves_no_loop_beyond_rounding() {
+        // Weighted, the first column is (1, −1): a turn moves the loops by 2π·1, exactly the
+        // floor here, so that angle is undetermined; 2 would be beyond it.
+        let at = Linearisation {
+            residual: [0.0f64; 2],
+            jacobian: [[0.5, 3.0], [-0.25, 1.0]],
+            scale: 1.0,
+            weights: [2.0, 4.0],
+            payload: (),
+        };
+        let floor = core::f64::consts::TAU;
+        let kept = Orientation::from(true);
+        assert!(!kept.tells_apart(&at, floor));
+        assert!(kept.tells_apart(&at, floor * (1.0 - f64::EPSILON)));
+        // A length's column is no angle's: a turn of it means nothing.
+        assert!(
+            Orientation::Kept {
+                angles: [false, true]
+            }
+            .tells_apart(&at, floor)
+        );
+        assert!(!Orientation::Free.tells_apart(&at, 0.0));
+        let wider = Linearisation {
+            weights: [4.0, 8.0],
+            ..at
+        };
+        assert!(kept.tells_apart(&wider, floor));
+        assert_eq!(Orientation::<2>::from(false), Orientation::Free);
     }
 
     #[test]
@@ -1734,6 +1872,29 @@ mod tests {
                 .expect("the common path");
                 assert_eq!(bits(&quick), bits(&safeguarded));
             }
+        }
+    }
+
+    /// Found by mutation testing: where a weight alone puts the residual above the floor,
+    /// the common path does not accept it either.
+    #[test]
+    fn the_common_path_weighs_the_residual_where_the_weight_decides() {
+        // The residual x − (1, 2), 4ε at the guess, weighted 8: 32ε, above the floor of 16ε
+        // (unweighted, or divided by the weight, it is under it). With a stated tolerance
+        // of ε the guess is not accepted, and one step lands on the root.
+        let weighted = |x: &[f64; 2]| Linearisation {
+            residual: [x[0] - 1.0, x[1] - 2.0],
+            jacobian: [[1.0, 0.0], [0.0, 1.0]],
+            scale: 1.0,
+            weights: [8.0; 2],
+            payload: (),
+        };
+        let near = [1.0 + 4.0 * f64::EPSILON, 2.0];
+        let options = NewtonOptions::new(f64::EPSILON, 50);
+        let safeguarded = newton(0.0, near, &options, true, || None, weighted).unwrap();
+        let quick = newton_common(near, &options, true, weighted, Some, || None).unwrap();
+        for solved in [safeguarded.solved, quick.solved] {
+            assert_eq!((solved.value, solved.iterations), ([1.0, 2.0], 1));
         }
     }
 
