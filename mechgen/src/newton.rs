@@ -1015,6 +1015,18 @@ mod tests {
         move |x: &[f64; 2]| evaluated(theta2, started.sin_cos(*x))
     }
 
+    /// The residual `x − (1, 2)` with its exact Jacobian (one step lands on the root), each
+    /// component weighted by `weight`.
+    fn shifted(weight: f64) -> impl Fn(&[f64; 2]) -> Linearisation<f64, 2, ()> + Copy {
+        move |x: &[f64; 2]| Linearisation {
+            residual: [x[0] - 1.0, x[1] - 2.0],
+            jacobian: [[1.0, 0.0], [0.0, 1.0]],
+            scale: 1.0,
+            weights: [weight; 2],
+            payload: (),
+        }
+    }
+
     fn bits(converged: &Converged<f64, 2, [f64; 4]>) -> [u64; 6] {
         let [a, b] = converged.solved.value;
         let [c, d] = converged.jacobian.solve([1.0, -2.0]);
@@ -1374,13 +1386,7 @@ mod tests {
     #[test]
     fn a_default_solve_takes_a_step_from_a_guess_already_at_the_floor() {
         // The residual x − (1, 2), with its exact Jacobian: one step lands on the root.
-        let line = |x: &[f64; 2]| Linearisation {
-            residual: [x[0] - 1.0, x[1] - 2.0],
-            jacobian: [[1.0, 0.0], [0.0, 1.0]],
-            scale: 1.0,
-            weights: [1.0; 2],
-            payload: (),
-        };
+        let line = shifted(1.0);
         // A residual of 4ε, under the floor of 16ε.
         let near = [1.0 + 4.0 * f64::EPSILON, 2.0];
         let default = NewtonOptions::default();
@@ -1882,13 +1888,7 @@ mod tests {
         // The residual x − (1, 2), 4ε at the guess, weighted 8: 32ε, above the floor of 16ε
         // (unweighted, or divided by the weight, it is under it). With a stated tolerance
         // of ε the guess is not accepted, and one step lands on the root.
-        let weighted = |x: &[f64; 2]| Linearisation {
-            residual: [x[0] - 1.0, x[1] - 2.0],
-            jacobian: [[1.0, 0.0], [0.0, 1.0]],
-            scale: 1.0,
-            weights: [8.0; 2],
-            payload: (),
-        };
+        let weighted = shifted(8.0);
         let near = [1.0 + 4.0 * f64::EPSILON, 2.0];
         let options = NewtonOptions::new(f64::EPSILON, 50);
         let safeguarded = newton(0.0, near, &options, true, || None, weighted).unwrap();
