@@ -268,32 +268,6 @@ fn rates_only<T: Real>(required: &Accuracy<T>) -> Accuracy<T> {
     }
 }
 
-/// The relative determinant (`1/κ`) at or below which `order`'s estimate exceeds `required`
-/// (with an aspect of 1), and at least `√ε`: where a scene kernel's
-/// block counts as too near a singular position for its rates. Found once, by bisection.
-pub fn rate_threshold<T: Real>(order: Order, required: &Accuracy<T>) -> T {
-    let required = rates_only(required);
-    let too_far = |kappa: T| {
-        Accuracy::estimate(kappa, T::one())
-            .within(&required, order)
-            .is_err()
-    };
-    // κ from 1 to 1/√ε, bisected on its logarithm (60 halvings: to rounding).
-    let (mut low, mut high) = (T::one(), T::one() / T::epsilon().sqrt());
-    if !too_far(high) {
-        return T::epsilon().sqrt();
-    }
-    for _ in 0..60 {
-        let middle = (low * high).sqrt();
-        if too_far(middle) {
-            high = middle;
-        } else {
-            low = middle;
-        }
-    }
-    T::one() / high
-}
-
 /// As [`rates_accuracy`], from a condition estimate already known (the reduced Newton's,
 /// of the full Jacobian), with an aspect of 1.
 pub fn rates_accuracy_at<T: Real>(
@@ -538,29 +512,5 @@ mod tests {
             ),
             Ok(Accuracy::estimate(10.0, 64.0))
         );
-    }
-
-    #[test]
-    fn thresholds_are_where_the_estimates_reach_the_requirement() {
-        let required = Accuracy::<f64>::required();
-        // ε·κ·(64 + 4κ) = r at κ = (−64 + √(64² + 16r/ε))/8.
-        let kappa = (-64.0 + (64.0f64 * 64.0 + 16.0 * required.velocity / E).sqrt()) / 8.0;
-        let threshold = rate_threshold(Order::Velocity, &required);
-        assert!(
-            (threshold * kappa - 1.0).abs() < 1e-9,
-            "{threshold} vs {}",
-            1.0 / kappa
-        );
-        let acceleration = rate_threshold(Order::Acceleration, &required);
-        assert!(acceleration > threshold);
-        let estimate = Accuracy::estimate(1.0 / acceleration, 1.0);
-        assert!((estimate.acceleration / required.acceleration - 1.0).abs() < 1e-9);
-        // A requirement no condition up to 1/√ε exceeds: √ε.
-        let loose = Accuracy {
-            position: 1.0,
-            velocity: 1e9,
-            acceleration: 1e12,
-        };
-        assert_eq!(rate_threshold(Order::Acceleration, &loose), E.sqrt());
     }
 }

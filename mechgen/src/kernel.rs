@@ -5,7 +5,7 @@
 //! the reason there is none.
 
 use crate::closed::Failure;
-use crate::{Accuracy, Error, Order, Real};
+use crate::{Error, Real};
 
 /// The error to report: a non-finite argument if there is one (its NaN or infinity is what
 /// made the computation fail), else `error`. Kernels check their arguments only on this,
@@ -203,42 +203,6 @@ pub fn inverse_determinant<T: Real>(det: T, inverse_norms: T, threshold: T) -> R
     }
 }
 
-/// [`inverse_determinant`] for a rate solve: [`Error::Singular`] at or below
-/// [`crate::singular_threshold`], and where the relative determinant is at or below
-/// `threshold` (from [`crate::__private::rate_threshold`]) [`Error::Inaccurate`] for
-/// `order`, with the estimates at this block's condition and at the threshold's.
-#[inline]
-pub fn rates_inverse_determinant<T: Real>(
-    det: T,
-    inverse_norms: T,
-    threshold: T,
-    order: Order,
-) -> Result<T, Error<T>> {
-    let relative = det * inverse_norms;
-    if relative.abs() > threshold {
-        return Ok(det.recip());
-    }
-    if relative.is_nan() || relative.abs() <= crate::singular_threshold::<T>() {
-        return Err(Error::Singular {
-            determinant: det,
-            relative_determinant: relative.abs(),
-        });
-    }
-    let at = |relative: T| {
-        let estimate = Accuracy::estimate(T::one() / relative, T::one());
-        match order {
-            Order::Position => estimate.position,
-            Order::Velocity => estimate.velocity,
-            Order::Acceleration => estimate.acceleration,
-        }
-    };
-    Err(Error::Inaccurate {
-        order,
-        estimate: at(relative.abs()),
-        required: at(threshold),
-    })
-}
-
 /// The angle of a unit vector `(x, y)`, in (−π, π] as `atan2(y, x)` gives it, from an arc
 /// sine or arc cosine of whichever component is the smaller (where each is well
 /// conditioned): less than half the cost of `atan2`, to within a few units of rounding of it
@@ -255,6 +219,15 @@ pub fn unit_angle<T: Real>(y: T, x: T) -> T {
     } else {
         x.acos().copysign(y)
     }
+}
+
+/// The angle of `(x, y)` for a checked kernel: `atan2(y, x)`, which any vector has. A fast
+/// kernel's [`unit_angle`] needs a vector of unit length to rounding; where a link is shorter
+/// than the rounding of the linkage it hangs from, its vector comes out of the triangle only
+/// to that rounding, and its direction is still the best the position has.
+#[cold]
+pub fn angle<T: Real>(y: T, x: T) -> T {
+    y.atan2(x)
 }
 
 /// The batch forms of the checked steps: the same values where those succeed, NaN where they
@@ -465,51 +438,11 @@ mod tests {
     }
 
     #[test]
-    fn rate_determinants_are_singular_then_inaccurate_then_solved() {
-        let threshold = 1e-4;
-        assert_eq!(
-            rates_inverse_determinant(-0.5, 0.25, threshold, Order::Velocity),
-            Ok(-2.0)
-        );
-        // Between √ε and the threshold: inaccurate, with the estimates at both.
-        let relative = 1e-6;
-        for order in [Order::Position, Order::Velocity, Order::Acceleration] {
-            let at = |relative: f64| {
-                let estimate = Accuracy::estimate(1.0 / relative, 1.0);
-                match order {
-                    Order::Position => estimate.position,
-                    Order::Velocity => estimate.velocity,
-                    Order::Acceleration => estimate.acceleration,
-                }
-            };
-            assert_eq!(
-                rates_inverse_determinant(-relative * 4.0, 0.25, threshold, order),
-                Err(Error::Inaccurate {
-                    order,
-                    estimate: at(relative),
-                    required: at(threshold),
-                })
-            );
+    fn checked_angles_have_any_vector_s_direction() {
+        // Norms of 1.5 and 3, where the arc sine or cosine of a component is wrong or NaN.
+        for (y, x) in [(1.2, -0.9), (-2.4, 1.8), (0.9, 1.2), (0.6, 0.8)] {
+            assert_eq!(angle(y, x), f64::atan2(y, x));
         }
-        // The three estimates differ, so each order reads its own.
-        let estimate = Accuracy::<f64>::estimate(1e6, 1.0);
-        assert!(estimate.position < estimate.velocity);
-        assert!(estimate.velocity < estimate.acceleration);
-        // At or below √ε: singular.
-        let sqrt_epsilon = f64::EPSILON.sqrt();
-        assert_eq!(
-            rates_inverse_determinant(sqrt_epsilon, 1.0, threshold, Order::Velocity),
-            Err(Error::Singular {
-                determinant: sqrt_epsilon,
-                relative_determinant: sqrt_epsilon
-            })
-        );
-        assert!(matches!(
-            rates_inverse_determinant(f64::NAN, 1.0, threshold, Order::Velocity),
-            Err(Error::Singular { .. })
-        ));
-        // At the threshold itself: not solved.
-        assert!(rates_inverse_determinant(threshold, 1.0, threshold, Order::Velocity).is_err());
     }
 
     #[test]

@@ -18,6 +18,7 @@ mod linear;
 #[cfg(feature = "nalgebra")]
 pub mod nalgebra_support;
 mod newton;
+mod rate_limits;
 mod real;
 pub mod simd;
 pub mod sweep;
@@ -41,16 +42,17 @@ pub use mechgen_macros::mechanism;
 /// Items the generated code names. Not public API: they may change in any release.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::accuracy::{rate_threshold, rates_accuracy, rates_accuracy_at};
+    pub use crate::accuracy::{rates_accuracy, rates_accuracy_at};
     pub use crate::kernel::{
-        all_finite as finite_all, as_given, at_input, blame, branch_root, inverse,
-        inverse_determinant, lanes, length_scale, newton_at_scale, outputs_finite,
-        rates_inverse_determinant, scaled, triangle_root, unit_angle, unscaled,
+        all_finite as finite_all, angle, as_given, at_input, blame, branch_root, inverse,
+        inverse_determinant, lanes, length_scale, newton_at_scale, outputs_finite, scaled,
+        triangle_root, unit_angle, unscaled,
     };
     pub use crate::linear::{Factored, orientation, solve_lu, solve2};
     pub use crate::newton::{
         Linearisation, Orientation, Started, Turning, Turnings, all_finite, check_all_finite,
         check_finite, finite, loop_weight, newton, newton_common, same_sides, sin_cos, stagnated,
     };
+    pub use crate::rate_limits::{RateLimits, aspect};
     pub use core::result::Result::{Err, Ok};
 }

@@ -183,7 +183,7 @@ impl Generator<'_> {
         let (unknowns, _, _) = self.signature_types();
         let sides = self.branch_signs(branching, Some(&margin));
         let n = Literal::usize_unsuffixed(sides.len());
-        let size = self.accuracy_size();
+        let size = self.accuracy_size(quote!(self));
         let docs = doc("Whether Newton's `solution` keeps `guess`'s branches (see \
              `mechgen::__private::same_sides`).");
         quote! {

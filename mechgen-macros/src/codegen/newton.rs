@@ -317,7 +317,7 @@ impl Generator<'_> {
         // The size the rates' accuracy weighs the columns against, computed before the
         // iteration: one value to keep through it rather than the lengths.
         let size = local("size");
-        let size_value = self.accuracy_size();
+        let size_value = self.accuracy_size(quote!(self));
         let accuracy_check = self.rates_check_sized(
             quote!(&#converged.at.jacobian),
             quote!(#converged.solved.condition),

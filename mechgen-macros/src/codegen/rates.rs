@@ -203,7 +203,13 @@ impl Generator<'_> {
         highest: &str,
         required: TokenStream,
     ) -> TokenStream {
-        self.rates_check_sized(matrix, condition, highest, required, self.accuracy_size())
+        self.rates_check_sized(
+            matrix,
+            condition,
+            highest,
+            required,
+            self.accuracy_size(quote!(self)),
+        )
     }
 
     /// [`Self::rates_check`] with the size already computed, as `size`.
@@ -235,8 +241,8 @@ impl Generator<'_> {
     }
 
     /// The size [`Self::rates_check`] weighs the columns against: the sum of the lengths the
-    /// loops declare (1 without one).
-    pub(super) fn accuracy_size(&self) -> TokenStream {
+    /// loops declare (1 without one), read from the mechanism `receiver`.
+    pub(super) fn accuracy_size(&self, receiver: TokenStream) -> TokenStream {
         // The lengths of the loops' vectors only: a tracked point's distance (a coupler
         // point far off its link) does not make the loops' rates any less accurate.
         let in_loops: std::collections::BTreeSet<usize> = self
@@ -261,7 +267,7 @@ impl Generator<'_> {
         if lengths.is_empty() {
             quote!(T::one())
         } else {
-            quote!(#(self.#lengths.abs())+*)
+            quote!(#(#receiver.#lengths.abs())+*)
         }
     }
 

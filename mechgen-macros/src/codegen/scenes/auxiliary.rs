@@ -117,10 +117,9 @@ impl Generator<'_> {
                         )
                     },
                     Threshold::Rates => quote! {
-                        ::mechgen::__private::rates_inverse_determinant(
+                        self.rate_limits.inverse_determinant(
                             #det,
                             #inverse_norms,
-                            #rates_threshold,
                             ::mechgen::Order::#rates_order,
                         )
                     },
@@ -134,9 +133,15 @@ impl Generator<'_> {
                 let (y, x) = (&args[0], &args[1]);
                 quote!(::mechgen::fast::unit_angle(#y, #x))
             }
-            AuxKind::Angle { .. } => {
+            AuxKind::Angle { .. } if lanes => {
                 let (y, x) = (&args[0], &args[1]);
                 quote!(::mechgen::__private::unit_angle(#y, #x))
+            }
+            // Checked: a vector off unit length (a link shorter than the rounding of what it
+            // hangs from) still has a direction.
+            AuxKind::Angle { .. } => {
+                let (y, x) = (&args[0], &args[1]);
+                quote!(::mechgen::__private::angle(#y, #x))
             }
         };
         quote!(let #name = #value;)

@@ -106,11 +106,14 @@ impl Generator<'_> {
         // the highest order the scene asks for.
         let (rates_threshold, rates_order) = if order >= Order::Acceleration {
             (
-                quote!(self.rate_thresholds[1]),
+                quote!(self.rate_limits.thresholds[1]),
                 format_ident!("Acceleration"),
             )
         } else {
-            (quote!(self.rate_thresholds[0]), format_ident!("Velocity"))
+            (
+                quote!(self.rate_limits.thresholds[0]),
+                format_ident!("Velocity"),
+            )
         };
         let kind = KernelKind {
             inputs: inputs.clone(),

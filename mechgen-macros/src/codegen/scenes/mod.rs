@@ -18,6 +18,7 @@
 //! kernel computes between its statements, where the kernels' forms differ; [`batch`] the
 //! batch form around a kernel's arithmetic.
 
+mod aspect;
 mod auxiliary;
 mod batch;
 mod constants;
@@ -78,8 +79,9 @@ impl Generator<'_> {
                 scale: T,
                 unscale: T,
                 /// The relative determinants at or below which a block's velocities and
-                /// accelerations would be less accurate than `mechgen::Accuracy::required`.
-                rate_thresholds: [T; 2],
+                /// accelerations would be less accurate than required (by default
+                /// `mechgen::Accuracy::required`), at the mechanism's aspect.
+                rate_limits: ::mechgen::__private::RateLimits<T>,
                 constants: [T; #count],
             }
             #(#outputs)*
@@ -95,18 +97,9 @@ impl Generator<'_> {
                 /// [`mechgen::Error::Singular`]; [`mechgen::Accuracy::required`] by default.
                 pub fn with_accuracy(self, accuracy: &::mechgen::Accuracy<T>) -> Self {
                     #scenes_type {
-                        rate_thresholds: Self::mechgen_rate_thresholds(accuracy),
+                        rate_limits: self.rate_limits.with_accuracy(accuracy),
                         ..self
                     }
-                }
-
-                /// The relative determinants below which a block's velocities and
-                /// accelerations are less accurate than `accuracy`.
-                fn mechgen_rate_thresholds(accuracy: &::mechgen::Accuracy<T>) -> [T; 2] {
-                    [
-                        ::mechgen::__private::rate_threshold(::mechgen::Order::Velocity, accuracy),
-                        ::mechgen::__private::rate_threshold(::mechgen::Order::Acceleration, accuracy),
-                    ]
                 }
                 #(#kernels)*
             }
@@ -134,6 +127,7 @@ impl Generator<'_> {
         let (scale, unscale) = (local("scale"), local("unscale"));
         let lengths = self.length_params();
         let scaled_fields = self.scaled_fields(&scale);
+        let aspect = self.scene_aspect(&scaled);
         let values = &block.outputs;
         let checks = self.model.params.iter().map(|param| {
             let field = &param.name;
@@ -169,8 +163,9 @@ impl Generator<'_> {
                     scaled: #scaled,
                     scale: #scale,
                     unscale: #unscale,
-                    rate_thresholds: #scenes_type::mechgen_rate_thresholds(
+                    rate_limits: ::mechgen::__private::RateLimits::new(
                         &::mechgen::Accuracy::required(),
+                        #aspect,
                     ),
                     constants,
                 })

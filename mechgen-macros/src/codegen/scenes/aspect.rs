@@ -1,0 +1,85 @@
+//! The mechanism's aspect, which `scenes()` computes once for the kernels' rate limits: the
+//! sum of the lengths the loops declare over the shortest angle unknown's Jacobian column.
+//! Separate because it reads the loops as declared (which vectors turn with which angle),
+//! where the kernels read the expression graph.
+
+use proc_macro2::{Ident, TokenStream};
+use quote::quote;
+
+use crate::codegen::Generator;
+use crate::model::{Kind, Linear, SymbolRef};
+
+impl Generator<'_> {
+    /// `mechgen::__private::aspect(size, [column², …])` over the mechanism `scaled`, from
+    /// the angle unknowns whose columns have a length the dimensions fix: in every loop, one
+    /// vector turns with the angle, and its magnitude is made of parameters. (The column of
+    /// an angle whose vector is a slide, or that turns two vectors of one loop, moves with
+    /// the position; its block is judged by its condition alone.) The same aspect as the
+    /// general functions', whose estimate weighs each column at the position.
+    pub(super) fn scene_aspect(&self, scaled: &Ident) -> TokenStream {
+        let columns = self
+            .model
+            .unknowns
+            .iter()
+            .enumerate()
+            .filter(|(_, unknown)| unknown.kind == Kind::Angle)
+            .filter_map(|(u, _)| self.fixed_column(u, scaled));
+        let size = self.accuracy_size(quote!(#scaled));
+        quote!(::mechgen::__private::aspect(#size, [#(#columns),*]))
+    }
+
+    /// The squared length of angle unknown `u`'s Jacobian column, where the dimensions fix
+    /// it: `Σ (coefficient·magnitude)²` over the loops, one vector of each turning with `u`.
+    fn fixed_column(&self, u: usize, scaled: &Ident) -> Option<TokenStream> {
+        let mut squares = Vec::new();
+        for sum in &self.model.loops {
+            let mut turning = sum.terms.iter().filter_map(|term| {
+                let coefficient = *term.angle.coefficients.get(&SymbolRef::Unknown(u))?;
+                (coefficient != 0.0).then_some((coefficient, &term.magnitude))
+            });
+            let Some((coefficient, magnitude)) = turning.next() else {
+                continue;
+            };
+            if turning.next().is_some() {
+                return None;
+            }
+            let length = scaled_by(coefficient.abs(), self.fixed_magnitude(magnitude, scaled)?);
+            squares.push(quote!(#length * #length));
+        }
+        if squares.is_empty() {
+            None
+        } else {
+            Some(quote!(#(#squares)+*))
+        }
+    }
+
+    /// `magnitude` over the parameters of `scaled`, if it is made of them alone.
+    fn fixed_magnitude(&self, magnitude: &Linear, scaled: &Ident) -> Option<TokenStream> {
+        let mut parts = Vec::new();
+        for (symbol, coefficient) in &magnitude.coefficients {
+            let SymbolRef::Param(i) = symbol else {
+                return None;
+            };
+            let name = &self.model.params[*i].name;
+            parts.push(scaled_by(*coefficient, quote!(#scaled.#name)));
+        }
+        let constant = magnitude.constant;
+        if constant != 0.0 {
+            parts.push(quote!(T::constant(#constant)));
+        }
+        match parts.as_slice() {
+            [] => None,
+            [one] => Some(one.clone()),
+            _ => Some(quote!((#(#parts)+*))),
+        }
+    }
+}
+
+/// `coefficient·value`, or `value` alone for a coefficient of 1.
+fn scaled_by(coefficient: f64, value: TokenStream) -> TokenStream {
+    if coefficient == 1.0 {
+        value
+    } else {
+        quote!((T::constant(#coefficient) * #value))
+    }
+}
