@@ -21,11 +21,12 @@ OUT=mutants.out
 EXPLAINED=tests/mutants-equivalent.txt
 REPORT=docs/MUTANTS.md
 
-# The files run, in order of importance: closed forms, the scene kernels' checked steps,
-# the linear solves, Newton; then the shipped analyses.
+# The files run, in order of importance: closed forms, the scene kernels' checked steps and
+# rate limits, the linear solves, Newton; then the shipped analyses.
 FILES=(
     mechgen/src/closed.rs
     mechgen/src/kernel.rs
+    mechgen/src/rate_limits.rs
     mechgen/src/linear.rs
     mechgen/src/newton.rs
     mechgen/src/grashof.rs
