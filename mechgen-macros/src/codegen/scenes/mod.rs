@@ -93,8 +93,10 @@ impl Generator<'_> {
                 }
 
                 /// These kernels, with the rates they return required to be within
-                /// `accuracy` (each loop's block judged by its own condition), else
-                /// [`mechgen::Error::Singular`]; [`mechgen::Accuracy::required`] by default.
+                /// `accuracy` (each loop's block judged by its own condition and the
+                /// mechanism's aspect), else [`mechgen::Error::Inaccurate`] (or
+                /// [`mechgen::Error::Singular`] at a singular position);
+                /// [`mechgen::Accuracy::required`] by default.
                 pub fn with_accuracy(self, accuracy: &::mechgen::Accuracy<T>) -> Self {
                     #scenes_type {
                         rate_limits: self.rate_limits.with_accuracy(accuracy),
