@@ -23,7 +23,8 @@
 //! Design from the generated sensitivities (`generate: sensitivities`): [`tolerance`] (how
 //! far the four-bar's output and coupler point move within its dimensions' tolerances) and,
 //! with the `std` feature, [`synthesis`] (the four-bar's dimensions for a function or a path,
-//! by Levenberg–Marquardt).
+//! the Watt six-bar's for a function, and any declaration's through [`mechgen::Design`], by
+//! Levenberg–Marquardt).
 //!
 //! Conventions (KINEMATICS.md in the project's notes): vectors are `r @ θ` = `r·e^{iθ}`,
 //! angles in radians counter-clockwise from +x, the crank pivot O2 at the origin.

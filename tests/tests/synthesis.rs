@@ -214,3 +214,225 @@ fn a_good_enough_classical_start_ends_the_search() {
     let found = function_generation(180.0, &phi, &psi, &exhaustive).unwrap();
     assert!(found.converged > 1, "{}", found.converged);
 }
+
+/// A declaration the project does not ship, with a slide among its unknowns: the offset
+/// slider-crank, whose sensitivities make it something `fit` can design.
+mod slider {
+    mechgen::mechanism! {
+        pub struct Slider {
+            params: crank, rod, offset;
+            input: theta2: angle;
+            unknowns: theta3: angle, d: length;
+            loop: crank @ theta2 + rod @ theta3 - offset @ (pi / 2) - d @ 0;
+            generate: position, velocity, sensitivities;
+        }
+    }
+}
+
+/// `fit` over any declaration with sensitivities: the four-bar's coupler point through
+/// points at given crank angles (path generation with timing, the frame held), from a start
+/// 10% off in every fitted dimension.
+#[test]
+fn fit_recovers_a_four_bar_from_its_coupler_points() {
+    use mechanisms::synthesis::{Target, fit};
+    use mechgen::Design;
+    let truth = example();
+    let targets: Vec<Target> = (0..8)
+        .map(|k| {
+            let input = 0.75 * f64::from(k);
+            let q = truth.assemble(input, Branch::Open).unwrap();
+            let at = truth.points(input, &q).unwrap().coupler_point;
+            // The coupler point is the third of the four-bar's points.
+            Target::Point {
+                input,
+                point: 2,
+                at,
+            }
+        })
+        .collect();
+    let start = FourBar::new(180.0, 88.0, 180.0, 165.0)
+        .and_then(|l| l.with_coupler_point(110.0, 0.47))
+        .unwrap();
+    let guess = start.assemble(0.0, Branch::Open).unwrap().to_array();
+    // Everything but the ground, which sets the frame's scale.
+    let free = [false, true, true, true, true, true];
+    let found = fit(&start, guess, free, &targets, &Options::default()).unwrap();
+    assert!(found.rms_error < 1e-9, "{}", found.rms_error);
+    let wanted = truth.parameters();
+    for (got, want) in found.mechanism.parameters().iter().zip(wanted) {
+        assert!(
+            (got - want).abs() < 1e-6,
+            "{:?}",
+            found.mechanism.parameters()
+        );
+    }
+    // Every position is a solution on the start's assembly, at its target's input.
+    for (target, position) in targets.iter().zip(&found.positions) {
+        let Target::Point { input, .. } = *target else {
+            unreachable!()
+        };
+        let open = found.mechanism.assemble(input, Branch::Open).unwrap();
+        assert!((open.theta3 - position[0]).abs() < 1e-9);
+    }
+}
+
+/// The Watt six-bar's output angle against its crank's, through `fit`: the same problem
+/// `watt_function_generation` solves knowing the mechanism.
+#[test]
+fn fit_recovers_a_watt_six_bar_from_its_output_angles() {
+    use mechanisms::synthesis::{Target, fit};
+    use mechanisms::{WattSixBar, WattSixBarBranches};
+    use mechgen::Design;
+    let truth = WattSixBar::new(
+        [180.0, 80.0, 200.0, 150.0],
+        100.0,
+        0.8,
+        220.0,
+        160.0,
+        (300.0, 150.0),
+    )
+    .unwrap();
+    let branches = WattSixBarBranches::default();
+    let targets: Vec<Target> = (0..8)
+        .map(|k| {
+            let input = 0.7 * f64::from(k);
+            let value = truth.assemble(input, branches).unwrap().theta6;
+            Target::Unknown {
+                input,
+                unknown: 3,
+                value,
+            }
+        })
+        .collect();
+    let start = WattSixBar::new(
+        [180.0, 80.0, 220.0, 135.0],
+        110.0,
+        0.72,
+        242.0,
+        144.0,
+        (300.0, 150.0),
+    )
+    .unwrap();
+    let guess = start.assemble(0.0, branches).unwrap().to_array();
+    // [l1, l2, l3, l4, l5, beta, l6, l7, g, phi]: the coupler, rocker, extension, its angle
+    // and the second dyad fitted; ground, crank and output pivot held.
+    let free = [
+        false, false, true, true, true, true, true, true, false, false,
+    ];
+    let found = fit(&start, guess, free, &targets, &Options::default()).unwrap();
+    assert!(found.rms_error < 1e-10, "{}", found.rms_error);
+    for (got, want) in found.mechanism.parameters().iter().zip(truth.parameters()) {
+        assert!(
+            (got - want).abs() < 1e-6,
+            "{:?}",
+            found.mechanism.parameters()
+        );
+    }
+}
+
+/// A declaration made here, fitted on a slide: the slider-crank's crank and rod from its
+/// slider's positions (a length unknown, compared as it is).
+#[test]
+fn fit_designs_a_declaration_it_has_never_seen() {
+    use mechanisms::synthesis::{Target, fit};
+    use mechgen::{Design, Kinematics, NewtonOptions};
+    use slider::Slider;
+    let truth = Slider::with_parameters([40.0, 130.0, 12.0]);
+    let mut guess = [0.0, 170.0];
+    let targets: Vec<Target> = (0..6)
+        .map(|k| {
+            let input = 1.0 * f64::from(k);
+            let q = truth
+                .solve_near(input, guess, &NewtonOptions::default())
+                .unwrap()
+                .value;
+            guess = q;
+            Target::Unknown {
+                input,
+                unknown: 1,
+                value: q[1],
+            }
+        })
+        .collect();
+    let start = Slider::with_parameters([45.0, 120.0, 12.0]);
+    assert_eq!(Slider::<f64>::PARAMETERS, ["crank", "rod", "offset"]);
+    assert_eq!(Slider::<f64>::UNKNOWN_ANGLES, [true, false]);
+    let found = fit(
+        &start,
+        [0.0, 160.0],
+        [true, true, false],
+        &targets,
+        &Options::default(),
+    )
+    .unwrap();
+    assert!(found.rms_error < 1e-10, "{}", found.rms_error);
+    let [crank, rod, offset] = found.mechanism.parameters();
+    assert!(
+        (crank - 40.0).abs() < 1e-8 && (rod - 130.0).abs() < 1e-8,
+        "{crank} {rod}"
+    );
+    assert_eq!(offset, 12.0);
+}
+
+#[test]
+fn fit_says_what_is_wrong_with_its_targets() {
+    use mechanisms::synthesis::{Target, fit};
+    let start = example();
+    let guess = start.assemble(0.0, Branch::Open).unwrap().to_array();
+    let target = Target::Unknown {
+        input: 0.0,
+        unknown: 1,
+        value: 1.0,
+    };
+    let all = [true; 6];
+    // No parameter free; fewer residuals than free parameters.
+    let nothing = fit(&start, guess, [false; 6], &[target], &Options::default());
+    assert!(matches!(nothing, Err(SynthesisError::BadTargets(_))));
+    let few = fit(&start, guess, all, &[target; 3], &Options::default());
+    assert!(matches!(few, Err(SynthesisError::BadTargets(_))));
+    // An unknown or a point the mechanism does not have; a value that is not finite.
+    let free = [false, true, true, true, false, false];
+    for bad in [
+        Target::Unknown {
+            input: 0.0,
+            unknown: 2,
+            value: 1.0,
+        },
+        Target::Point {
+            input: 0.0,
+            point: 3,
+            at: Vec2 { x: 0.0, y: 0.0 },
+        },
+        Target::Unknown {
+            input: f64::NAN,
+            unknown: 0,
+            value: 1.0,
+        },
+    ] {
+        let result = fit(&start, guess, free, &[bad; 4], &Options::default());
+        assert!(
+            matches!(result, Err(SynthesisError::BadTargets(_))),
+            "{bad:?}: {result:?}"
+        );
+    }
+    // A start that cannot reach a target: a triple rocker (not Grashof), whose crank
+    // cannot get to π, where the crank pin would be 160 from O4 and the dyad reaches 130.
+    let stuck = FourBar::new(100.0, 60.0, 50.0, 80.0).unwrap();
+    let guess = stuck.assemble(0.0, Branch::Open).unwrap().to_array();
+    let beyond = Target::Unknown {
+        input: core::f64::consts::PI,
+        unknown: 1,
+        value: 1.0,
+    };
+    let unreachable = fit(
+        &stuck,
+        guess,
+        free,
+        &[target, target, beyond],
+        &Options::default(),
+    );
+    assert!(
+        matches!(unreachable, Err(SynthesisError::BadTargets(_))),
+        "{unreachable:?}"
+    );
+}

@@ -7,6 +7,7 @@
 
 mod branches;
 mod closed_forms;
+mod design;
 mod docs;
 mod emit;
 mod evaluators;
@@ -38,6 +39,7 @@ pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
     let points = generator.points_struct();
     let functions = generator.functions();
     let kinematics = generator.kinematics_impl();
+    let design = generator.design_impl();
     let scenes = generator.scene_items();
     let sensitivities = generator.sensitivities_struct();
     let branches = generator.branches_struct();
@@ -49,6 +51,7 @@ pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
         #branches
         #sensitivities
         #kinematics
+        #design
         #scenes
         // Spans of generated tokens all point at the macro call, which misleads
         // `possible_missing_comma`; generated argument lists follow the declaration.

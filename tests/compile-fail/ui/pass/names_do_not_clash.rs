@@ -9,6 +9,8 @@ mechanism! {
         input: theta: angle;
         unknowns: guess: angle, options: angle;
         loop: position @ theta + x @ guess - sin_theta @ (options + theta_dot) - t0 @ 0;
+        point found = position @ theta;
+        generate: position, velocity, acceleration, sensitivities;
     }
 }
 
@@ -18,4 +20,10 @@ fn main() {
     let q = odd.position(1.0, &guess, &Default::default()).unwrap().value;
     let v = odd.velocity(1.0, &q, 10.0).unwrap();
     odd.acceleration(1.0, &q, 10.0, &v, 0.0).unwrap();
+    // The `Design` impl reads and rebuilds the same fields.
+    use mechgen::Design;
+    assert_eq!(Odd::with_parameters(odd.parameters()), odd);
+    odd.unknown_sensitivities(1.0, q.to_array()).unwrap();
+    odd.point_sensitivities(1.0, &q).unwrap();
+    Design::point_sensitivities(&odd, 1.0, q.to_array()).unwrap();
 }

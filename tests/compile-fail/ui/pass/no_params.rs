@@ -11,6 +11,7 @@ mechanism! {
         loop: d @ 0 + x @ (pi / 2) - y @ (pi / 4);
         point tip = d @ 0 + x @ (pi / 2);
         scene state: x, tip_dot;
+        generate: position, velocity, acceleration, sensitivities;
     }
 }
 
@@ -30,4 +31,12 @@ fn main() {
     assert!((assembled.x - q.x).abs() < 1e-12 && (assembled.y - q.y).abs() < 1e-12);
     let state = slide.scenes().unwrap().state(2.0, 3.0).unwrap();
     assert!((state.x - 2.0).abs() < 1e-12 && (state.tip_dot.y - 3.0).abs() < 1e-12);
+    // Nothing to design, but the `Design` impl still says so in its arrays.
+    use mechgen::Design;
+    assert_eq!(slide.parameters(), [0.0f64; 0]);
+    assert_eq!(Slide::<f64>::with_parameters([]), slide);
+    let none: [[f64; 2]; 0] = Design::unknown_sensitivities(&slide, 2.0, q.to_array()).unwrap();
+    assert!(none.is_empty());
+    let tip = Design::point_positions(&slide, 2.0, q.to_array()).unwrap();
+    assert!((tip[0].x - 2.0).abs() < 1e-12);
 }

@@ -1,7 +1,9 @@
 //! Dimensional synthesis: the four-bar's dimensions that make its output follow a wanted
 //! function of its input ([`function_generation`]) or its coupler point pass through wanted
 //! points ([`path_generation`]), and the Watt six-bar's for a function
-//! ([`watt_function_generation`]).
+//! ([`watt_function_generation`]); and, for any declaration with sensitivities, the
+//! parameters that put its unknowns and points where targets want them ([`fit`], through
+//! [`mechgen::Design`]).
 //!
 //! Each problem is least squares, solved by Levenberg–Marquardt (the `levenberg-marquardt`
 //! crate) on the exact derivatives the macro generates (`generate: sensitivities`, and the
@@ -29,6 +31,10 @@ use rayon::prelude::*;
 
 use crate::random::SplitMix64;
 use crate::{FourBar, WattSixBar, WattSixBarBranches};
+
+mod fit;
+
+pub use fit::{Fitted, Target, fit};
 
 /// What a synthesis may return, and how hard it looks.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -490,6 +496,8 @@ fn meets(linkage: &FourBar<f64>, inputs: &[f64], options: &Options) -> bool {
 trait Residuals {
     fn x(&self) -> &DVector<f64>;
     fn x_mut(&mut self) -> &mut DVector<f64>;
+    /// After `x` has moved: where a problem solves its positions once per `x`.
+    fn moved(&mut self) {}
     /// How many residuals there are.
     fn count(&self) -> usize;
     /// The residuals at `x`, or `None` where some target cannot be reached.
@@ -508,6 +516,7 @@ impl<R: Residuals> LeastSquaresProblem<f64, Dyn, Dyn> for Fit<R> {
 
     fn set_params(&mut self, x: &DVector<f64>) {
         self.0.x_mut().copy_from(x);
+        self.0.moved();
     }
 
     fn params(&self) -> DVector<f64> {

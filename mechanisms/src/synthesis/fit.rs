@@ -1,0 +1,367 @@
+//! Dimensional synthesis of any declared mechanism: the dimensions near a start that put its
+//! unknowns and tracked points where targets want them, by Levenberg–Marquardt on the
+//! sensitivities the macro generates ([`mechgen::Design`]). The four-bar's and the Watt
+//! six-bar's own syntheses know their mechanisms (a classical start, constraints); this one
+//! knows only the declaration, and serves every one that asks for sensitivities.
+
+use std::vec;
+use std::vec::Vec;
+
+use mechgen::{Design, Kinematics, NewtonOptions, Vec2};
+use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
+
+use super::{Options, Residuals, SynthesisError, minimise, rms, starts, wrapped};
+
+/// Where [`fit`] wants the mechanism at one input.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    /// Unknown number `unknown` (in declaration order) at `value` when the input is `input`:
+    /// function generation.
+    Unknown {
+        /// The input.
+        input: f64,
+        /// The unknown's index, in declaration order.
+        unknown: usize,
+        /// Its wanted value (an angle is compared modulo a turn).
+        value: f64,
+    },
+    /// Tracked point number `point` (in declaration order) at `at` when the input is
+    /// `input`: path generation with prescribed timing.
+    Point {
+        /// The input.
+        input: f64,
+        /// The point's index, in declaration order.
+        point: usize,
+        /// Its wanted position.
+        at: Vec2<f64>,
+    },
+}
+
+impl Target {
+    fn input(&self) -> f64 {
+        match *self {
+            Target::Unknown { input, .. } | Target::Point { input, .. } => input,
+        }
+    }
+
+    /// How many residuals it makes: one for an unknown, two for a point.
+    fn rows(&self) -> usize {
+        match self {
+            Target::Unknown { .. } => 1,
+            Target::Point { .. } => 2,
+        }
+    }
+}
+
+/// A mechanism [`fit`] found, and how well it meets its targets.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fitted<D, const N: usize> {
+    /// The mechanism.
+    pub mechanism: D,
+    /// Its position at each target, in the targets' order.
+    pub positions: Vec<[f64; N]>,
+    /// The root-mean-square error over the targets' residuals (an unknown's in its own
+    /// unit, a point's coordinates in lengths).
+    pub rms_error: f64,
+    /// The largest residual.
+    pub largest_error: f64,
+    /// How many starts converged to a mechanism within `max_ratio`.
+    pub converged: usize,
+}
+
+/// The mechanism near `start` whose unknowns and tracked points meet `targets`, fitting the
+/// parameters `free` marks (in declaration order, as [`Design::PARAMETERS`] names them) and
+/// holding the others.
+///
+/// `guess` is near `start`'s position at the first target's input; each target's position is
+/// then solved by Newton from the one before (so order the targets along the motion), and
+/// kept on that assembly: a step of the fit that would carry a target to another branch
+/// (Newton's [`mechgen::Error::OtherBranch`]) or past a toggle is refused, as a mechanism
+/// that cannot reach a target is. Lengths are fitted through their logarithms, so they stay
+/// positive; angles as they are.
+///
+/// Levenberg–Marquardt from `start` and from `options.restarts` random perturbations of it
+/// (each free length times a factor within e^±0.4, each free angle within ±0.4 rad),
+/// reproducible from `options.seed`, in parallel; `options.max_ratio` (over the fitted
+/// lengths and the held ones that are not zero) and `options.good_enough` apply; `branch`, `crank` and `transmission` do not (the branch
+/// is `guess`'s, and the constraints are the caller's to check on the result).
+///
+/// ```
+/// use mechanisms::synthesis::{fit, Options, Target};
+/// use mechanisms::FourBar;
+/// use mechgen::{Branch, Design};
+/// // Example 1's rocker angle at six crank angles, and a start 10% off it.
+/// let example = FourBar::new(180.0, 80.0, 200.0, 150.0)?;
+/// let targets: Vec<Target> = (0..6)
+///     .map(|k| {
+///         let input = 0.9 * k as f64;
+///         let value = example.assemble(input, Branch::Open).unwrap().theta4;
+///         Target::Unknown { input, unknown: 1, value }
+///     })
+///     .collect();
+/// let start = FourBar::new(180.0, 88.0, 180.0, 165.0)?;
+/// let guess = start.assemble(0.0, Branch::Open)?.to_array();
+/// // Crank, coupler and rocker free; the ground and the coupler point held.
+/// let free = [false, true, true, true, false, false];
+/// let found = fit(&start, guess, free, &targets, &Options::default())?;
+/// assert!(found.rms_error < 1e-10);
+/// let [_, crank, coupler, rocker, ..] = found.mechanism.parameters();
+/// assert!((crank - 80.0).abs() < 1e-6 && (coupler - 200.0).abs() < 1e-6);
+/// assert!((rocker - 150.0).abs() < 1e-6);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn fit<D, const N: usize, const P: usize, const M: usize>(
+    start: &D,
+    guess: [f64; N],
+    free: [bool; P],
+    targets: &[Target],
+    options: &Options,
+) -> Result<Fitted<D, N>, SynthesisError>
+where
+    D: Design<f64, N, P, M> + Kinematics<f64, N> + Copy + Send + Sync,
+{
+    let unknowns = free.iter().filter(|f| **f).count();
+    let rows: usize = targets.iter().map(Target::rows).sum();
+    if unknowns == 0 || rows < unknowns {
+        return Err(SynthesisError::BadTargets(
+            "a fit needs a free parameter, and at least as many residuals as free parameters",
+        ));
+    }
+    let valid = targets.iter().all(|target| match *target {
+        Target::Unknown {
+            input,
+            unknown,
+            value,
+        } => input.is_finite() && value.is_finite() && unknown < N,
+        Target::Point { input, point, at } => {
+            input.is_finite() && at.x.is_finite() && at.y.is_finite() && point < M
+        }
+    });
+    if !valid || !guess.iter().all(|v| v.is_finite()) {
+        return Err(SynthesisError::BadTargets(
+            "every target needs a finite input and value and an unknown or point the \
+             mechanism has, and the guess must be finite",
+        ));
+    }
+    let Some(positions) = solved_along(start, targets, guess) else {
+        return Err(SynthesisError::BadTargets(
+            "the start does not reach every target from the guess on one assembly",
+        ));
+    };
+    let dimensions = start.parameters();
+    let first: Vec<f64> = (0..P)
+        .filter(|&j| free[j])
+        .map(|j| to_fitted(D::PARAMETER_LENGTHS[j], dimensions[j]))
+        .collect();
+    let starts = starts(options, vec![first.clone()], |random| {
+        first
+            .iter()
+            .map(|x| x + 0.8 * (random.fraction() - 0.5))
+            .collect::<Vec<f64>>()
+    });
+    let solve = |x: Vec<f64>| {
+        let mut problem: Problem<'_, D, N, P, M> = Problem {
+            start: *start,
+            free,
+            targets,
+            positions: positions.clone(),
+            solved: None,
+            x: DVector::from_vec(x),
+        };
+        problem.solve();
+        let (solved, finished) = minimise(problem);
+        finished.then_some(())?;
+        let (mechanism, positions) = solved.solved.clone()?;
+        let errors = solved.errors()?;
+        // The lengths fitted, and those held that are not zero (a coupler point on its
+        // link's pin, say): the ratio guards against a fitted length running off.
+        let lengths: Vec<f64> = mechanism
+            .parameters()
+            .iter()
+            .zip(D::PARAMETER_LENGTHS)
+            .zip(free)
+            .filter(|((l, length), free)| *length && (*free || **l != 0.0))
+            .map(|((l, _), _)| l.abs())
+            .collect();
+        let longest = lengths.iter().fold(0.0f64, |m, l| m.max(*l));
+        let shortest = lengths.iter().fold(f64::INFINITY, |m, l| m.min(*l));
+        (lengths.is_empty() || longest <= options.max_ratio * shortest)
+            .then_some((mechanism, positions, errors))
+    };
+    let mut starts = starts;
+    let random = starts.split_off(1);
+    let mut solved: Vec<_> = starts.into_iter().map(&solve).collect();
+    let first_good = solved[0]
+        .as_ref()
+        .is_some_and(|(_, _, e)| options.good_enough.is_some_and(|g| rms(e) <= g));
+    if !first_good {
+        solved.extend(random.into_par_iter().map(&solve).collect::<Vec<_>>());
+    }
+    let converged = solved.iter().flatten().count();
+    solved
+        .into_iter()
+        .flatten()
+        .map(|(mechanism, positions, errors)| Fitted {
+            mechanism,
+            positions,
+            rms_error: rms(&errors),
+            largest_error: errors.iter().fold(0.0f64, |m, e| m.max(e.abs())),
+            converged,
+        })
+        .min_by(|a, b| a.rms_error.total_cmp(&b.rms_error))
+        .ok_or(SynthesisError::NothingFeasible { converged })
+}
+
+/// A parameter as the fit moves it: a length by its logarithm, an angle as it is.
+fn to_fitted(length: bool, value: f64) -> f64 {
+    if length { value.ln() } else { value }
+}
+
+/// Each target's position, by Newton from `guess` for the first and from the one before for
+/// the rest; `None` if one fails.
+fn solved_along<D: Kinematics<f64, N>, const N: usize>(
+    mechanism: &D,
+    targets: &[Target],
+    guess: [f64; N],
+) -> Option<Vec<[f64; N]>> {
+    let mut positions: Vec<[f64; N]> = Vec::with_capacity(targets.len());
+    for target in targets {
+        let guess = positions.last().copied().unwrap_or(guess);
+        let solved = mechanism
+            .solve_near(target.input(), guess, &NewtonOptions::default())
+            .ok()?;
+        positions.push(solved.value);
+    }
+    Some(positions)
+}
+
+/// The least squares of [`fit`]: `x` the free parameters (lengths by their logarithms), the
+/// residuals each target's miss; the positions solved where `x` was last set, each from its
+/// position at the last solved `x`.
+struct Problem<'a, D, const N: usize, const P: usize, const M: usize> {
+    start: D,
+    free: [bool; P],
+    targets: &'a [Target],
+    /// The positions the next solve starts from: the last solved ones.
+    positions: Vec<[f64; N]>,
+    /// The mechanism at `x` and its positions, where every target was reached.
+    solved: Option<(D, Vec<[f64; N]>)>,
+    x: DVector<f64>,
+}
+
+impl<D, const N: usize, const P: usize, const M: usize> Problem<'_, D, N, P, M>
+where
+    D: Design<f64, N, P, M> + Kinematics<f64, N> + Copy,
+{
+    /// The mechanism at `x`.
+    fn mechanism(&self) -> D {
+        let mut values = self.start.parameters();
+        let mut fitted = self.x.iter();
+        for (j, value) in values.iter_mut().enumerate() {
+            if self.free[j] {
+                let x = *fitted.next().expect("one x per free parameter");
+                *value = if D::PARAMETER_LENGTHS[j] { x.exp() } else { x };
+            }
+        }
+        D::with_parameters(values)
+    }
+
+    /// Solves every target at `x`, each from its last position: Newton keeps the assembly
+    /// (it says `OtherBranch` where it would change).
+    fn solve(&mut self) {
+        let mechanism = self.mechanism();
+        let mut positions = Vec::with_capacity(self.targets.len());
+        for (target, guess) in self.targets.iter().zip(&self.positions) {
+            match mechanism.solve_near(target.input(), *guess, &NewtonOptions::default()) {
+                Ok(solved) => positions.push(solved.value),
+                Err(_) => {
+                    self.solved = None;
+                    return;
+                }
+            }
+        }
+        self.positions.clone_from(&positions);
+        self.solved = Some((mechanism, positions));
+    }
+}
+
+impl<D, const N: usize, const P: usize, const M: usize> Residuals for Problem<'_, D, N, P, M>
+where
+    D: Design<f64, N, P, M> + Kinematics<f64, N> + Copy,
+{
+    fn x(&self) -> &DVector<f64> {
+        &self.x
+    }
+
+    fn x_mut(&mut self) -> &mut DVector<f64> {
+        &mut self.x
+    }
+
+    fn moved(&mut self) {
+        self.solve();
+    }
+
+    fn count(&self) -> usize {
+        self.targets.iter().map(Target::rows).sum()
+    }
+
+    fn errors(&self) -> Option<Vec<f64>> {
+        let (mechanism, positions) = self.solved.as_ref()?;
+        let mut errors = Vec::with_capacity(self.count());
+        for (target, position) in self.targets.iter().zip(positions) {
+            match *target {
+                Target::Unknown { unknown, value, .. } => {
+                    let miss = position[unknown] - value;
+                    errors.push(if D::UNKNOWN_ANGLES[unknown] {
+                        wrapped(miss)
+                    } else {
+                        miss
+                    });
+                }
+                Target::Point {
+                    input, point, at, ..
+                } => {
+                    let p = mechanism.point_positions(input, *position).ok()?[point];
+                    errors.extend([p.x - at.x, p.y - at.y]);
+                }
+            }
+        }
+        Some(errors)
+    }
+
+    fn derivatives(&self) -> Option<DMatrix<f64>> {
+        let (mechanism, positions) = self.solved.as_ref()?;
+        let values = mechanism.parameters();
+        let columns: Vec<usize> = (0..P).filter(|&j| self.free[j]).collect();
+        // A length moves by its logarithm: d/d(ln p) = p·d/dp.
+        let chain = |j: usize| {
+            if D::PARAMETER_LENGTHS[j] {
+                values[j]
+            } else {
+                1.0
+            }
+        };
+        let mut jacobian = DMatrix::zeros(self.count(), columns.len());
+        let mut row = 0;
+        for (target, position) in self.targets.iter().zip(positions) {
+            match *target {
+                Target::Unknown { input, unknown, .. } => {
+                    let by = mechanism.unknown_sensitivities(input, *position).ok()?;
+                    for (c, &j) in columns.iter().enumerate() {
+                        jacobian[(row, c)] = by[j][unknown] * chain(j);
+                    }
+                }
+                Target::Point { input, point, .. } => {
+                    let by = mechanism.point_sensitivities(input, *position).ok()?;
+                    for (c, &j) in columns.iter().enumerate() {
+                        jacobian[(row, c)] = by[j][point].x * chain(j);
+                        jacobian[(row + 1, c)] = by[j][point].y * chain(j);
+                    }
+                }
+            }
+            row += target.rows();
+        }
+        Some(jacobian)
+    }
+}
