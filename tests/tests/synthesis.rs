@@ -3,6 +3,8 @@
 //! closed form where that applies, keeps its constraints, and gives the same answer from the
 //! same seed on any number of cores.
 
+mod common;
+
 use mechanisms::FourBar;
 use mechanisms::synthesis::{
     Options, SynthesisError, freudenstein, freudenstein_least_squares, function_generation,
@@ -283,15 +285,7 @@ fn fit_recovers_a_watt_six_bar_from_its_output_angles() {
     use mechanisms::synthesis::{Target, fit};
     use mechanisms::{WattSixBar, WattSixBarBranches};
     use mechgen::Design;
-    let truth = WattSixBar::new(
-        [180.0, 80.0, 200.0, 150.0],
-        100.0,
-        0.8,
-        220.0,
-        160.0,
-        (300.0, 150.0),
-    )
-    .unwrap();
+    let truth: WattSixBar<f64> = common::watt_six_bar();
     let branches = WattSixBarBranches::default();
     let targets: Vec<Target> = (0..8)
         .map(|k| {

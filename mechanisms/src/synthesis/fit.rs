@@ -9,9 +9,11 @@ use std::vec::Vec;
 
 use mechgen::{Design, Kinematics, NewtonOptions, Vec2};
 use nalgebra::{DMatrix, DVector};
-use rayon::prelude::*;
 
-use super::{Options, Residuals, SynthesisError, minimise, rms, starts, wrapped};
+use super::{
+    Options, Residuals, SynthesisError, minimise, rms, solved_from_first, starts, within_ratio,
+    wrapped,
+};
 
 /// Where [`fit`] wants the mechanism at one input.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -184,25 +186,14 @@ where
             .filter(|((l, length), free)| *length && (*free || **l != 0.0))
             .map(|((l, _), _)| l.abs())
             .collect();
-        let longest = lengths.iter().fold(0.0f64, |m, l| m.max(*l));
-        let shortest = lengths.iter().fold(f64::INFINITY, |m, l| m.min(*l));
-        (lengths.is_empty() || longest <= options.max_ratio * shortest)
-            .then_some((mechanism, positions, errors))
+        (lengths.is_empty() || within_ratio(&lengths, options.max_ratio))
+            .then_some(((mechanism, positions), errors))
     };
-    let mut starts = starts;
-    let random = starts.split_off(1);
-    let mut solved: Vec<_> = starts.into_iter().map(&solve).collect();
-    let first_good = solved[0]
-        .as_ref()
-        .is_some_and(|(_, _, e)| options.good_enough.is_some_and(|g| rms(e) <= g));
-    if !first_good {
-        solved.extend(random.into_par_iter().map(&solve).collect::<Vec<_>>());
-    }
-    let converged = solved.iter().flatten().count();
+    let solved = solved_from_first(starts, solve, options);
+    let converged = solved.len();
     solved
         .into_iter()
-        .flatten()
-        .map(|(mechanism, positions, errors)| Fitted {
+        .map(|((mechanism, positions), errors)| Fitted {
             mechanism,
             positions,
             rms_error: rms(&errors),

@@ -460,12 +460,7 @@ fn best(solved: Vec<Option<Solved>>, options: &Options) -> Result<Synthesis, Syn
 
 /// Whether `linkage` meets the constraints of `options` at the crank angles `inputs`.
 fn meets(linkage: &FourBar<f64>, inputs: &[f64], options: &Options) -> bool {
-    let lengths = linkage.lengths();
-    let longest = lengths.iter().fold(0.0f64, |m, l| m.max(*l));
-    let shortest = lengths.iter().fold(f64::INFINITY, |m, l| m.min(*l));
-    // Not within the ratio (a NaN is not either).
-    let proportionate = longest <= options.max_ratio * shortest;
-    if !proportionate {
+    if !within_ratio(&linkage.lengths(), options.max_ratio) {
         return false;
     }
     if options.crank
@@ -576,6 +571,38 @@ fn crank_rocker(ground: f64, random: &mut SplitMix64) -> [f64; 3] {
 
 fn rms(errors: &[f64]) -> f64 {
     (errors.iter().map(|e| e * e).sum::<f64>() / errors.len().max(1) as f64).sqrt()
+}
+
+/// Whether the longest of `lengths` is within `max_ratio` of the shortest (not for a NaN):
+/// a start that runs off towards a degenerate linkage is discarded.
+fn within_ratio(lengths: &[f64], max_ratio: f64) -> bool {
+    let longest = lengths.iter().fold(0.0f64, |m, l| m.max(*l));
+    let shortest = lengths.iter().fold(f64::INFINITY, |m, l| m.min(*l));
+    longest <= max_ratio * shortest
+}
+
+/// The solutions `solve` finds from `starts`, with their errors: the first start alone where
+/// its solution is [good enough](Options::good_enough), else every start, the rest in
+/// parallel.
+fn solved_from_first<S: Send, T: Send>(
+    mut starts: Vec<S>,
+    solve: impl Fn(S) -> Option<(T, Vec<f64>)> + Sync,
+    options: &Options,
+) -> Vec<(T, Vec<f64>)> {
+    let random = starts.split_off(starts.len().min(1));
+    let mut solved: Vec<_> = starts.into_iter().filter_map(&solve).collect();
+    let first_good = solved
+        .first()
+        .is_some_and(|(_, errors)| options.good_enough.is_some_and(|g| rms(errors) <= g));
+    if !first_good {
+        solved.extend(
+            random
+                .into_par_iter()
+                .filter_map(&solve)
+                .collect::<Vec<_>>(),
+        );
+    }
+    solved
 }
 
 /// Each precision point's output error, `output(φ_i) − ψ_i` wrapped to (−π, π], or `None`
@@ -844,24 +871,12 @@ pub fn watt_function_generation(
         let errors = solved.errors()?;
         finished.then_some(())?;
         let ([l1, l2, l3, l4], l5, _, l6, l7, _) = linkage.dimensions();
-        let lengths = [l1, l2, l3, l4, l5, l6, l7];
-        let longest = lengths.iter().fold(0.0f64, |m, l| m.max(*l));
-        let shortest = lengths.iter().fold(f64::INFINITY, |m, l| m.min(*l));
-        (longest <= options.max_ratio * shortest).then_some((linkage, errors))
+        within_ratio(&[l1, l2, l3, l4, l5, l6, l7], options.max_ratio).then_some((linkage, errors))
     };
-    let mut starts = starts;
-    let random = starts.split_off(1);
-    let mut solved: Vec<_> = starts.into_iter().map(&solve).collect();
-    let first_good = solved[0]
-        .as_ref()
-        .is_some_and(|(_, e)| options.good_enough.is_some_and(|g| rms(e) <= g));
-    if !first_good {
-        solved.extend(random.into_par_iter().map(&solve).collect::<Vec<_>>());
-    }
-    let converged = solved.iter().flatten().count();
+    let solved = solved_from_first(starts, solve, options);
+    let converged = solved.len();
     solved
         .into_iter()
-        .flatten()
         .map(|(linkage, errors)| SixBarSynthesis {
             linkage,
             rms_error: rms(&errors),
