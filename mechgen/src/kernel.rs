@@ -221,13 +221,25 @@ pub fn unit_angle<T: Real>(y: T, x: T) -> T {
     }
 }
 
-/// The angle of `(x, y)` for a checked kernel: `atan2(y, x)`, which any vector has. A fast
-/// kernel's [`unit_angle`] needs a vector of unit length to rounding; where a link is shorter
-/// than the rounding of the linkage it hangs from, its vector comes out of the triangle only
-/// to that rounding, and its direction is still the best the position has.
+/// The angle of `(x, y)` for a checked kernel, of any length: [`unit_angle`] of the vector
+/// brought to unit length. A fast kernel's [`unit_angle`] needs a vector of unit length to
+/// rounding; where a link is shorter than the rounding of the linkage it hangs from, its
+/// vector comes out of the triangle only to that rounding, and its direction is still the
+/// best the position has. (Not `atan2`, which a microcontroller's firmware would then link
+/// for this rare path alone.)
 #[cold]
 pub fn angle<T: Real>(y: T, x: T) -> T {
-    y.atan2(x)
+    // By the larger component first, so that no square overflows or underflows.
+    let larger = x.abs().max(y.abs());
+    if larger.is_infinite() {
+        return T::nan();
+    }
+    if larger == T::zero() {
+        return unit_angle(y, x);
+    }
+    let (x, y) = (x / larger, y / larger);
+    let length = (x * x + y * y).sqrt();
+    unit_angle(y / length, x / length)
 }
 
 /// The batch forms of the checked steps: the same values where those succeed, NaN where they
@@ -439,10 +451,22 @@ mod tests {
 
     #[test]
     fn checked_angles_have_any_vector_s_direction() {
-        // Norms of 1.5 and 3, where the arc sine or cosine of a component is wrong or NaN.
-        for (y, x) in [(1.2, -0.9), (-2.4, 1.8), (0.9, 1.2), (0.6, 0.8)] {
-            assert_eq!(angle(y, x), f64::atan2(y, x));
+        // Norms of 1.5, 3, 1, 1e-300 and 1e300, where the arc sine or cosine of a component
+        // is wrong or NaN, or a square would underflow or overflow.
+        for (y, x) in [
+            (1.2, -0.9),
+            (-2.4, 1.8),
+            (0.9, 1.2),
+            (0.6, 0.8),
+            (-0.6e-300, -0.8e-300),
+            (1.2e300, -0.9e300),
+        ] {
+            let at = angle(y, x);
+            assert!((at - f64::atan2(y, x)).abs() <= 4.0 * f64::EPSILON, "{y} {x}: {at}");
         }
+        assert_eq!(angle(0.0f64, 0.0), 0.0);
+        assert!(angle(f64::NAN, 1.0).is_nan());
+        assert!(angle(1.0, f64::INFINITY).is_nan());
     }
 
     #[test]
