@@ -97,7 +97,11 @@ tested() {
 positions() {
     [ -f "$OUT/$1/all.txt" ] || return 0
     awk 'NR == FNR { tested[$0] = 1; next }
-        ($0 in tested) { if (FNR != last + 1) { if (first) out = out sep range(); sep = ", "; first = FNR }; last = FNR }
+        ($0 in tested) {
+            if (first && FNR != last + 1) { out = out sep range(); sep = ", "; first = 0 }
+            if (!first) first = FNR
+            last = FNR
+        }
         function range() { return first == last ? first : first "–" last }
         END { if (first) out = out sep range(); print out }' <(tested "$1") "$OUT/$1/all.txt"
 }
