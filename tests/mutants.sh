@@ -7,7 +7,8 @@
 #                                              in the earlier results, which it adds to
 #   bash tests/mutants.sh --from N FILE...     only each file's mutants from the Nth on, in
 #                                              cargo-mutants' order (`--list`): the rest of
-#                                              a run cut short (earlier results replaced)
+#                                              a run cut short (earlier results replaced;
+#                                              with --iterate, added to)
 #   bash tests/mutants.sh --report             the report alone, from mutants.out/
 #
 # Each mutant is built and tested against the kill-set: `cargo test -p mechgen`, the runtime's
@@ -237,14 +238,17 @@ report() {
 
 ITERATE=0
 FROM=1
-case "${1:-}" in
-    --iterate) ITERATE=1; shift ;;
-    --from)
-        FROM=${2:?--from takes the position of the first mutant to run}
-        shift 2
-        [ "$#" -gt 0 ] || { echo "--from takes the files to run" >&2; exit 1; }
-        ;;
-esac
+while :; do
+    case "${1:-}" in
+        --iterate) ITERATE=1; shift ;;
+        --from)
+            FROM=${2:?--from takes the position of the first mutant to run}
+            shift 2
+            [ "$#" -gt 0 ] || { echo "--from takes the files to run" >&2; exit 1; }
+            ;;
+        *) break ;;
+    esac
+done
 case "${1:-}" in
     --report) report ;;
     "") install; run "${FILES[@]}"; report ;;
