@@ -174,7 +174,8 @@ report() {
             printf -- '- %s\n' "${partial[@]}"
             echo
         fi
-        echo "Not run yet: $(printf '`%s` ' "${not_run[@]}")(the rest of the runtime);"
+        # Not run for this report, which is of mutants.out/ alone: an earlier report may have.
+        echo "Not run for this report: $(printf '`%s` ' "${not_run[@]}")(the rest of the runtime);"
         echo "nor the macro (\`mechgen-macros/\`) or the shipped mechanisms (\`mechanisms/\`)."
         echo
         echo "## Survivors"
