@@ -5,6 +5,10 @@
 #   bash tests/mutants.sh FILE...              only these files (earlier results replaced)
 #   bash tests/mutants.sh --iterate [FILE...]  only the mutants not yet caught (or unviable)
 #                                              in the earlier results, which it adds to
+#   bash tests/mutants.sh --from N FILE...     only each file's mutants from the Nth on, in
+#                                              cargo-mutants' order (`--list`): the rest of
+#                                              a run cut short (earlier results replaced;
+#                                              with --iterate, added to)
 #   bash tests/mutants.sh --report             the report alone, from mutants.out/
 #
 # Each mutant is built and tested against the kill-set: `cargo test -p mechgen`, the runtime's
@@ -45,6 +49,8 @@ install() {
 
 # One cargo-mutants run per file, each into mutants.out/<file's stem>/, so a file can be run
 # again alone. Missed mutants make cargo-mutants exit non-zero: that is a result, not a failure.
+# The whole list of a file's mutants is kept beside its results (all.txt), so the report can
+# tell the mutants not run (with --from) from those that no longer exist.
 run() {
     local file stem status results files=("$@")
     for file in "${files[@]}"; do
@@ -61,6 +67,14 @@ run() {
             : > "$OUT/$stem/unviable.before"
             set --
         fi
+        mutants --list --file "$file" > "$OUT/$stem/all.txt"
+        if [ "$FROM" -gt 1 ]; then
+            # Each later mutant by its whole name, which is what --re matches. (cargo-mutants
+            # 27.1.0 lets the deletion of a struct expression's field through any --re, so such
+            # a mutant before the Nth is run too; the report says which were.)
+            set -- "$@" --re "^($(tail -n +"$FROM" "$OUT/$stem/all.txt" |
+                sed 's/[][\\.*+?(){}|^$]/\\&/g' | paste -sd '|'))\$"
+        fi
         status=0
         mutants "$@" --file "$file" --test-package mechgen --jobs 1 --minimum-test-timeout 30 \
             --no-times --colors never --output "$OUT/$stem" || status=$?
@@ -72,6 +86,26 @@ run() {
 
 # The results of one outcome (caught, missed, unviable, timeout) for one file.
 outcome() { cat "$OUT/$1/mutants.out/$2.txt" 2>/dev/null || true; }
+
+# Every mutant of one file that was tested, whatever its outcome.
+tested() {
+    local kind
+    for kind in caught previously_caught missed unviable timeout; do outcome "$1" "$kind"; done | sort -u
+}
+
+# Of the whole list of one file's mutants (all.txt, in cargo-mutants' order), the positions of
+# those tested, as ranges (`1–139`), or nothing where the list is missing (an older run).
+positions() {
+    [ -f "$OUT/$1/all.txt" ] || return 0
+    awk 'NR == FNR { tested[$0] = 1; next }
+        ($0 in tested) {
+            if (first && FNR != last + 1) { out = out sep range(); sep = ", "; first = 0 }
+            if (!first) first = FNR
+            last = FNR
+        }
+        function range() { return first == last ? first : first "–" last }
+        END { if (first) out = out sep range(); print out }' <(tested "$1") "$OUT/$1/all.txt"
+}
 
 # The explanation recorded for a survivor, or nothing: in $EXPLAINED, a survivor is a line as
 # cargo-mutants prints it (`path:line:column: mutation`), its explanation the indented lines
@@ -86,7 +120,8 @@ explanation() {
 }
 
 report() {
-    local file stem caught missed unviable timeout total line why
+    local file stem caught missed unviable timeout total whole line why
+    local partial=() not_tested=()
     local run_files=() not_run=() survivors=() equivalent=0 not_killed=0 unexplained=0
     for file in mechgen/src/*.rs; do
         if [ -f "$OUT/$(basename "$file" .rs)/mutants.out/outcomes.json" ]; then
@@ -111,7 +146,9 @@ report() {
         echo "*Missed*: every test passed (a survivor). *Unviable*: the mutant does not compile."
         echo "*Timeout*: the tests ran past the limit (a mutant that hangs a solver). A file's"
         echo "counts may add up \`--iterate\` runs, which test again only the mutants not yet"
-        echo "caught: the counts are of the tests at the commit above."
+        echo "caught: the counts are of the tests at the commit above. A file run in part"
+        echo "(\`--from\`, the rest of a run cut short) counts only the mutants run, whose"
+        echo "positions in cargo-mutants' order are listed under the table."
         echo
         echo "| file | mutants | caught | missed | unviable | timeout |"
         echo "|---|---:|---:|---:|---:|---:|"
@@ -124,10 +161,21 @@ report() {
             unviable=$(outcome "$stem" unviable | grep -c . || true)
             timeout=$(outcome "$stem" timeout | grep -c . || true)
             total=$((caught + missed + unviable + timeout))
+            whole=$(grep -c . "$OUT/$stem/all.txt" 2>/dev/null || echo "$total")
+            if [ "$total" -lt "$whole" ]; then
+                partial+=("\`$file\`: mutants $(positions "$stem") of $whole.")
+                total="$total of $whole"
+            fi
             echo "| \`$file\` | $total | $caught | $missed | $unviable | $timeout |"
         done
         echo
-        echo "Not run yet: $(printf '`%s` ' "${not_run[@]}")(the rest of the runtime);"
+        if [ "${#partial[@]}" -gt 0 ]; then
+            echo "Run in part (the other mutants of these files were not run for this report):"
+            printf -- '- %s\n' "${partial[@]}"
+            echo
+        fi
+        # Not run for this report, which is of mutants.out/ alone: an earlier report may have.
+        echo "Not run for this report: $(printf '`%s` ' "${not_run[@]}")(the rest of the runtime);"
         echo "nor the macro (\`mechgen-macros/\`) or the shipped mechanisms (\`mechanisms/\`)."
         echo
         echo "## Survivors"
@@ -163,23 +211,45 @@ report() {
         local stale=()
         while IFS= read -r line; do
             # Only for the files run: the others' survivors are not known.
+            stem=$(basename "${line%%:*}" .rs)
             printf '%s\n' "${run_files[@]}" | grep -qxF -- "${line%%:*}" || continue
-            printf '%s\n' "${survivors[@]}" | grep -qxF -- "$line" || stale+=("$line")
+            if printf '%s\n' "${survivors[@]}" | grep -qxF -- "$line"; then
+                continue
+            elif [ -f "$OUT/$stem/all.txt" ] && grep -qxF -- "$line" "$OUT/$stem/all.txt" &&
+                ! tested "$stem" | grep -xF -- "$line" > /dev/null; then
+                not_tested+=("$line")
+            else
+                stale+=("$line")
+            fi
         done < <(grep -E '^[^# ]' "$EXPLAINED")
         if [ "${#stale[@]}" -gt 0 ]; then
             echo
             echo "Stale explanations in \`$EXPLAINED\` (no such survivor):"
             printf -- '- `%s`\n' "${stale[@]}"
         fi
+        if [ "${#not_tested[@]}" -gt 0 ]; then
+            echo
+            echo "Explanations in \`$EXPLAINED\` of mutants not run for this report (files run in"
+            echo "part), neither confirmed nor stale:"
+            printf -- '- `%s`\n' "${not_tested[@]}"
+        fi
     } > "$REPORT"
     echo "wrote $REPORT ($unexplained unexplained survivors)"
 }
 
 ITERATE=0
-if [ "${1:-}" = --iterate ]; then
-    ITERATE=1
-    shift
-fi
+FROM=1
+while :; do
+    case "${1:-}" in
+        --iterate) ITERATE=1; shift ;;
+        --from)
+            FROM=${2:?--from takes the position of the first mutant to run}
+            shift 2
+            [ "$#" -gt 0 ] || { echo "--from takes the files to run" >&2; exit 1; }
+            ;;
+        *) break ;;
+    esac
+done
 case "${1:-}" in
     --report) report ;;
     "") install; run "${FILES[@]}"; report ;;

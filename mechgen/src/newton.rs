@@ -1809,6 +1809,26 @@ mod tests {
     }
 
     #[test]
+    fn generated_code_takes_the_fast_sine_or_the_platform_s_as_its_type_says() {
+        // Within the fast one's limit the two differ in the last bit for some of these
+        // angles: each type must take its own, in f64 (with std) the fast one, in f32 the
+        // platform's.
+        fn expected<T: Real>(x: T) -> (T, T) {
+            if T::INLINE_SIN_COS {
+                crate::fast::sin_cos(x)
+            } else {
+                x.sin_cos()
+            }
+        }
+        for i in -400..=400 {
+            let x = f64::from(i) * 0.0123;
+            assert_eq!(sin_cos(x), expected(x), "{x}");
+            let x = x as f32;
+            assert_eq!(sin_cos(x), expected(x), "{x}");
+        }
+    }
+
+    #[test]
     fn the_common_path_accepts_a_guess_that_is_a_solution_on_either_branch() {
         // Met at the guess (a tolerance of 1e-4): no update, on the branch of the guess,
         // whichever orientation that branch has.

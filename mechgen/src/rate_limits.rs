@@ -159,6 +159,20 @@ mod tests {
             acceleration: 1e12,
         };
         assert_eq!(rate_threshold(Order::Acceleration, &loose, 1.0), E.sqrt());
+        // The position's requirement is not the rates': one tighter than any position's
+        // estimate (32ε at the best condition) leaves both thresholds as they were.
+        let exact_positions = Accuracy {
+            position: 1e-20,
+            ..required
+        };
+        assert_eq!(
+            rate_threshold(Order::Velocity, &exact_positions, 1.0),
+            threshold
+        );
+        assert_eq!(
+            rate_threshold(Order::Acceleration, &exact_positions, 1.0),
+            acceleration
+        );
     }
 
     #[test]
