@@ -462,7 +462,10 @@ mod tests {
             (1.2e300, -0.9e300),
         ] {
             let at = angle(y, x);
-            assert!((at - f64::atan2(y, x)).abs() <= 4.0 * f64::EPSILON, "{y} {x}: {at}");
+            assert!(
+                (at - f64::atan2(y, x)).abs() <= 4.0 * f64::EPSILON,
+                "{y} {x}: {at}"
+            );
         }
         assert_eq!(angle(0.0f64, 0.0), 0.0);
         assert!(angle(f64::NAN, 1.0).is_nan());
