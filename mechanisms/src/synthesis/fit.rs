@@ -248,12 +248,14 @@ where
     /// The mechanism at `x`.
     fn mechanism(&self) -> D {
         let mut values = self.start.parameters();
-        let mut fitted = self.x.iter();
-        for (j, value) in values.iter_mut().enumerate() {
-            if self.free[j] {
-                let x = *fitted.next().expect("one x per free parameter");
-                *value = if D::PARAMETER_LENGTHS[j] { x.exp() } else { x };
-            }
+        // One x per free parameter, in declaration order.
+        let free = values
+            .iter_mut()
+            .zip(D::PARAMETER_LENGTHS)
+            .zip(self.free)
+            .filter(|(_, free)| *free);
+        for (((value, length), _), &x) in free.zip(self.x.iter()) {
+            *value = if length { x.exp() } else { x };
         }
         D::with_parameters(values)
     }
