@@ -485,7 +485,7 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
                 .residual
                 .iter()
                 .zip(&here.weights)
-                .fold(here.scale.is_finite(), |lower, (r, w)| {
+                .fold(true, |lower, (r, w)| {
                     lower & (r.abs() * *w < previous_residual)
                 });
             if !lower {
@@ -519,7 +519,9 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
                     || (weighted <= floor && polished(previous_residual, here.scale, condition()))
             };
             if met {
-                if keep_orientation && positive != started_positive {
+                // A scale that is not finite makes no floor: tested here rather than at each
+                // evaluation, since an iteration that goes on cannot end anywhere else.
+                if !here.scale.is_finite() || (keep_orientation && positive != started_positive) {
                     break 'common;
                 }
                 let jacobian = jacobian.finish();
