@@ -34,6 +34,7 @@
 extern crate std;
 
 mod dimensions;
+mod five_bar;
 mod four_bar;
 mod inverted_slider_crank;
 mod jansen;
@@ -46,6 +47,7 @@ pub mod tolerance;
 mod triangle;
 
 pub use dimensions::DimensionError;
+pub use five_bar::{FiveBar, FiveBarPoints, FiveBarUnknowns, Singularities};
 pub use four_bar::{
     DeadCentre, FourBar, FourBarAngles, FourBarCouplerMotion, FourBarCouplerPath, FourBarJoints,
     FourBarPoints, FourBarScenes, FourBarSensitivities, FourBarUnknowns, LimitAngles,

@@ -1366,3 +1366,54 @@ fn synthesise_finds_a_four_bar_for_a_function_and_a_path() {
         "--restarts takes at most",
     );
 }
+
+#[test]
+fn robot_reports_both_working_modes_and_their_singularities() {
+    // The symmetric robot with cranks at 120° and 60°: P straight above the middle at
+    // 100·√3·1.5 mm, moving straight down; the crossed mode has both legs folded flat.
+    let report = stdout_of(&["robot"]);
+    for value in [
+        "end effector P = (50.0000, 259.8076) mm",
+        "velocity = (0.0000, -100.0000) mm/s",
+        "acceleration = (0.0000, -115.4701) mm/s²",
+        "parallel 0.8660, serial left 0.8660, serial right 0.8660",
+        "end effector P = (50.0000, -86.6025) mm",
+        "serial left 0.0000, serial right 0.0000",
+    ] {
+        assert!(report.contains(value), "{value} missing from:\n{report}");
+    }
+    // The distal links stretched in one line: a parallel singularity, in both modes.
+    let report = stdout_of(&["robot", "1", "1.5", "1.5", "1", "1", "--cranks", "180,0"]);
+    assert_eq!(
+        report.matches("a parallel singularity").count(),
+        2,
+        "{report}"
+    );
+}
+
+#[test]
+fn robot_inverse_kinematics_finds_every_elbow_choice() {
+    let report = stdout_of(&["robot", "--point", "50,250"]);
+    for value in [
+        "both elbows outward: cranks at 125.3437° and 54.6563°, working mode open",
+        "both elbows inward: cranks at 32.0364° and 147.9636°, working mode crossed",
+    ] {
+        assert!(report.contains(value), "{value} missing from:\n{report}");
+    }
+    let report = stdout_of(&["robot", "--point", "1000,0"]);
+    assert!(report.contains("outside the workspace"), "{report}");
+}
+
+#[test]
+fn robot_refuses_bad_arguments() {
+    fails_with(
+        &["robot", "--cranks", "1,nan"],
+        "--cranks takes two finite numbers",
+    );
+    fails_with(
+        &["robot", "--point", "1"],
+        "--point takes two finite numbers",
+    );
+    fails_with(&["robot", "1", "-2", "2", "1", "1"], "must be positive");
+    fails_with_code(&["robot", "1", "2", "3"], 2, "5 values required");
+}

@@ -35,7 +35,8 @@ impl fmt::Display for Kind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum SymbolRef {
     Param(usize),
-    Input,
+    /// One of the driven inputs, in declaration order.
+    Input(usize),
     Unknown(usize),
 }
 
@@ -156,7 +157,8 @@ pub struct Model {
     pub vis: Visibility,
     pub name: Ident,
     pub params: Vec<Symbol>,
-    pub input: Symbol,
+    /// The driven inputs, in declaration order: at least one.
+    pub inputs: Vec<Symbol>,
     pub unknowns: Vec<Symbol>,
     pub loops: Vec<VectorSum>,
     pub points: Vec<Point>,
@@ -168,7 +170,7 @@ impl Model {
     pub fn symbol(&self, symbol: SymbolRef) -> &Symbol {
         match symbol {
             SymbolRef::Param(i) => &self.params[i],
-            SymbolRef::Input => &self.input,
+            SymbolRef::Input(i) => &self.inputs[i],
             SymbolRef::Unknown(i) => &self.unknowns[i],
         }
     }
@@ -254,25 +256,9 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         ),
         None => (name.span(), Vec::new()),
     };
-    if let Some(extra) = input.get(1) {
-        errors.error_at(
-            &extra.name,
-            "a mechanism has one driven input: declare the others as unknowns or parameters",
-        );
-    }
 
-    let mut scope = Scope::new(
-        &params,
-        input.first(),
-        &unknowns,
-        &undetermined,
-        &mut errors,
-    );
-    // Extra inputs were reported above; their uses in the loops need no second error.
-    scope
-        .poisoned
-        .extend(input.iter().skip(1).map(|extra| extra.name.to_string()));
-    // So are the names refused above.
+    let mut scope = Scope::new(&params, &input, &unknowns, &undetermined, &mut errors);
+    // The names refused above need no second error where they are used.
     scope.poisoned.extend(
         params
             .iter()
@@ -306,35 +292,36 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         .collect();
 
     check_counts(&loops, &unknowns, unknowns_span, &mut errors);
-    check_every_symbol_in_a_loop(&scope, &in_loops, input.first(), &unknowns, &mut errors);
-    let outputs = outputs(generate, &mut errors);
+    check_every_symbol_in_a_loop(&scope, &in_loops, &input, &unknowns, &mut errors);
+    let outputs = outputs(generate, input.len(), &mut errors);
     let scenes = scene::resolve(
         scenes,
         &scene::Names {
             params: &params.iter().map(|p| p.name.clone()).collect::<Vec<_>>(),
-            input: input.first().map_or(&name, |input| &input.name),
+            inputs: &input.iter().map(|i| i.name.clone()).collect::<Vec<_>>(),
             unknowns: &unknowns.iter().map(|u| u.name.clone()).collect::<Vec<_>>(),
             points: &points.iter().map(|p| p.name.clone()).collect::<Vec<_>>(),
         },
         &mut errors,
     );
 
-    let input = match input.into_iter().next() {
-        Some(input) => input,
+    let inputs = if input.is_empty() {
         // Reported above as a missing input; a placeholder keeps the other checks going.
-        None => Symbol {
+        vec![Symbol {
             name: Ident::new("input", name.span()),
             kind: Kind::Angle,
             docs: Vec::new(),
             vis: Visibility::Inherited,
-        },
+        }]
+    } else {
+        input
     };
     errors.finish(Model {
         attrs,
         vis,
         name,
         params,
-        input,
+        inputs,
         unknowns,
         loops,
         points,
@@ -438,7 +425,7 @@ fn symbols(
 struct Scope {
     /// Each name's symbol, and its kind unless the declaration left it undetermined.
     names: BTreeMap<String, (SymbolRef, Option<Kind>)>,
-    /// Names declared in error (an extra input): using one reports nothing more.
+    /// Names declared in error (a prelude variant): using one reports nothing more.
     poisoned: BTreeSet<String>,
     /// Symbols the resolved sums depend on so far (see [`Scope::resolve`]).
     appearing: BTreeSet<SymbolRef>,
@@ -449,7 +436,7 @@ struct Scope {
 impl Scope {
     fn new(
         params: &[Symbol],
-        input: Option<&Symbol>,
+        inputs: &[Symbol],
         unknowns: &[Symbol],
         undetermined: &BTreeSet<String>,
         errors: &mut Errors,
@@ -458,7 +445,12 @@ impl Scope {
             .iter()
             .enumerate()
             .map(|(i, s)| (SymbolRef::Param(i), s))
-            .chain(input.map(|s| (SymbolRef::Input, s)))
+            .chain(
+                inputs
+                    .iter()
+                    .enumerate()
+                    .map(|(i, s)| (SymbolRef::Input(i), s)),
+            )
             .chain(
                 unknowns
                     .iter()
@@ -745,22 +737,22 @@ fn check_counts(loops: &[VectorSum], unknowns: &[Symbol], span: Span, errors: &m
 fn check_every_symbol_in_a_loop(
     scope: &Scope,
     in_loops: &BTreeSet<SymbolRef>,
-    input: Option<&Symbol>,
+    inputs: &[Symbol],
     unknowns: &[Symbol],
     errors: &mut Errors,
 ) {
     // A duplicate declaration was reported already and stands for no symbol of its own.
     let missing = |symbol: SymbolRef| scope.resolves_to(symbol) && !in_loops.contains(&symbol);
-    if let Some(input) = input
-        && missing(SymbolRef::Input)
-    {
-        errors.error_at(
-            &input.name,
-            format!(
-                "input `{}` appears in no loop, so it drives nothing",
-                input.name
-            ),
-        );
+    for (i, input) in inputs.iter().enumerate() {
+        if missing(SymbolRef::Input(i)) {
+            errors.error_at(
+                &input.name,
+                format!(
+                    "input `{}` appears in no loop, so it drives nothing",
+                    input.name
+                ),
+            );
+        }
     }
     for (i, unknown) in unknowns.iter().enumerate() {
         if missing(SymbolRef::Unknown(i)) {
@@ -787,7 +779,7 @@ const OUTPUTS: [&str; 5] = [
 /// `assemble`, which asks for the closed forms (checked once the loops are planned); and
 /// `sensitivities`, the derivatives with respect to the parameters. Without a `generate`
 /// section, the first three are generated, and the closed forms where the loops have them.
-fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Outputs {
+fn outputs(generate: Option<(Ident, Vec<Ident>)>, inputs: usize, errors: &mut Errors) -> Outputs {
     let Some((_, names)) = generate else {
         return Outputs {
             velocity: true,
@@ -823,6 +815,13 @@ fn outputs(generate: Option<(Ident, Vec<Ident>)>, errors: &mut Errors) -> Output
                 ),
             );
         }
+    }
+    if let (Some(name), true) = (seen[4], inputs > 1) {
+        errors.error_at(
+            name,
+            "`sensitivities` (and the `mechgen::Design` they implement) are for a mechanism \
+             of one input, and this one has several",
+        );
     }
     Outputs {
         velocity: seen[1].is_some(),

@@ -60,7 +60,8 @@ const RESERVED: [&str; 4] = ["unknowns", "points", "scenes", "mechanism"];
 /// What the scene resolver can see of the model.
 pub struct Names<'a> {
     pub params: &'a [Ident],
-    pub input: &'a Ident,
+    /// The driven inputs: a scene kernel takes one.
+    pub inputs: &'a [Ident],
     pub unknowns: &'a [Ident],
     pub points: &'a [Ident],
 }
@@ -86,6 +87,13 @@ pub fn resolve(
                 );
             } else if !scene_names.insert(text) {
                 errors.error_at(&name, format!("scene `{name}` is declared twice"));
+            }
+            if names.inputs.len() > 1 {
+                errors.error_at(
+                    &name,
+                    "scenes are kernels of one input, and this mechanism has several: use the \
+                     general functions (`motion`, `points`, ...), which take every input",
+                );
             }
             let mut fields = BTreeSet::new();
             let items = outputs
@@ -142,10 +150,9 @@ fn item(field: &Ident, names: &Names) -> Result<(Quantity, Order), String> {
         .map(|(stem, _)| *stem)
         .find(|stem| !stem.is_empty())
         .unwrap_or(&text);
-    if names.input.unraw() == stem {
+    if let Some(input) = names.inputs.iter().find(|input| input.unraw() == stem) {
         return Err(format!(
-            "the input `{}` and its rates are the scene's arguments, not its outputs",
-            names.input
+            "the input `{input}` and its rates are the scene's arguments, not its outputs"
         ));
     }
     if names.params.iter().any(|p| p.unraw() == stem) {

@@ -59,6 +59,7 @@ fn shipped_mechanism_expansions() {
     assert_eq!(
         names,
         [
+            "FiveBar",
             "FourBar",
             "InvertedSliderCrank",
             "JansenLeg",

@@ -132,11 +132,14 @@ fn generic_rank(model: &Model, equations: &Equations, errors: &mut Errors) {
     let mut dependent = None;
     for _ in 0..3 {
         let params: Vec<f64> = (0..model.params.len()).map(|_| 1.0 + random()).collect();
-        let point: Vec<f64> = (0..=n).map(|_| std::f64::consts::TAU * random()).collect();
+        let inputs = model.inputs.len();
+        let point: Vec<f64> = (0..n + inputs)
+            .map(|_| std::f64::consts::TAU * random())
+            .collect();
         let values = equations.graph.evaluate_all(|var| match var {
             Var::Value(SymbolRef::Param(i)) => params[i],
             Var::Value(SymbolRef::Unknown(i)) => point[i],
-            Var::Value(SymbolRef::Input) => point[n],
+            Var::Value(SymbolRef::Input(i)) => point[n + i],
             // Rates: the Jacobian holds none.
             _ => 0.5,
         });

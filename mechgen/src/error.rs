@@ -16,7 +16,8 @@ pub enum Error<T> {
     /// The loops cannot close at this input: the links are too short or too long to meet
     /// (the input is outside the mechanism's range of motion).
     CannotAssemble {
-        /// The input at which assembly was asked for.
+        /// The input at which assembly was asked for (for a mechanism of several inputs,
+        /// the first declared).
         input: T,
     },
     /// The Jacobian of the loop equations with respect to the unknowns is singular at this

@@ -15,14 +15,15 @@ use crate::symbolic::{Case, ExprId, Node, Step, Var};
 impl Generator<'_> {
     /// `assemble(input, branch)`: every loop in closed form, in the planned order.
     pub(super) fn assemble(&self, steps: &[Step]) -> TokenStream {
-        let input = &self.model.input.name;
+        let (input_params, input) = (self.input_params(), self.input_args());
+        let input_text = self.inputs_text();
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
         let branch_parameter = self.branch_parameter(steps);
         let solve = self.closed_form_solve(steps, false);
         let names = self.model.unknowns.iter().map(|u| &u.name);
         let mut docs = format!(
-            "The position at `{input}` in closed form, loop by loop, on the chosen assembly \
+            "The position at `{input_text}` in closed form, loop by loop, on the chosen assembly \
              branch{}:",
             if steps.iter().filter(|s| s.case.has_branches()).count() > 1 {
                 "es"
@@ -80,7 +81,7 @@ impl Generator<'_> {
             #docs
             pub fn assemble(
                 &self,
-                #input: T #public_parameter
+                #input_params #public_parameter
             ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
                 #conversion
                 self.mechgen_check_finite(#input)?;
@@ -99,7 +100,7 @@ impl Generator<'_> {
             #[inline(never)]
             fn #scaled(
                 &self,
-                #input: T #branch_parameter
+                #input_params #branch_parameter
             ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
                 #prologue
                 let #position = #receiver.#inner(#scaled_input #branch_argument)#restore?;
@@ -111,7 +112,7 @@ impl Generator<'_> {
             #[inline(always)]
             fn #inner(
                 &self,
-                #input: T #branch_parameter
+                #input_params #branch_parameter
             ) -> ::core::result::Result<#unknowns, ::mechgen::Error<T>> {
                 #solve
                 ::core::result::Result::Ok(#ty { #(#names),* })
@@ -142,7 +143,8 @@ impl Generator<'_> {
         if branching.is_empty() {
             return TokenStream::new();
         }
-        let input = &self.model.input.name;
+        let input_params = self.input_params();
+        let input_text = self.inputs_text();
         let position = arg("position");
         let (unknowns, _, _) = self.signature_types();
         let signs: Vec<TokenStream> = self
@@ -158,13 +160,13 @@ impl Generator<'_> {
             }
         };
         let docs = doc(&format!(
-            "The assembly branch a solved position at `{input}` is on, by the signs \
+            "The assembly branch a solved position at `{input_text}` is on, by the signs \
              [`Self::assemble`] documents. A raw evaluation: it does not check its arguments."
         ));
         let keeps = (self.model.loops.len() > 1).then(|| self.keeps_branches(&branching));
         quote! {
             #docs
-            pub fn branch_of(&self, #input: T, #position: &#unknowns) -> #output {
+            pub fn branch_of(&self, #input_params, #position: &#unknowns) -> #output {
                 #value
             }
             #keeps
@@ -176,7 +178,7 @@ impl Generator<'_> {
     /// counts as switched only where its sign is decided at both, beyond the position's
     /// error estimate (`32·ε·κ` of the size): at a tangency the branches meet.
     fn keeps_branches(&self, branching: &[&Step]) -> TokenStream {
-        let input = &self.model.input.name;
+        let input_params = self.input_params();
         let (position, guess) = (arg("position"), arg("guess"));
         let (solution, condition, margin) =
             (local("solution"), local("condition"), local("margin"));
@@ -190,7 +192,7 @@ impl Generator<'_> {
             #docs
             fn mechgen_keeps_branches(
                 &self,
-                #input: T,
+                #input_params,
                 #guess: &#unknowns,
                 #solution: &#unknowns,
                 #condition: T,
@@ -246,8 +248,14 @@ impl Generator<'_> {
     /// product or sum is computed once, as soon as what it reads is known; the solved angles'
     /// sines and cosines come from the closed form's directions, with no `sin_cos`.
     pub(super) fn motion(&self, steps: &[Step]) -> TokenStream {
-        let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (input_params, input) = (self.input_params(), self.input_args());
+        let first_input = self.first_input();
+        let input_text = self.inputs_text();
+        let (input_dot, input_ddot) = (self.input_dot_args(), self.input_ddot_args());
+        let (input_dot_text, input_ddot_text) = (self.input_dots_text(), self.input_ddots_text());
+        let the_input = self.the_input();
+        let (input_dot_params, input_ddot_params) =
+            (self.input_dot_params(), self.input_ddot_params());
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
         let n = self.model.unknowns.len();
@@ -328,7 +336,7 @@ impl Generator<'_> {
                 quote! {
                     #(#computed)*
                     let #pattern = ::mechgen::closed::#solver(#(#vectors),* #sign)
-                        .map_err(|#failure| #failure.at(#input))?;
+                        .map_err(|#failure| #failure.at(#first_input))?;
                     #flips
                     #(#directions)*
                 }
@@ -340,14 +348,10 @@ impl Generator<'_> {
         let branch_parameter = self.branch_parameter(steps);
         let (rates, accelerations) = (local("rates"), local("accelerations"));
         let accuracy = local("accuracy");
-        let labels = [
-            format!("input rate `{input_dot}`"),
-            format!("input acceleration `{input_ddot}`"),
-        ];
-        let [dot_label, ddot_label] = &labels;
+        let rates_check = self.input_rates_check();
         let docs = doc(&format!(
-            "Position (as [`Self::assemble`]), velocity and acceleration at `{input}` in one \
-             pass, for the input moving at `{input_dot}` and accelerating at `{input_ddot}`: \
+            "Position (as [`Self::assemble`]), velocity and acceleration at `{input_text}` in one \
+             pass, for {the_input} moving at `{input_dot_text}` and accelerating at `{input_ddot_text}`: \
              the fastest way to all three, sharing every sine, cosine and product between \
              them.\n\nErrors: as [`Self::assemble`], [`Self::velocity`] and \
              [`Self::acceleration`]."
@@ -386,13 +390,13 @@ impl Generator<'_> {
             #docs
             pub fn motion(
                 &self,
-                #input: T #public_parameter,
-                #input_dot: T,
-                #input_ddot: T,
+                #input_params #public_parameter,
+                #input_dot_params,
+                #input_ddot_params,
             ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 #conversion
                 self.mechgen_check_finite(#input)?;
-                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                #rates_check
                 if #as_given {
                     let #motion = self.#inner(#input #branch_argument, #input_dot, #input_ddot)?;
                     let #position = #motion.position;
@@ -416,9 +420,9 @@ impl Generator<'_> {
             #[inline(never)]
             fn #scaled(
                 &self,
-                #input: T #branch_parameter,
-                #input_dot: T,
-                #input_ddot: T,
+                #input_params #branch_parameter,
+                #input_dot_params,
+                #input_ddot_params,
             ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 #prologue
                 let #motion = #receiver
@@ -439,9 +443,9 @@ impl Generator<'_> {
             #[inline(always)]
             fn #inner(
                 &self,
-                #input: T #branch_parameter,
-                #input_dot: T,
-                #input_ddot: T,
+                #input_params #branch_parameter,
+                #input_dot_params,
+                #input_ddot_params,
             ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 #bindings
                 #(#solves)*
@@ -460,7 +464,7 @@ impl Generator<'_> {
     /// of its own name and, with `directions`, each solved angle's `(cos, sin)` to
     /// `direction_{angle}`.
     fn closed_form_solve(&self, steps: &[Step], directions: bool) -> TokenStream {
-        let input = &self.model.input.name;
+        let first_input = self.first_input();
         let mut choices = self.branch_choices(steps).into_iter();
         let solves = steps.iter().map(|step| {
             let (prologue, coefficients) = self.block_in(&step.case.coefficients(), true);
@@ -482,7 +486,7 @@ impl Generator<'_> {
             let failure = arg("failure");
             let call = quote! {
                 ::mechgen::closed::#solver(#(#vectors),* #sign)
-                    .map_err(|#failure| #failure.at(#input))?
+                    .map_err(|#failure| #failure.at(#first_input))?
             };
             let pattern = match step.case {
                 Case::TwoLengths { .. } => quote!([#a, #b]),

@@ -8,26 +8,30 @@ use syn::ext::IdentExt;
 use super::docs::doc;
 use super::{Generator, arg, matrix};
 use crate::symbolic::ExprId;
+use proc_macro2::Literal;
 
 impl Generator<'_> {
     /// `mechgen_check_finite`: every parameter, then the input, finite. Their names are a
     /// constant table apart from the values, read only to blame one that is not.
     pub(super) fn check_finite(&self) -> TokenStream {
-        let input = &self.model.input.name;
+        let inputs = self.inputs();
+        let input_params = self.input_params();
         let fields = self.model.params.iter().map(|param| &param.name);
         let labels = self
             .model
             .params
             .iter()
             .map(|param| format!("parameter `{}`", param.name.unraw()));
-        let input_label = format!("input `{}`", input.unraw());
+        let input_labels = inputs
+            .iter()
+            .map(|input| format!("input `{}`", input.unraw()));
         quote! {
             /// Checks that the parameters and the input are finite.
             #[inline]
-            fn mechgen_check_finite(&self, #input: T) -> ::core::result::Result<(), ::mechgen::Error<T>> {
+            fn mechgen_check_finite(&self, #input_params) -> ::core::result::Result<(), ::mechgen::Error<T>> {
                 ::mechgen::__private::check_all_finite(
-                    [#(self.#fields,)* #input],
-                    &[#(#labels,)* #input_label],
+                    [#(self.#fields,)* #(#inputs),*],
+                    &[#(#labels,)* #(#input_labels),*],
                 )
             }
         }
@@ -37,27 +41,37 @@ impl Generator<'_> {
     /// `mechgen_check_finite` makes and `motion_near`'s of the input's rate and acceleration
     /// in one, blaming the first that is not finite in that order.
     pub(super) fn check_finite_with_rates(&self) -> TokenStream {
-        let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let inputs = self.inputs();
+        let (input_dots, input_ddots) = (&self.input_dots, &self.input_ddots);
         let fields = self.model.params.iter().map(|param| &param.name);
         let labels = self
             .model
             .params
             .iter()
             .map(|param| format!("parameter `{}`", param.name.unraw()));
-        let input_label = format!("input `{}`", input.unraw());
-        let dot_label = format!("input rate `{input_dot}`");
-        let ddot_label = format!("input acceleration `{input_ddot}`");
+        let input_labels = inputs
+            .iter()
+            .map(|input| format!("input `{}`", input.unraw()));
+        let dot_labels = input_dots.iter().map(|dot| format!("input rate `{dot}`"));
+        let ddot_labels = input_ddots
+            .iter()
+            .map(|ddot| format!("input acceleration `{ddot}`"));
         quote! {
             ::mechgen::__private::check_all_finite(
-                [#(self.#fields,)* #input, #input_dot, #input_ddot],
-                &[#(#labels,)* #input_label, #dot_label, #ddot_label],
+                [#(self.#fields,)* #(#inputs,)* #(#input_dots,)* #(#input_ddots),*],
+                &[#(#labels,)* #(#input_labels,)* #(#dot_labels,)* #(#ddot_labels),*],
             )?;
         }
     }
 
     pub(super) fn residual(&self) -> TokenStream {
-        let input = &self.model.input.name;
+        let input_params = self.input_params();
+        let input = self
+            .inputs()
+            .iter()
+            .map(|input| input.to_string())
+            .collect::<Vec<_>>()
+            .join("`, `");
         let position = arg("position");
         let (unknowns, array, _) = self.signature_types();
         let (prologue, outputs) = self.block(&self.equations.residual);
@@ -68,7 +82,7 @@ impl Generator<'_> {
         ));
         quote! {
             #doc
-            pub fn residual(&self, #input: T, #position: &#unknowns) -> #array {
+            pub fn residual(&self, #input_params, #position: &#unknowns) -> #array {
                 #prologue
                 [#(#outputs),*]
             }
@@ -76,7 +90,7 @@ impl Generator<'_> {
     }
 
     pub(super) fn jacobian(&self) -> TokenStream {
-        let input = &self.model.input.name;
+        let input_params = self.input_params();
         let position = arg("position");
         let (unknowns, _, count) = self.signature_types();
         let entries: Vec<ExprId> = self.equations.jacobian.iter().flatten().copied().collect();
@@ -88,7 +102,7 @@ impl Generator<'_> {
             /// column `j` is `∂residual[i]/∂unknown[j]`.
             ///
             #raw
-            pub fn jacobian(&self, #input: T, #position: &#unknowns) -> [[T; #count]; #count] {
+            pub fn jacobian(&self, #input_params, #position: &#unknowns) -> [[T; #count]; #count] {
                 #prologue
                 #rows
             }
@@ -96,25 +110,50 @@ impl Generator<'_> {
     }
 
     pub(super) fn input_jacobian(&self) -> TokenStream {
-        let input = &self.model.input.name;
+        let input_params = self.input_params();
         let position = arg("position");
-        let (unknowns, array, _) = self.signature_types();
-        let (prologue, outputs) = self.block(&self.equations.input_jacobian);
+        let (unknowns, array, count) = self.signature_types();
+        let entries: Vec<ExprId> = self
+            .equations
+            .input_jacobian
+            .iter()
+            .flatten()
+            .copied()
+            .collect();
+        let (prologue, outputs) = self.block(&entries);
         let raw = doc(RAW_EVALUATION);
+        if self.model.inputs.len() == 1 {
+            return quote! {
+                /// The derivative of [`Self::residual`] with respect to the input.
+                ///
+                #raw
+                pub fn input_jacobian(&self, #input_params, #position: &#unknowns) -> #array {
+                    #prologue
+                    [#(#outputs),*]
+                }
+            };
+        }
+        let inputs = Literal::usize_unsuffixed(self.model.inputs.len());
+        let rows = matrix(&outputs, self.model.inputs.len());
         quote! {
-            /// The derivative of [`Self::residual`] with respect to the input.
+            /// The derivatives of [`Self::residual`] with respect to the inputs: row `i`,
+            /// column `k` is `∂residual[i]/∂input[k]`, the inputs in declaration order.
             ///
             #raw
-            pub fn input_jacobian(&self, #input: T, #position: &#unknowns) -> #array {
+            pub fn input_jacobian(
+                &self,
+                #input_params,
+                #position: &#unknowns,
+            ) -> [[T; #inputs]; #count] {
                 #prologue
-                [#(#outputs),*]
+                #rows
             }
         }
     }
 
     /// `condition(input, position)`, which tells how far to trust what the solvers return.
     pub(super) fn condition(&self) -> TokenStream {
-        let input = &self.model.input.name;
+        let (input_params, inputs) = (self.input_params(), self.input_args());
         let position = arg("position");
         let (unknowns, _, _) = self.signature_types();
         quote! {
@@ -122,8 +161,8 @@ impl Generator<'_> {
             /// (see [`mechgen::condition`]): 1 at best, about `1/√ε` at a toggle, where the
             /// solvers return [`mechgen::Error::Singular`]. Errors in positions and rates grow
             /// with it (the accuracy contract in the `mechgen` docs).
-            pub fn condition(&self, #input: T, #position: &#unknowns) -> T {
-                ::mechgen::condition(self.jacobian(#input, #position))
+            pub fn condition(&self, #input_params, #position: &#unknowns) -> T {
+                ::mechgen::condition(self.jacobian(#inputs, #position))
             }
         }
     }

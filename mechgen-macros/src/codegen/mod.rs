@@ -67,9 +67,9 @@ struct Generator<'a> {
     equations: &'a Equations,
     unknowns_type: Ident,
     points_type: Ident,
-    /// Rate and acceleration names of the input and each unknown (`theta2_dot`, ...).
-    input_dot: Ident,
-    input_ddot: Ident,
+    /// Rate and acceleration names of each input and each unknown (`theta2_dot`, ...).
+    input_dots: Vec<Ident>,
+    input_ddots: Vec<Ident>,
     unknown_dots: Vec<Ident>,
     unknown_ddots: Vec<Ident>,
     /// Every generated name a function body can see besides its own temporaries.
@@ -124,8 +124,8 @@ impl<'a> Generator<'a> {
     fn new(model: &'a Model, equations: &'a Equations) -> Self {
         let derived =
             |symbol: &Symbol, suffix: &str| local(&format!("{}_{suffix}", symbol.name.unraw()));
-        let input_dot = derived(&model.input, "dot");
-        let input_ddot = derived(&model.input, "ddot");
+        let input_dots: Vec<Ident> = model.inputs.iter().map(|u| derived(u, "dot")).collect();
+        let input_ddots: Vec<Ident> = model.inputs.iter().map(|u| derived(u, "ddot")).collect();
         let unknown_dots: Vec<Ident> = model.unknowns.iter().map(|u| derived(u, "dot")).collect();
         let unknown_ddots: Vec<Ident> = model.unknowns.iter().map(|u| derived(u, "ddot")).collect();
         let point_components = model.points.iter().flat_map(|p| {
@@ -139,8 +139,9 @@ impl<'a> Generator<'a> {
             .iter()
             .map(|name| name.to_string())
             .chain(
-                [&input_dot, &input_ddot]
-                    .into_iter()
+                input_dots
+                    .iter()
+                    .chain(&input_ddots)
                     .chain(&unknown_dots)
                     .chain(&unknown_ddots)
                     .map(Ident::to_string),
@@ -164,8 +165,8 @@ impl<'a> Generator<'a> {
             equations,
             unknowns_type: format_ident!("{}Unknowns", model.name),
             points_type: format_ident!("{}Points", model.name),
-            input_dot,
-            input_ddot,
+            input_dots,
+            input_ddots,
             unknown_dots,
             unknown_ddots,
             reserved,
@@ -175,9 +176,9 @@ impl<'a> Generator<'a> {
     fn var_name(&self, var: Var) -> Ident {
         match var {
             Var::Value(symbol) => self.model.symbol(symbol).name.clone(),
-            Var::Rate(SymbolRef::Input) => self.input_dot.clone(),
+            Var::Rate(SymbolRef::Input(i)) => self.input_dots[i].clone(),
             Var::Rate(SymbolRef::Unknown(i)) => self.unknown_dots[i].clone(),
-            Var::Accel(SymbolRef::Input) => self.input_ddot.clone(),
+            Var::Accel(SymbolRef::Input(i)) => self.input_ddots[i].clone(),
             Var::Accel(SymbolRef::Unknown(i)) => self.unknown_ddots[i].clone(),
             Var::Aux(k) => local(&format!("aux{k}")),
             Var::Unscale => local("unscale"),
@@ -186,6 +187,110 @@ impl<'a> Generator<'a> {
                 self.model.params[i].name.clone()
             }
         }
+    }
+
+    /// The inputs' names, in declaration order (the generated functions' first arguments).
+    fn inputs(&self) -> Vec<&Ident> {
+        self.model.inputs.iter().map(|input| &input.name).collect()
+    }
+
+    /// `theta2: T` for each input: the generated functions' first parameters.
+    fn input_params(&self) -> TokenStream {
+        let inputs = self.inputs();
+        quote!(#(#inputs: T),*)
+    }
+
+    /// `theta2` for each input, to pass them on.
+    fn input_args(&self) -> TokenStream {
+        let inputs = self.inputs();
+        quote!(#(#inputs),*)
+    }
+
+    /// The inputs' names for docs, each in backticks where the text has them:
+    /// `` theta1`, `theta4 `` inside `` `…` ``.
+    fn inputs_text(&self) -> String {
+        names_text(self.inputs())
+    }
+
+    /// [`Self::inputs_text`] for the inputs' rates.
+    fn input_dots_text(&self) -> String {
+        names_text(&self.input_dots)
+    }
+
+    /// [`Self::inputs_text`] for the inputs' accelerations.
+    fn input_ddots_text(&self) -> String {
+        names_text(&self.input_ddots)
+    }
+
+    /// `check_finite(&[(theta2_dot, "input rate `theta2_dot`"), ...])?;`: each input's rate
+    /// and acceleration, named for blame.
+    fn input_rates_check(&self) -> TokenStream {
+        let blames = &self.input_blames(2)[self.model.inputs.len()..];
+        quote!(::mechgen::__private::check_finite(&[#(#blames),*])?;)
+    }
+
+    /// "the input", or "the inputs" where there are several, for docs.
+    fn the_input(&self) -> &'static str {
+        if self.model.inputs.len() == 1 {
+            "the input"
+        } else {
+            "the inputs"
+        }
+    }
+
+    /// `theta2_dot: T` for each input.
+    fn input_dot_params(&self) -> TokenStream {
+        let dots = &self.input_dots;
+        quote!(#(#dots: T),*)
+    }
+
+    /// `theta2_dot` for each input.
+    fn input_dot_args(&self) -> TokenStream {
+        let dots = &self.input_dots;
+        quote!(#(#dots),*)
+    }
+
+    /// `theta2_ddot: T` for each input.
+    fn input_ddot_params(&self) -> TokenStream {
+        let ddots = &self.input_ddots;
+        quote!(#(#ddots: T),*)
+    }
+
+    /// `theta2_ddot` for each input.
+    fn input_ddot_args(&self) -> TokenStream {
+        let ddots = &self.input_ddots;
+        quote!(#(#ddots),*)
+    }
+
+    /// The input an error names ([`mechgen::Error::CannotAssemble`]'s `input`): the first,
+    /// where a mechanism has several.
+    fn first_input(&self) -> &Ident {
+        &self.model.inputs[0].name
+    }
+
+    /// `(theta2, "input `theta2`")` for each input, then each input's rate and acceleration
+    /// up to `order` (0: none, 1: rates, 2: accelerations too): what a failure can blame.
+    fn input_blames(&self, order: usize) -> Vec<TokenStream> {
+        let label = |what: &str, name: &Ident| format!("{what} `{}`", name.unraw());
+        let mut blames: Vec<TokenStream> = self
+            .inputs()
+            .into_iter()
+            .map(|name| {
+                let label = label("input", name);
+                quote!((#name, #label))
+            })
+            .collect();
+        let orders = [
+            ("input rate", &self.input_dots),
+            ("input acceleration", &self.input_ddots),
+        ];
+        for (what, names) in orders.into_iter().take(order) {
+            blames.extend(names.iter().map(|name| {
+                let label = label(what, name);
+                quote!((#name, #label))
+            }));
+        }
+        blames
     }
 
     /// The parameters that are lengths, which a mechanism scaled to its size multiplies.
@@ -330,12 +435,16 @@ impl<'a> Generator<'a> {
             let field = &self.model.unknowns[field].name;
             Some(quote!(let #name = #source.#field;))
         });
-        let input = &self.model.input.name;
-        let unused_input = (mode == Bindings::Arguments
-            && !used.contains(&Var::Value(SymbolRef::Input)))
-        .then(|| quote!(let _ = #input;));
+        let unused_inputs = self
+            .inputs()
+            .into_iter()
+            .enumerate()
+            .filter(|&(i, _)| {
+                mode == Bindings::Arguments && !used.contains(&Var::Value(SymbolRef::Input(i)))
+            })
+            .map(|(_, input)| quote!(let _ = #input;));
         let bindings = quote! {
-            #unused_input
+            #(#unused_inputs)*
             #(#bindings)*
         };
         (bindings, block)
@@ -396,23 +505,25 @@ impl<'a> Generator<'a> {
         output: &TokenStream,
         body: TokenStream,
     ) -> TokenStream {
-        let input = &self.model.input.name;
+        let inputs = self.input_args();
         let (unknowns, _, _) = self.signature_types();
         let scalars = [
-            (None, input.clone()),
-            (Some("input rate"), self.input_dot.clone()),
-            (Some("input acceleration"), self.input_ddot.clone()),
+            (None, self.inputs().into_iter().cloned().collect::<Vec<_>>()),
+            (Some("input rate"), self.input_dots.clone()),
+            (Some("input acceleration"), self.input_ddots.clone()),
         ];
         let mut parameters = Vec::new();
         let mut scalar_checks = Vec::new();
         let mut unknowns_checks = Vec::new();
         for index in 0..arity {
             if index % 2 == 0 {
-                let (label, name) = &scalars[index / 2];
-                parameters.push(quote!(#name: T));
-                if let Some(label) = label {
-                    let label = format!("{label} `{name}`");
-                    scalar_checks.push(quote!((#name, #label)));
+                let (label, names) = &scalars[index / 2];
+                for name in names {
+                    parameters.push(quote!(#name: T));
+                    if let Some(label) = label {
+                        let label = format!("{label} `{name}`");
+                        scalar_checks.push(quote!((#name, #label)));
+                    }
                 }
             } else {
                 let quantity = ["position", "velocity", "acceleration"][index / 2];
@@ -432,13 +543,23 @@ impl<'a> Generator<'a> {
                 &self,
                 #(#parameters),*
             ) -> ::core::result::Result<#output, ::mechgen::Error<T>> {
-                self.mechgen_check_finite(#input)?;
+                self.mechgen_check_finite(#inputs)?;
                 #scalar_checks
                 #(#unknowns_checks)*
                 #body
             }
         }
     }
+}
+
+/// Names joined for docs, each in backticks where the text has them (see
+/// [`Generator::inputs_text`]).
+fn names_text<'n>(names: impl IntoIterator<Item = &'n Ident>) -> String {
+    names
+        .into_iter()
+        .map(|name| name.to_string())
+        .collect::<Vec<_>>()
+        .join("`, `")
 }
 
 fn matrix(entries: &[Emitted], count: usize) -> TokenStream {

@@ -26,7 +26,9 @@ impl Generator<'_> {
     /// Newton on every unknown together: `position` itself (`public`), or the private
     /// fallback of a reduced `position` (see `super::reduced`).
     pub(super) fn full_position(&self, public: bool) -> TokenStream {
-        let input = &self.model.input.name;
+        let (input_params, input) = (self.input_params(), self.input_args());
+        let first_input = self.first_input();
+        let input_text = self.inputs_text();
         let (guess, options, x, solved) = (arg("guess"), arg("options"), arg("x"), arg("solved"));
         let converged = arg("converged");
         let (unknowns, _, _) = self.signature_types();
@@ -50,7 +52,7 @@ impl Generator<'_> {
         } = self.linearisation(&x, &guess);
         let (doc, signature) = if public {
             let public_doc = doc(&format!(
-                "Solves the loops for the unknowns at `{input}` by a safeguarded Newton-Raphson \
+                "Solves the loops for the unknowns at `{input_text}` by a safeguarded Newton-Raphson \
                  from `guess` (see `mechgen::__private::newton`: halved steps, a certified root, \
                  stagnation reported).{branch_doc}\n\n\
                  Errors: a non-finite parameter, input or guess; a singular Jacobian on the way; \
@@ -79,7 +81,7 @@ impl Generator<'_> {
         let signature_args = quote! {
             (
                 &self,
-                #input: T,
+                #input_params,
                 #guess: &#unknowns,
                 #options: &::mechgen::NewtonOptions<T>,
             ) -> #result
@@ -93,7 +95,7 @@ impl Generator<'_> {
         let safeguarded = quote! {
             #hoisted
             let #converged = ::mechgen::__private::newton(
-                #input,
+                #first_input,
                 #guess.to_array(),
                 #options,
                 #orientation,
@@ -155,7 +157,7 @@ impl Generator<'_> {
         let Ok(steps) = self.equations.closed_form.as_deref() else {
             return quote!(|| ::core::option::Option::None);
         };
-        let input = &self.model.input.name;
+        let input = self.input_args();
         let guess = arg("guess");
         let branching = steps.iter().filter(|s| s.case.has_branches()).count();
         if self.model.loops.len() == 1 {
@@ -223,7 +225,7 @@ impl Generator<'_> {
         solution: TokenStream,
         condition: TokenStream,
     ) -> (bool, Option<TokenStream>) {
-        let input = &self.model.input.name;
+        let input = self.input_args();
         let guess = arg("guess");
         let branching = self.equations.closed_form.as_ref().map_or(0, |steps| {
             steps.iter().filter(|s| s.case.has_branches()).count()
@@ -260,8 +262,11 @@ impl Generator<'_> {
         if let Some(reduction) = &self.equations.reduction {
             return self.reduced_motion_near(reduction);
         }
-        let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let input = self.input_args();
+        let first_input = self.first_input();
+        let (input_dot, input_ddot) = (self.input_dot_args(), self.input_ddot_args());
+        let (input_dot_text, input_ddot_text) = (self.input_dots_text(), self.input_ddots_text());
+        let the_input = self.the_input();
         let (guess, options, x) = (arg("guess"), arg("options"), arg("x"));
         let (converged, jacobian) = (arg("converged"), arg("jacobian"));
         let (rates, accelerations) = (local("rates"), local("accelerations"));
@@ -308,8 +313,8 @@ impl Generator<'_> {
         let rate_names = &self.unknown_dots;
         let docs = doc(&format!(
             "Position by Newton-Raphson from `guess` (as [`Self::position`]), then velocity \
-             and acceleration at the solution for the input moving at `{input_dot}` and \
-             accelerating at `{input_ddot}` (as [`Self::motion_at`]), reusing the sines, \
+             and acceleration at the solution for {the_input} moving at `{input_dot_text}` and \
+             accelerating at `{input_ddot_text}` (as [`Self::motion_at`]), reusing the sines, \
              cosines and factored Jacobian of Newton's last evaluation: the fastest way to all \
              three without a closed form.\n\nErrors: as [`Self::position`] and \
              [`Self::motion_at`]."
@@ -372,7 +377,7 @@ impl Generator<'_> {
                 #hoisted
                 let #size = #size_value;
                 let #converged = ::mechgen::__private::newton(
-                    #input,
+                    #first_input,
                     #guess.to_array(),
                     #options,
                     #orientation,
@@ -414,16 +419,17 @@ impl Generator<'_> {
         check: TokenStream,
         body: TokenStream,
     ) -> TokenStream {
-        let input_dot = &self.input_dot;
-        let input_ddot = &self.input_ddot;
-        let labels = [
-            format!("input rate `{input_dot}`"),
-            format!("input acceleration `{input_ddot}`"),
-        ];
-        let [dot_label, ddot_label] = &labels;
+        let (input_dots, input_ddots) = (&self.input_dots, &self.input_ddots);
+        let dot_labels = input_dots.iter().map(|dot| format!("input rate `{dot}`"));
+        let ddot_labels = input_ddots
+            .iter()
+            .map(|ddot| format!("input acceleration `{ddot}`"));
         let check = quote! {
             #check
-            ::mechgen::__private::check_all_finite([#input_dot, #input_ddot], &[#dot_label, #ddot_label])?;
+            ::mechgen::__private::check_all_finite(
+                [#(#input_dots,)* #(#input_ddots),*],
+                &[#(#dot_labels,)* #(#ddot_labels),*],
+            )?;
         };
         let wrapper = self.normalised_newton(NewtonEntry::MotionNear, docs);
         let inner = NewtonEntry::MotionNear.solve();
@@ -447,8 +453,9 @@ impl Generator<'_> {
         check: TokenStream,
         body: TokenStream,
     ) -> TokenStream {
-        let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let input_params = self.input_params();
+        let (input_dot_params, input_ddot_params) =
+            (self.input_dot_params(), self.input_ddot_params());
         let (guess, options) = (arg("guess"), arg("options"));
         let (unknowns, _, _) = self.signature_types();
         quote! {
@@ -456,11 +463,11 @@ impl Generator<'_> {
             #attrs
             #name(
                 &self,
-                #input: T,
+                #input_params,
                 #guess: &#unknowns,
                 #options: &::mechgen::NewtonOptions<T>,
-                #input_dot: T,
-                #input_ddot: T,
+                #input_dot_params,
+                #input_ddot_params,
             ) -> ::core::result::Result<
                 ::mechgen::Solved<::mechgen::Motion<#unknowns, T>, T>,
                 ::mechgen::Error<T>,
@@ -505,17 +512,20 @@ impl Generator<'_> {
             let [sin, cos] = names.map(|name| name.map_or(quote!(_), |name| quote!(#name)));
             angles.push((stem, &unknown.name, sin, cos));
         }
-        // The input's sine and cosine, once per solve, from the runtime's inline `sin_cos`
+        // Each input's sine and cosine, once per solve, from the runtime's inline `sin_cos`
         // rather than the platform's call.
         let mut presets: Vec<(ExprId, Ident, usize)> = Vec::new();
         let mut input_trig = TokenStream::new();
-        if let Some(var) = graph.lookup(Node::Var(Var::Value(SymbolRef::Input))) {
-            let input = &self.model.input.name;
+        for (i, input) in self.inputs().into_iter().enumerate() {
+            let Some(var) = graph.lookup(Node::Var(Var::Value(SymbolRef::Input(i)))) else {
+                continue;
+            };
             let stem = input.unraw().to_string();
             let names = trig_names(graph, var, &stem, &read, 0, &mut presets);
             if names.iter().any(Option::is_some) {
                 let [sin, cos] = names.map(|name| name.map_or(quote!(_), |name| quote!(#name)));
-                input_trig = quote!(let (#sin, #cos) = ::mechgen::__private::sin_cos(#input););
+                input_trig
+                    .extend(quote!(let (#sin, #cos) = ::mechgen::__private::sin_cos(#input);));
             }
         }
         // Several angles share one `Turnings`, whose fresh sines and cosines come from one

@@ -20,11 +20,13 @@ pub(super) struct Normalised {
     pub(super) prologue: TokenStream,
     /// The scaled copy.
     pub(super) receiver: Ident,
-    /// The input, and its rate and acceleration, as the scaled copy takes them.
+    /// The inputs, and their rates and accelerations, as the scaled copy takes them (lists,
+    /// comma-separated).
     pub(super) input: TokenStream,
     pub(super) input_dot: TokenStream,
     pub(super) input_ddot: TokenStream,
-    /// Gives back an error the input of the caller's units, where the input is a length.
+    /// Gives back an error the input of the caller's units, where the input it names (the
+    /// first) is a length.
     pub(super) restore: Option<TokenStream>,
 }
 
@@ -37,14 +39,21 @@ impl Generator<'_> {
         let name = &self.model.name;
         let lengths = self.length_params();
         let fields = self.scaled_fields(&scale);
-        let input = &self.model.input.name;
-        let length_input = self.model.input.kind == Kind::Length;
-        let scaled = |value: &Ident| {
-            if length_input {
-                quote!(#value * #scale)
-            } else {
-                quote!(#value)
-            }
+        let input = self.first_input();
+        let length_input = self.model.inputs[0].kind == Kind::Length;
+        // Each input (or its rate, or acceleration) times the scale where it is a length.
+        let scaled = |values: Vec<&Ident>| {
+            let values = values
+                .into_iter()
+                .zip(&self.model.inputs)
+                .map(|(value, input)| {
+                    if input.kind == Kind::Length {
+                        quote!(#value * #scale)
+                    } else {
+                        quote!(#value)
+                    }
+                });
+            quote!(#(#values),*)
         };
         Normalised {
             prologue: quote! {
@@ -52,9 +61,9 @@ impl Generator<'_> {
                 let #receiver = #name { #(#fields),* };
             },
             receiver,
-            input: scaled(input),
-            input_dot: scaled(&self.input_dot),
-            input_ddot: scaled(&self.input_ddot),
+            input: scaled(self.inputs()),
+            input_dot: scaled(self.input_dots.iter().collect()),
+            input_ddot: scaled(self.input_ddots.iter().collect()),
             restore: length_input.then(|| {
                 let error = arg("failure");
                 quote!(.map_err(|#error| ::mechgen::__private::at_input(#error, #input)))
@@ -93,14 +102,16 @@ impl Generator<'_> {
     /// Whether to solve the mechanism as it is given (`mechgen::__private::as_given`, from
     /// its lengths and a length input): its size well inside the float's range.
     pub(super) fn as_given(&self) -> TokenStream {
-        let input = &self.model.input.name;
         let mut sizes: Vec<TokenStream> = self
             .length_params()
             .into_iter()
             .map(|length| quote!(self.#length))
             .collect();
-        if self.model.input.kind == Kind::Length {
-            sizes.push(quote!(#input));
+        for input in &self.model.inputs {
+            if input.kind == Kind::Length {
+                let name = &input.name;
+                sizes.push(quote!(#name));
+            }
         }
         quote!(::mechgen::__private::as_given(&[#(#sizes),*]))
     }
@@ -124,8 +135,10 @@ impl Generator<'_> {
     /// same bits (rounding is the same at every power-of-two scale while nothing overflows or
     /// underflows), and the common case pays for one sum and two comparisons.
     pub(super) fn normalised_newton(&self, entry: NewtonEntry, docs: TokenStream) -> TokenStream {
-        let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (input_params, input) = (self.input_params(), self.input_args());
+        let first_input = self.first_input();
+        let (input_dots, input_ddots) = (self.input_dot_params(), self.input_ddot_params());
+        let (input_dot, input_ddot) = (self.input_dot_args(), self.input_ddot_args());
         let (guess, options, failure) = (arg("guess"), arg("options"), arg("failure"));
         let (scale, unscale) = (local("scale"), local("unscale"));
         let (scaled_guess, scaled_options) = (local("scaled_guess"), local("scaled_options"));
@@ -165,7 +178,7 @@ impl Generator<'_> {
                 .map(|(values, quantity)| self.unscaled_unknowns(values, quantity));
                 (
                     quote!(motion_near),
-                    quote!(, #input_dot: T, #input_ddot: T),
+                    quote!(, #input_dots, #input_ddots),
                     quote!(, #scaled_dot, #scaled_ddot),
                     quote!(::mechgen::Motion<#unknowns, T>),
                     quote! {{
@@ -188,7 +201,7 @@ impl Generator<'_> {
         let (rate_parameters_again, plain_arguments) = match entry {
             NewtonEntry::Position => (TokenStream::new(), TokenStream::new()),
             NewtonEntry::MotionNear => (
-                quote!(, #input_dot: T, #input_ddot: T),
+                quote!(, #input_dots, #input_ddots),
                 quote!(, #input_dot, #input_ddot),
             ),
         };
@@ -203,7 +216,7 @@ impl Generator<'_> {
             #docs
             pub fn #name(
                 &self,
-                #input: T,
+                #input_params,
                 #guess: &#unknowns,
                 #options: &::mechgen::NewtonOptions<T>
                 #rate_parameters
@@ -220,7 +233,7 @@ impl Generator<'_> {
             #[inline(never)]
             fn #normalised(
                 &self,
-                #input: T,
+                #input_params,
                 #guess: &#unknowns,
                 #options: &::mechgen::NewtonOptions<T>
                 #rate_parameters_again
@@ -233,7 +246,7 @@ impl Generator<'_> {
                 };
                 let #solved = #receiver
                     .#solve(#scaled_input, &#scaled_guess, &#scaled_options #rate_arguments)
-                    .map_err(|#failure| ::mechgen::__private::newton_at_scale(#failure, #unscale, #input))?;
+                    .map_err(|#failure| ::mechgen::__private::newton_at_scale(#failure, #unscale, #first_input))?;
                 let #value = #solved.value;
                 ::core::result::Result::Ok(::mechgen::Solved {
                     value: #finish,

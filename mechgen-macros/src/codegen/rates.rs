@@ -12,13 +12,19 @@ use crate::symbolic::{ExprId, Step, Var};
 
 impl Generator<'_> {
     pub(super) fn velocity(&self) -> TokenStream {
-        let input = &self.model.input.name;
-        let input_dot = &self.input_dot;
+        let input_text = self.inputs_text();
+        let input_dot_text = self.input_dots_text();
+        let the_input = self.the_input();
         let (unknowns, _, _) = self.signature_types();
         let body = self.linear_solve(&self.equations.velocity_rhs, "velocity");
+        let solves = if self.model.inputs.len() == 1 {
+            format!("`J·q̇ = -(∂f/∂{input_text})·{input_dot_text}`")
+        } else {
+            "`J·q̇ = -Σ (∂f/∂u)·u̇` over the inputs `u`".to_string()
+        };
         let docs = format!(
-            "The unknowns' rates at a solved `position`, for the input moving at \
-             `{input_dot}`:\nsolves `J·q̇ = -(∂f/∂{input})·{input_dot}`.\n\n\
+            "The unknowns' rates at a solved `position`, for {the_input} moving at \
+             `{input_dot_text}`:\nsolves {solves}.\n\n\
              Errors: a non-finite argument; a singular Jacobian (a toggle, where the rates \
              are unbounded)."
         );
@@ -28,18 +34,31 @@ impl Generator<'_> {
     pub(super) fn acceleration(&self) -> TokenStream {
         let (unknowns, _, _) = self.signature_types();
         let body = self.linear_solve(&self.equations.acceleration_rhs, "acceleration");
-        let docs = "The unknowns' accelerations at a solved `position` and `velocity`, for the \
-             input's rate and acceleration.\nThe right-hand side is the second time derivative \
-             of the loops, so centripetal, Coriolis and sliding terms are all in it.\n\n\
-             Errors: a non-finite argument; a singular Jacobian.";
-        self.checked_function("acceleration", docs, 5, &unknowns, body)
+        let (rates, cross) = if self.model.inputs.len() == 1 {
+            ("input's rate and acceleration", "")
+        } else {
+            (
+                "inputs' rates and accelerations",
+                " (with the terms that cross the inputs' motions)",
+            )
+        };
+        let docs = format!(
+            "The unknowns' accelerations at a solved `position` and `velocity`, for the \
+             {rates}.\nThe right-hand side is the second time derivative of the loops{cross}, \
+             so centripetal, Coriolis and sliding terms are all in it.\n\n\
+             Errors: a non-finite argument; a singular Jacobian."
+        );
+        self.checked_function("acceleration", &docs, 5, &unknowns, body)
     }
 
     /// `motion_at(input, &position, rate, acceleration)`: velocity and acceleration at a
     /// solved position (from Newton, say) in one pass, every shared sine and product once.
     pub(super) fn motion_at(&self) -> TokenStream {
-        let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let (input_params, input) = (self.input_params(), self.input_args());
+        let (input_dot_text, input_ddot_text) = (self.input_dots_text(), self.input_ddots_text());
+        let the_input = self.the_input();
+        let (input_dot_params, input_ddot_params) =
+            (self.input_dot_params(), self.input_ddot_params());
         let position = arg("position");
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
@@ -65,28 +84,24 @@ impl Generator<'_> {
         let rate_solves = self.rate_solves(&outputs, &statements[0], &statements[1]);
         let (rates, accelerations) = (local("rates"), local("accelerations"));
         let accuracy = local("accuracy");
-        let labels = [
-            format!("input rate `{input_dot}`"),
-            format!("input acceleration `{input_ddot}`"),
-        ];
-        let [dot_label, ddot_label] = &labels;
+        let rates_check = self.input_rates_check();
         let docs = doc(&format!(
             "Velocity and acceleration at a solved `position` (from [`Self::position`], say) in \
-             one pass, for the input moving at `{input_dot}` and accelerating at \
-             `{input_ddot}`: what [`Self::velocity`] and [`Self::acceleration`] give, sharing \
+             one pass, for {the_input} moving at `{input_dot_text}` and accelerating at \
+             `{input_ddot_text}`: what [`Self::velocity`] and [`Self::acceleration`] give, sharing \
              their work.\n\nErrors: as [`Self::velocity`] and [`Self::acceleration`]."
         ));
         quote! {
             #docs
             pub fn motion_at(
                 &self,
-                #input: T,
+                #input_params,
                 #position: &#unknowns,
-                #input_dot: T,
-                #input_ddot: T,
+                #input_dot_params,
+                #input_ddot_params,
             ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 self.mechgen_check_finite(#input)?;
-                ::mechgen::__private::check_finite(&[(#input_dot, #dot_label), (#input_ddot, #ddot_label)])?;
+                #rates_check
                 ::mechgen::__private::finite(#position.to_array(), "position")?;
                 #bindings
                 #rate_solves

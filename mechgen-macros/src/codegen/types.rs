@@ -170,9 +170,9 @@ impl Generator<'_> {
     }
 
     /// `impl mechgen::Kinematics`, which lets the runtime's sweep walk the mechanism. Needs
-    /// the velocity for its predictor.
+    /// the velocity for its predictor, and one input to sweep.
     pub(super) fn kinematics_impl(&self) -> TokenStream {
-        if !self.model.outputs.velocity {
+        if !self.model.outputs.velocity || self.model.inputs.len() > 1 {
             return TokenStream::new();
         }
         let name = &self.model.name;

@@ -38,7 +38,7 @@ fn unit(graph: &mut Graph, angle: ExprId) -> [ExprId; 2] {
     let mut turns = Vec::new();
     for (term, negated) in terms {
         match graph.node(term) {
-            Node::Var(var @ Var::Value(SymbolRef::Input | SymbolRef::Unknown(_))) => {
+            Node::Var(var @ Var::Value(SymbolRef::Input(_) | SymbolRef::Unknown(_))) => {
                 turns.push((var, negated))
             }
             _ if negated => rest = graph.sub(rest, term),

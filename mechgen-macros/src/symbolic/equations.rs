@@ -27,8 +27,8 @@ pub struct Equations {
     pub residual: Vec<ExprId>,
     /// `∂residual/∂unknowns`, row-major.
     pub jacobian: Vec<Vec<ExprId>>,
-    /// `∂residual/∂input`.
-    pub input_jacobian: Vec<ExprId>,
+    /// `∂residual/∂inputs`, row-major (a row per residual, a column per input).
+    pub input_jacobian: Vec<Vec<ExprId>>,
     /// `-∂f/∂u·u̇`: the velocity solve's right-hand side.
     pub velocity_rhs: Vec<ExprId>,
     /// The acceleration solve's right-hand side.
@@ -121,27 +121,41 @@ impl Equations {
         let unknowns: Vec<Var> = (0..model.unknowns.len())
             .map(|i| Var::Value(SymbolRef::Unknown(i)))
             .collect();
-        let input = Var::Value(SymbolRef::Input);
+        let inputs: Vec<Var> = (0..model.inputs.len())
+            .map(|i| Var::Value(SymbolRef::Input(i)))
+            .collect();
         let jacobian: Vec<Vec<ExprId>> = residual
             .iter()
             .map(|&f| unknowns.iter().map(|&q| graph.partial(f, q)).collect())
             .collect();
-        let input_jacobian: Vec<ExprId> =
-            residual.iter().map(|&f| graph.partial(f, input)).collect();
+        // Each row's partial derivatives by the inputs, in their order.
+        let input_jacobian: Vec<Vec<ExprId>> = residual
+            .iter()
+            .map(|&f| inputs.iter().map(|&u| graph.partial(f, u)).collect())
+            .collect();
 
-        let input_rate = graph.var(Var::Rate(SymbolRef::Input));
+        // −Σ ∂f/∂u·u̇ over the inputs.
+        let input_rates: Vec<ExprId> = (0..model.inputs.len())
+            .map(|i| graph.var(Var::Rate(SymbolRef::Input(i))))
+            .collect();
         let velocity_rhs: Vec<ExprId> = input_jacobian
             .iter()
-            .map(|&fu| {
-                let product = graph.mul(fu, input_rate);
-                graph.neg(product)
+            .map(|row| {
+                let mut sum = None;
+                for (&fu, &rate) in row.iter().zip(&input_rates) {
+                    let product = graph.mul(fu, rate);
+                    sum = Some(match sum {
+                        None => product,
+                        Some(sum) => graph.add(sum, product),
+                    });
+                }
+                let sum = sum.expect("a mechanism has an input");
+                graph.neg(sum)
             })
             .collect();
 
         // Every variable a loop can depend on, in a fixed order so expansions are stable.
-        let position_vars: Vec<Var> = std::iter::once(input)
-            .chain(unknowns.iter().copied())
-            .collect();
+        let position_vars: Vec<Var> = inputs.iter().chain(unknowns.iter()).copied().collect();
         let rate_vars: Vec<Var> = position_vars
             .iter()
             .filter_map(|v| v.time_derivative())

@@ -6,6 +6,7 @@
 
 mod analyse;
 mod output;
+mod robot;
 mod seeds;
 mod six_bars;
 mod svg;
@@ -32,6 +33,9 @@ enum Command {
     Analyse(analyse::Args),
     /// A full turn (or the reachable range) on one branch, as CSV and SVG.
     Sweep(sweep::Args),
+    /// The five-bar parallel robot (two driven cranks): its end effector, rates and
+    /// singularities at given cranks' angles, or the cranks that reach a given point.
+    Robot(robot::Args),
     /// The course notes' worked examples next to the values the notes print.
     Seeds,
     /// How far a four-bar's output and coupler point move when its dimensions are off by
@@ -133,6 +137,7 @@ fn main() -> ExitCode {
         None => analyse::run(&analyse::Args::example_1()),
         Some(Command::Analyse(args)) => analyse::run(&args),
         Some(Command::Sweep(args)) => sweep::run(&args),
+        Some(Command::Robot(args)) => robot::run(&args),
         Some(Command::Seeds) => seeds::run().map_err(|e| e.to_string()),
         Some(Command::Tolerance(args)) => tolerance::run(&args),
         Some(Command::Synthesise { task }) => synthesise::run(&task),

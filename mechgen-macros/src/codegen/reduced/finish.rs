@@ -50,7 +50,7 @@ impl Generator<'_> {
         extra: &[ExprId],
         rates: bool,
     ) -> Finish {
-        let input = &self.model.input.name;
+        let first_input = self.first_input();
         let after = &reduction.after;
         let last = after.len();
         let mut stage_of = vec![0; self.model.unknowns.len()];
@@ -100,7 +100,7 @@ impl Generator<'_> {
                 .map(|d| self.angle_near_guess(d.unknown, &d.direction));
             solves.push(quote! {
                 #(#computed)*
-                let #pattern = #call.map_err(|#failure| #failure.at(#input))?;
+                let #pattern = #call.map_err(|#failure| #failure.at(#first_input))?;
                 #trig
                 #(#angles)*
             });

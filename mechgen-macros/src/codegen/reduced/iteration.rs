@@ -49,7 +49,8 @@ impl Generator<'_> {
     ) -> Iteration {
         let graph = &self.equations.graph;
         let model = self.model;
-        let input = &model.input.name;
+        let input = self.input_args();
+        let first_input = self.first_input();
         let (guess, options, x, converged) =
             (arg("guess"), arg("options"), arg("x"), arg("converged"));
         let (reduced, failure) = (arg("reduced"), arg("failure"));
@@ -284,7 +285,7 @@ impl Generator<'_> {
                 payload: [T::nan(); #payload_count],
             };
             let #converged = match ::mechgen::__private::newton(
-                #input,
+                #first_input,
                 [#(#guess.#iterated),*],
                 #options,
                 #orientation,

@@ -47,7 +47,7 @@ use iteration::Iteration;
 impl Generator<'_> {
     /// `position` by the reduced iteration, and the Newton on every unknown it falls back to.
     pub(super) fn reduced_position(&self, reduction: &Reduction) -> TokenStream {
-        let input = &self.model.input.name;
+        let (input_params, input) = (self.input_params(), self.input_args());
         let (guess, options) = (arg("guess"), arg("options"));
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
@@ -106,7 +106,7 @@ impl Generator<'_> {
             #[inline]
             fn #inner(
                 &self,
-                #input: T,
+                #input_params,
                 #guess: &#unknowns,
                 #options: &::mechgen::NewtonOptions<T>,
             ) -> ::core::result::Result<::mechgen::Solved<#unknowns, T>, ::mechgen::Error<T>> {
@@ -132,8 +132,10 @@ impl Generator<'_> {
     /// Jacobian, from the values its last evaluation named, solved through its blocks (see
     /// [`block_solver`]).
     pub(super) fn reduced_motion_near(&self, reduction: &Reduction) -> TokenStream {
-        let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let input = self.input_args();
+        let (input_dot, input_ddot) = (self.input_dot_args(), self.input_ddot_args());
+        let (input_dot_text, input_ddot_text) = (self.input_dots_text(), self.input_ddots_text());
+        let the_input = self.the_input();
         let (guess, options, solved) = (arg("guess"), arg("options"), arg("solved"));
         let ty = &self.unknowns_type;
         let n = self.model.unknowns.len();
@@ -202,7 +204,7 @@ impl Generator<'_> {
         let docs = doc(&format!(
             "Position by Newton-Raphson from `guess` (as [`Self::position`]: on the iterated \
              unknowns, the rest in closed form), then velocity and acceleration at the solution \
-             for the input moving at `{input_dot}` and accelerating at `{input_ddot}` (as \
+             for {the_input} moving at `{input_dot_text}` and accelerating at `{input_ddot_text}` (as \
              [`Self::motion_at`]), from the loops' Jacobian evaluated once at the solution with \
              the sines, cosines and products of Newton's last evaluation: the fastest way to \
              all three without a closed form.\n\nErrors: as [`Self::position`] and \
@@ -250,7 +252,7 @@ impl Generator<'_> {
     /// The docs' account of the reduction: which unknowns Newton iterates on, which loops are
     /// solved in closed form for which, and the stopping rules.
     fn reduction_doc(&self, reduction: &Reduction) -> String {
-        let input = &self.model.input.name;
+        let input_text = self.inputs_text();
         let name = |u: usize| format!("`{}`", self.model.unknowns[u].name.unraw());
         let iterated = list(reduction.iterated.iter().map(|&u| name(u)).collect());
         let loops = |ls: &[usize]| list(ls.iter().map(|l| format!("loop {}", l + 1)).collect());
@@ -279,7 +281,7 @@ impl Generator<'_> {
             )
         };
         format!(
-            "Solves the loops for the unknowns at `{input}` by a safeguarded Newton-Raphson \
+            "Solves the loops for the unknowns at `{input_text}` by a safeguarded Newton-Raphson \
              from `guess` (see `mechgen::__private::newton`: halved steps, a certified root, \
              stagnation reported) on {iterated} alone: each evaluation solves, in closed form \
              and in this order, {}, then {residual_loops} gives the residual Newton drives to \

@@ -34,9 +34,9 @@ impl Generator<'_> {
         } = kernel;
         // Fast and batch kernels pass a failure on as NaN, for the checked kernel to explain.
         let lanes = *mode != Mode::Checked;
-        let input = &self.model.input.name;
+        let input = &self.model.inputs[0].name;
         // A length input was scaled with the mechanism; an error reports it as given.
-        let input = if self.model.input.kind == Kind::Length {
+        let input = if self.model.inputs[0].kind == Kind::Length {
             quote!((#input * self.unscale))
         } else {
             quote!(#input)

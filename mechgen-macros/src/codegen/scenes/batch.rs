@@ -29,7 +29,7 @@ impl Generator<'_> {
             body,
             fields,
         } = parts;
-        let input = &self.model.input.name;
+        let input = &self.model.inputs[0].name;
         let output_type = self.scene_output_type(scene);
         let name = &scene.name;
         let batch = format_ident!("{}_batch", name.unraw());

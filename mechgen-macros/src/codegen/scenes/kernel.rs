@@ -32,8 +32,8 @@ impl Generator<'_> {
     ) -> TokenStream {
         let lanes = mode == Mode::Lanes;
         let graph = &self.equations.graph;
-        let input = &self.model.input.name;
-        let (input_dot, input_ddot) = (&self.input_dot, &self.input_ddot);
+        let input = &self.model.inputs[0].name;
+        let (input_dot, input_ddot) = (&self.input_dots[0], &self.input_ddots[0]);
         let order = scene.order();
         let outputs = scene_outputs(scene, straight);
         let needed = needed_aux(graph, straight, &outputs, mode);
@@ -52,8 +52,8 @@ impl Generator<'_> {
         // The input's sine and cosine come first, before anything is read from `self`, so
         // that nothing lives across the call.
         let input_trig = graph
-            .lookup(Node::Var(Var::Value(SymbolRef::Input)))
-            .filter(|_| self.model.input.kind == crate::model::Kind::Angle)
+            .lookup(Node::Var(Var::Value(SymbolRef::Input(0))))
+            .filter(|_| self.model.inputs[0].kind == crate::model::Kind::Angle)
             .map(|var| {
                 let stem = input.unraw().to_string();
                 let (sin, cos) = (local(&format!("sin_{stem}")), local(&format!("cos_{stem}")));
@@ -175,7 +175,7 @@ impl Generator<'_> {
         }
         // A length input, its rate and acceleration, in the scaled units.
         let scaled_inputs = |names: &[&Ident]| {
-            if self.model.input.kind != Kind::Length {
+            if self.model.inputs[0].kind != Kind::Length {
                 return TokenStream::new();
             }
             let names = names.iter();
@@ -311,7 +311,7 @@ impl Generator<'_> {
         };
         // The arguments as given, for the checked kernel: a length input is rescaled below.
         let passed = self.checked_arguments(scene);
-        let (given, keep) = if self.model.input.kind == Kind::Length {
+        let (given, keep) = if self.model.inputs[0].kind == Kind::Length {
             let given: Vec<Ident> = passed
                 .iter()
                 .map(|name| local(&format!("given_{}", name.unraw())))
@@ -358,17 +358,17 @@ impl Generator<'_> {
     pub(super) fn checked_arguments(&self, scene: &Scene) -> Vec<Ident> {
         let order = scene.order();
         let steps = self.equations.closed_form.as_deref().unwrap_or_default();
-        let mut pass = vec![self.model.input.name.clone()];
+        let mut pass = vec![self.model.inputs[0].name.clone()];
         match steps.iter().filter(|step| step.case.has_branches()).count() {
             0 => {}
             1 => pass.push(arg("branch")),
             _ => pass.push(arg("branches")),
         }
         if order >= Order::Rate {
-            pass.push(self.input_dot.clone());
+            pass.push(self.input_dots[0].clone());
         }
         if order >= Order::Acceleration {
-            pass.push(self.input_ddot.clone());
+            pass.push(self.input_ddots[0].clone());
         }
         pass
     }

@@ -1,0 +1,175 @@
+//! The five-bar parallel robot: two driven cranks, one end effector.
+
+use mechgen::{Real, Vec2, mechanism};
+
+use crate::dimensions::{DimensionError, non_negative, positive};
+
+mechanism! {
+    /// Five-bar parallel robot (a 2-DOF planar manipulator): motors at O1 = (0, 0) and
+    /// O5 = (l5, 0) drive the proximal links, `l1` from O1 to the left elbow A1 at the input
+    /// `theta1` and `l4` from O5 to the right elbow A2 at the input `theta4`; the distal
+    /// links, `l2` from A1 at `theta2` and `l3` from A2 at `theta3`, meet at the end
+    /// effector P.
+    ///
+    /// Loop: `l1 @ theta1 + l2 @ theta2 - l3 @ theta3 - l4 @ theta4 - l5 @ 0 = 0`: P reached
+    /// through either leg. Build one with [`FiveBar::new`], which checks the lengths.
+    ///
+    /// Every generated function takes both inputs, in that order (`theta1`, then `theta4`),
+    /// and, for rates and accelerations, both inputs' rates, then both accelerations: the
+    /// accelerations are the full second derivative, the terms that cross the two inputs'
+    /// motions included. The generated [`assemble`](Self::assemble) places P where the circle
+    /// of radius `l2` about A1 meets the circle of radius `l3` about A2; its branch (the
+    /// robot's working mode) is the side of the line A1 A2 that P lies on: `Open` to the left
+    /// of A1 → A2 (P above the elbows when A2 is to the right of A1), `Crossed` to the
+    /// right.
+    ///
+    /// ```
+    /// use mechanisms::FiveBar;
+    /// use mechgen::Branch;
+    /// // A symmetric robot with both cranks straight up: P straight above the middle.
+    /// let robot = FiveBar::new(100.0, 200.0, 200.0, 100.0, 100.0)?;
+    /// let (left, right) = (90f64.to_radians(), 90f64.to_radians());
+    /// let q = robot.assemble(left, right, Branch::Open)?;
+    /// let p = robot.points(left, right, &q)?.end_effector;
+    /// assert!((p.x - 50.0).abs() < 1e-12);
+    /// assert!((p.y - (100.0 + (200f64.powi(2) - 50f64.powi(2)).sqrt())).abs() < 1e-12);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub struct FiveBar {
+        params:
+            /// Left proximal link O1 A1, driven at O1.
+            l1,
+            /// Left distal link A1 P.
+            l2,
+            /// Right distal link A2 P.
+            l3,
+            /// Right proximal link O5 A2, driven at O5.
+            l4,
+            /// Base O1 O5, between the motors.
+            l5;
+        input: theta1: angle, theta4: angle;
+        unknowns: theta2: angle, theta3: angle;
+        loop: l1 @ theta1 + l2 @ theta2 - l3 @ theta3 - l4 @ theta4 - l5 @ 0;
+        /// A1, the left elbow.
+        point left_elbow = l1 @ theta1;
+        /// A2, the right elbow.
+        point right_elbow = l5 @ 0 + l4 @ theta4;
+        /// P, the end effector.
+        point end_effector = l1 @ theta1 + l2 @ theta2;
+        generate: position, velocity, acceleration;
+    }
+}
+
+/// How near a five-bar is to each kind of singularity, as sines of the angles that vanish
+/// there (each in [0, 1]; 0 at the singularity, 1 at the best posture).
+///
+/// ```
+/// use mechanisms::FiveBar;
+/// use mechgen::Branch;
+/// let robot = FiveBar::new(100.0, 200.0, 200.0, 100.0, 100.0)?;
+/// let (left, right) = (120f64.to_radians(), 60f64.to_radians());
+/// let q = robot.assemble(left, right, Branch::Open)?;
+/// let near = robot.singularities(left, right, &q);
+/// assert!(near.parallel > 0.5 && near.serial[0] > 0.5 && near.serial[1] > 0.5);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Singularities<T> {
+    /// `|sin(θ3 − θ2)|`: zero where the distal links line up (the passive joint at P
+    /// folds or stretches). There the loop's Jacobian is singular: the motors hold, yet P
+    /// can move along the normal to the line (a parallel, or type II, singularity; the
+    /// solvers say [`mechgen::Error::Singular`] for its rates, and positions there are at
+    /// the edge of the range of motion for the given cranks).
+    pub parallel: T,
+    /// `[|sin(θ2 − θ1)|, |sin(θ3 − θ4)|]`: zero where a leg's proximal and distal links
+    /// line up (the left or right elbow folds or stretches). There P is at the edge of the
+    /// workspace of that leg and cannot move along the leg, whatever its motor does (a
+    /// serial, or type I, singularity: the inverse kinematics' Jacobian is singular).
+    pub serial: [T; 2],
+}
+
+impl<T: Real> FiveBar<T> {
+    /// A five-bar with proximal links `l1` (left) and `l4` (right), distal links `l2`
+    /// (left) and `l3` (right), and motors `l5` apart, each checked: every link positive
+    /// and finite, the base not negative (0 puts both motors on one axis).
+    pub fn new(l1: T, l2: T, l3: T, l4: T, l5: T) -> Result<Self, DimensionError<T>> {
+        Ok(FiveBar {
+            l1: positive("l1", l1)?,
+            l2: positive("l2", l2)?,
+            l3: positive("l3", l3)?,
+            l4: positive("l4", l4)?,
+            l5: non_negative("l5", l5)?,
+        })
+    }
+
+    /// How near the position `q` at the cranks' angles `theta1` and `theta4` is to each kind
+    /// of singularity (see [`Singularities`]).
+    pub fn singularities(&self, theta1: T, theta4: T, q: &FiveBarUnknowns<T>) -> Singularities<T> {
+        Singularities {
+            parallel: (q.theta3 - q.theta2).sin().abs(),
+            serial: [
+                (q.theta2 - theta1).sin().abs(),
+                (q.theta3 - theta4).sin().abs(),
+            ],
+        }
+    }
+
+    /// Whether the end effector can reach `p`: within each leg's annulus, between
+    /// `|l1 − l2|` and `l1 + l2` from O1, and between `|l4 − l3|` and `l4 + l3` from O5
+    /// (the workspace is the two annuli's intersection; on its boundary a leg is in a
+    /// serial singularity).
+    pub fn reaches(&self, p: Vec2<T>) -> bool {
+        let from_left = p.x.hypot(p.y);
+        let from_right = (p.x - self.l5).hypot(p.y);
+        let within = |distance: T, a: T, b: T| distance >= (a - b).abs() && distance <= a + b;
+        within(from_left, self.l1, self.l2) && within(from_right, self.l4, self.l3)
+    }
+
+    /// The cranks' angles `[theta1, theta4]` that put the end effector at `p`, with each
+    /// leg's elbow on the side `elbows` chooses: `elbows[k]` positive puts the leg's elbow
+    /// to the left of the line from its motor to `p` (counter-clockwise from it), negative
+    /// to the right: for a point above the base, `[1, -1]` bends both elbows outward, away
+    /// from each other. `None` where `p` is outside the workspace ([`FiveBar::reaches`]).
+    ///
+    /// ```
+    /// use mechanisms::FiveBar;
+    /// use mechgen::{Branch, Vec2};
+    /// let robot = FiveBar::new(100.0, 200.0, 200.0, 100.0, 100.0)?;
+    /// let [left, right] = robot.inverse(Vec2 { x: 50.0f64, y: 250.0 }, [1.0, -1.0]).unwrap();
+    /// let q = robot.assemble(left, right, Branch::Open)?;
+    /// let p = robot.points(left, right, &q)?.end_effector;
+    /// assert!((p.x - 50.0).abs() < 1e-9 && (p.y - 250.0).abs() < 1e-9);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn inverse(&self, p: Vec2<T>, elbows: [T; 2]) -> Option<[T; 2]> {
+        if !self.reaches(p) {
+            return None;
+        }
+        // Each leg is a triangle motor–elbow–P: the crank leaves the line motor → P at the
+        // triangle's angle at the motor, to the side the elbow is on.
+        let leg = |motor: Vec2<T>, proximal: T, distal: T, side: T| {
+            let (dx, dy) = (p.x - motor.x, p.y - motor.y);
+            let reach = dx.hypot(dy);
+            let at_motor = crate::triangle::angle(proximal, reach, distal);
+            let toward = dy.atan2(dx);
+            if side >= T::zero() {
+                toward + at_motor
+            } else {
+                toward - at_motor
+            }
+        };
+        let zero = T::zero();
+        Some([
+            leg(Vec2 { x: zero, y: zero }, self.l1, self.l2, elbows[0]),
+            leg(
+                Vec2 {
+                    x: self.l5,
+                    y: zero,
+                },
+                self.l4,
+                self.l3,
+                elbows[1],
+            ),
+        ])
+    }
+}
