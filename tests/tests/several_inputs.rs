@@ -1,7 +1,9 @@
-//! The five-bar parallel robot, a declaration with two inputs: its end effector against an
-//! independent circle intersection, its rates and accelerations against finite differences
-//! in both inputs (the cross terms included), its workspace against its inverse kinematics,
-//! and both kinds of singularity.
+//! Declarations of several inputs. The five-bar parallel robot (two): its end effector
+//! against an independent circle intersection, its rates and accelerations against finite
+//! differences in both inputs (the cross terms included), its workspace against its inverse
+//! kinematics, and both kinds of singularity. A 3-RRR planar parallel manipulator (three
+//! inputs, three coupled loops, no closed form), declared here: its platform found by Newton
+//! from the three cranks that an independent inverse kinematics gives for it.
 
 use mechanisms::{FiveBar, FiveBarUnknowns};
 use mechgen::{Branch, Error, NewtonOptions, Vec2};
@@ -412,4 +414,189 @@ fn bad_arguments_are_errors() {
     ));
     assert!(FiveBar::new(1.0, -2.0, 2.0, 1.0, 1.0).is_err());
     assert!(FiveBar::new(1.0, 2.0, 2.0, 1.0, -1.0).is_err());
+}
+
+mechgen::mechanism! {
+    /// A 3-RRR planar parallel manipulator: three legs, each a motor at `(ak_x, ak_y)`
+    /// turning a proximal link `pk` at the input `thetak`, a distal link `dk` at `psik`, and
+    /// the platform's vertex k at `r` from its centre `(x, y)`, at `phi` plus the vertex's
+    /// own angle. Three inputs, six unknowns, three coupled loops: no closed form.
+    pub struct ThreeRrr {
+        params: a1_x, a1_y, a2_x, a2_y, a3_x, a3_y, p1, p2, p3, d1, d2, d3, r,
+            gamma2: angle, gamma3: angle;
+        input: theta1: angle, theta2: angle, theta3: angle;
+        unknowns: x: length, y: length, phi: angle, psi1: angle, psi2: angle, psi3: angle;
+        loop: a1_x @ 0 + a1_y @ (pi / 2) + p1 @ theta1 + d1 @ psi1 - x @ 0 - y @ (pi / 2)
+            - r @ phi;
+        loop: a2_x @ 0 + a2_y @ (pi / 2) + p2 @ theta2 + d2 @ psi2 - x @ 0 - y @ (pi / 2)
+            - r @ (phi + gamma2);
+        loop: a3_x @ 0 + a3_y @ (pi / 2) + p3 @ theta3 + d3 @ psi3 - x @ 0 - y @ (pi / 2)
+            - r @ (phi + gamma3);
+        point centre = x @ 0 + y @ (pi / 2);
+    }
+}
+
+/// A symmetric 3-RRR: motors on a circle of radius 2 at 90°, 210° and 330°, links 1 and 1.2,
+/// a platform of radius 0.4 with its vertices 120° apart.
+fn three_rrr() -> ThreeRrr<f64> {
+    let motor = |degrees: f64| {
+        let (s, c) = degrees.to_radians().sin_cos();
+        (2.0 * c, 2.0 * s)
+    };
+    let (a1, a2, a3) = (motor(90.0), motor(210.0), motor(330.0));
+    ThreeRrr {
+        a1_x: a1.0,
+        a1_y: a1.1,
+        a2_x: a2.0,
+        a2_y: a2.1,
+        a3_x: a3.0,
+        a3_y: a3.1,
+        p1: 1.0,
+        p2: 1.0,
+        p3: 1.0,
+        d1: 1.2,
+        d2: 1.2,
+        d3: 1.2,
+        r: 0.4,
+        gamma2: 120f64.to_radians(),
+        gamma3: 240f64.to_radians(),
+    }
+}
+
+/// The inverse kinematics of the symmetric 3-RRR, computed independently: for the platform
+/// at `(x, y, phi)`, each leg's crank and distal angles (the elbow on the left of the line
+/// from the motor to the vertex), or `None` where a leg cannot reach.
+fn three_rrr_inverse(linkage: &ThreeRrr<f64>, [x, y, phi]: [f64; 3]) -> Option<[[f64; 2]; 3]> {
+    let motors = [
+        (linkage.a1_x, linkage.a1_y),
+        (linkage.a2_x, linkage.a2_y),
+        (linkage.a3_x, linkage.a3_y),
+    ];
+    let offsets = [0.0, linkage.gamma2, linkage.gamma3];
+    let mut legs = [[0.0; 2]; 3];
+    for k in 0..3 {
+        let (p, d) = (
+            [linkage.p1, linkage.p2, linkage.p3][k],
+            [linkage.d1, linkage.d2, linkage.d3][k],
+        );
+        let vertex = (
+            x + linkage.r * (phi + offsets[k]).cos(),
+            y + linkage.r * (phi + offsets[k]).sin(),
+        );
+        let (dx, dy) = (vertex.0 - motors[k].0, vertex.1 - motors[k].1);
+        let reach = dx.hypot(dy);
+        let cosine = (p * p + reach * reach - d * d) / (2.0 * p * reach);
+        if cosine.abs() >= 1.0 {
+            return None;
+        }
+        let theta = dy.atan2(dx) + cosine.acos();
+        let elbow = (motors[k].0 + p * theta.cos(), motors[k].1 + p * theta.sin());
+        let psi = (vertex.1 - elbow.1).atan2(vertex.0 - elbow.0);
+        legs[k] = [theta, psi];
+    }
+    Some(legs)
+}
+
+#[test]
+fn a_three_rrr_platform_is_found_from_its_three_cranks() {
+    let linkage = three_rrr();
+    let options = NewtonOptions::default();
+    let mut draws = Draws(0x3a3);
+    let mut solved = 0;
+    for _ in 0..200 {
+        let pose = [
+            draws.between(-0.4, 0.4),
+            draws.between(-0.4, 0.4),
+            draws.between(-0.5, 0.5),
+        ];
+        let Some(legs) = three_rrr_inverse(&linkage, pose) else {
+            continue;
+        };
+        let [theta1, theta2, theta3] = legs.map(|[theta, _]| theta);
+        let exact = ThreeRrrUnknowns {
+            x: pose[0],
+            y: pose[1],
+            phi: pose[2],
+            psi1: legs[0][1],
+            psi2: legs[1][1],
+            psi3: legs[2][1],
+        };
+        // Newton from a guess off by a little in every unknown.
+        let guess = ThreeRrrUnknowns {
+            x: exact.x + 0.02,
+            y: exact.y - 0.01,
+            phi: exact.phi + 0.02,
+            psi1: exact.psi1 - 0.02,
+            psi2: exact.psi2 + 0.01,
+            psi3: exact.psi3 + 0.02,
+        };
+        let found = linkage
+            .position(theta1, theta2, theta3, &guess, &options)
+            .unwrap()
+            .value;
+        for (got, want) in found.to_array().iter().zip(exact.to_array()) {
+            assert!((got - want).abs() < 1e-9, "{found:?} vs {exact:?}");
+        }
+        // The platform's rates by a central difference of Newton's positions.
+        let rates = [0.3, -0.2, 0.5];
+        let v = linkage
+            .velocity(theta1, theta2, theta3, &found, rates[0], rates[1], rates[2])
+            .unwrap();
+        let h = 1e-6;
+        let at = |t: f64| {
+            linkage
+                .position(
+                    theta1 + rates[0] * t,
+                    theta2 + rates[1] * t,
+                    theta3 + rates[2] * t,
+                    &found,
+                    &options,
+                )
+                .unwrap()
+                .value
+                .to_array()
+        };
+        let (before, after) = (at(-h), at(h));
+        for ((b, a), rate) in before.iter().zip(after).zip(v.to_array()) {
+            assert!(((a - b) / (2.0 * h) - rate).abs() < 1e-6, "{rate}");
+        }
+        // motion_near's accelerations are those of the separate solves.
+        let accelerations = [0.1, 0.0, -0.3];
+        let near = linkage
+            .motion_near(
+                theta1,
+                theta2,
+                theta3,
+                &guess,
+                &options,
+                rates[0],
+                rates[1],
+                rates[2],
+                accelerations[0],
+                accelerations[1],
+                accelerations[2],
+            )
+            .unwrap()
+            .value;
+        let a = linkage
+            .acceleration(
+                theta1,
+                theta2,
+                theta3,
+                &found,
+                rates[0],
+                rates[1],
+                rates[2],
+                &v,
+                accelerations[0],
+                accelerations[1],
+                accelerations[2],
+            )
+            .unwrap();
+        for (x, y) in near.acceleration.to_array().iter().zip(a.to_array()) {
+            assert!((x - y).abs() < 1e-9 * (1.0 + y.abs()), "{x} vs {y}");
+        }
+        solved += 1;
+    }
+    assert!(solved > 50, "{solved} poses");
 }
