@@ -117,6 +117,17 @@ impl Scalar {
         }
     }
 
+    /// The names it mentions, left to right (`pi` among them).
+    pub fn names(&self) -> Box<dyn Iterator<Item = &Ident> + '_> {
+        match self {
+            Scalar::Name(name) => Box::new(std::iter::once(name)),
+            Scalar::Number(..) | Scalar::Degrees(..) => Box::new(std::iter::empty()),
+            Scalar::Neg(_, inner) => inner.names(),
+            Scalar::Binary(_, _, left, right) => Box::new(left.names().chain(right.names())),
+            Scalar::Call(_, arguments, _) => Box::new(arguments.iter().flat_map(Scalar::names)),
+        }
+    }
+
     /// The span of the expression's last token.
     pub fn last_span(&self) -> Span {
         match self {

@@ -11,6 +11,7 @@ mod ast;
 mod codegen;
 mod errors;
 mod expand;
+mod formula;
 mod model;
 mod scene;
 mod structure;

@@ -13,6 +13,7 @@ use syn::{Attribute, Ident, Visibility};
 
 use crate::ast::{self, BinaryOp, Declaration, Scalar, Section, SymbolDecl};
 use crate::errors::Errors;
+use crate::formula::{Formula, Function};
 use crate::scene::{self, Scene};
 
 /// Whether a symbol is a length or an angle. Magnitudes must be lengths, angles angles.
@@ -48,42 +49,56 @@ pub struct Symbol {
     pub vis: Visibility,
 }
 
-/// `Σ coefficient·symbol + constant`: every scalar in a loop is linear in the declared names.
+/// `Σ coefficient·symbol + Σ coefficient·formula + constant`: every scalar in a loop is
+/// linear in the declared names; formulas of the parameters (see [`Formula`]) are terms of
+/// their own.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Linear {
     pub coefficients: BTreeMap<SymbolRef, f64>,
+    pub formulas: Vec<(f64, Formula)>,
     pub constant: f64,
 }
 
 impl Linear {
     fn constant(value: f64) -> Self {
         Linear {
-            coefficients: BTreeMap::new(),
             constant: value,
+            ..Linear::default()
         }
     }
 
     fn symbol(symbol: SymbolRef) -> Self {
         Linear {
             coefficients: BTreeMap::from([(symbol, 1.0)]),
-            constant: 0.0,
+            ..Linear::default()
+        }
+    }
+
+    fn formula(formula: Formula) -> Self {
+        Linear {
+            formulas: vec![(1.0, formula)],
+            ..Linear::default()
         }
     }
 
     fn scaled(mut self, factor: f64) -> Self {
         self.coefficients.values_mut().for_each(|c| *c *= factor);
+        self.formulas.iter_mut().for_each(|(c, _)| *c *= factor);
         self.constant *= factor;
         self
     }
 
     fn divided(mut self, divisor: f64) -> Self {
         self.coefficients.values_mut().for_each(|c| *c /= divisor);
+        self.formulas.iter_mut().for_each(|(c, _)| *c /= divisor);
         self.constant /= divisor;
         self
     }
 
     fn is_finite(&self) -> bool {
-        self.constant.is_finite() && self.coefficients.values().all(|c| c.is_finite())
+        self.constant.is_finite()
+            && self.coefficients.values().all(|c| c.is_finite())
+            && self.formulas.iter().all(|(c, _)| c.is_finite())
     }
 
     fn plus(mut self, other: Linear) -> Self {
@@ -91,12 +106,13 @@ impl Linear {
             *self.coefficients.entry(symbol).or_insert(0.0) += coefficient;
         }
         self.coefficients.retain(|_, c| *c != 0.0);
+        self.formulas.extend(other.formulas);
         self.constant += other.constant;
         self
     }
 
     fn as_constant(&self) -> Option<f64> {
-        self.coefficients.is_empty().then_some(self.constant)
+        (self.coefficients.is_empty() && self.formulas.is_empty()).then_some(self.constant)
     }
 }
 
@@ -658,8 +674,18 @@ impl Scope {
                 }
             },
             Scalar::Neg(_, inner) => Some(self.linear(inner, expected, errors)?.scaled(-1.0)),
-            Scalar::Call(function, ..) => {
-                let value = constant_value(scalar, function, errors)?;
+            // A function of parameters: a formula, a term of its own.
+            Scalar::Call(..) if scalar.names().any(|name| name != "pi") => {
+                self.formula_term(scalar, expected, errors)
+            }
+            // A product or quotient of parameters (not of a number): a formula too.
+            Scalar::Binary(BinaryOp::Mul | BinaryOp::Div, _, left, right)
+                if self.of_parameters(left) && self.of_parameters(right) =>
+            {
+                self.formula_term(scalar, expected, errors)
+            }
+            Scalar::Call(..) => {
+                let value = constant_value(scalar);
                 if value.is_finite() {
                     Some(Linear::constant(value))
                 } else {
@@ -703,6 +729,142 @@ impl Scope {
                 }
             }
         }
+    }
+}
+
+impl Scope {
+    /// Whether `scalar` mentions a name and every name it mentions is a parameter (or `pi`):
+    /// a factor that makes a product of parameters a formula rather than an error.
+    fn of_parameters(&self, scalar: &Scalar) -> bool {
+        let mut names = scalar.names().filter(|name| *name != "pi").peekable();
+        names.peek().is_some()
+            && names.all(|name| {
+                matches!(
+                    self.names.get(&name.to_string()),
+                    Some((SymbolRef::Param(_), _))
+                )
+            })
+    }
+
+    /// `scalar` as a formula term of kind `expected`: a magnitude's formula must be a length
+    /// (of degree 1 in length), an angle's an angle or a number (of degree 0).
+    fn formula_term(
+        &mut self,
+        scalar: &Scalar,
+        expected: Kind,
+        errors: &mut Errors,
+    ) -> Option<Linear> {
+        let (formula, degree) = self.formula(scalar, errors)?;
+        let wanted = match expected {
+            Kind::Length => 1.0,
+            Kind::Angle => 0.0,
+        };
+        if degree != wanted {
+            let place = match expected {
+                Kind::Length => "a vector's magnitude must be a length",
+                Kind::Angle => "a vector's angle must be an angle or a number",
+            };
+            errors.push(scalar.error(format!("`{scalar}` is {}: {place}", dimension(degree))));
+            return None;
+        }
+        Some(Linear::formula(formula))
+    }
+
+    /// Resolves `scalar` as a formula of numbers and parameters, with its degree in length
+    /// (see [`crate::formula`]). `None` means an error was recorded.
+    fn formula(&mut self, scalar: &Scalar, errors: &mut Errors) -> Option<(Formula, f64)> {
+        match scalar {
+            Scalar::Number(value, _) => Some((Formula::Number(*value), 0.0)),
+            Scalar::Degrees(value, _) => Some((Formula::Number(value.to_radians()), 0.0)),
+            Scalar::Name(name) => match self.names.get(&name.to_string()).copied() {
+                Some((symbol @ SymbolRef::Param(i), kind)) => {
+                    self.seen.insert(symbol);
+                    let degree = if kind == Some(Kind::Angle) { 0.0 } else { 1.0 };
+                    Some((Formula::Param(i), degree))
+                }
+                Some((symbol, _)) => {
+                    self.seen.insert(symbol);
+                    let what = match symbol {
+                        SymbolRef::Input(_) => "an input",
+                        _ => "an unknown",
+                    };
+                    errors.error_at(
+                        name,
+                        format!(
+                            "`{name}` is {what}: products and functions take numbers and \
+                             parameters only, so that the loops stay linear in the inputs and \
+                             unknowns"
+                        ),
+                    );
+                    None
+                }
+                None if name == "pi" => Some((Formula::Number(std::f64::consts::PI), 0.0)),
+                // Not declared: the linear resolution says so, with its hints.
+                None => self.linear(scalar, Kind::Length, errors).and(None),
+            },
+            Scalar::Neg(_, inner) => {
+                let (inner, degree) = self.formula(inner, errors)?;
+                Some((Formula::Neg(Box::new(inner)), degree))
+            }
+            Scalar::Binary(op, op_span, left, right) => {
+                let l = self.formula(left, errors);
+                let r = self.formula(right, errors);
+                let ((a, da), (b, db)) = (l?, r?);
+                let (a, b) = (Box::new(a), Box::new(b));
+                match op {
+                    BinaryOp::Add | BinaryOp::Sub if da != db => {
+                        errors.error_at_span(
+                            *op_span,
+                            format!(
+                                "`{scalar}` adds {} and {}: the terms of a sum are of one kind",
+                                dimension(da),
+                                dimension(db)
+                            ),
+                        );
+                        None
+                    }
+                    BinaryOp::Add => Some((Formula::Add(a, b), da)),
+                    BinaryOp::Sub => Some((Formula::Sub(a, b), da)),
+                    BinaryOp::Mul => Some((Formula::Mul(a, b), da + db)),
+                    BinaryOp::Div if *b == Formula::Number(0.0) => {
+                        errors.push(right.error("division by zero"));
+                        None
+                    }
+                    BinaryOp::Div => Some((Formula::Div(a, b), da - db)),
+                }
+            }
+            Scalar::Call(name, arguments, _) => {
+                let resolved: Vec<Option<(Formula, f64)>> = arguments
+                    .iter()
+                    .map(|argument| self.formula(argument, errors))
+                    .collect();
+                let resolved: Vec<(Formula, f64)> = resolved.into_iter().collect::<Option<_>>()?;
+                let Some((function, _)) = Function::named(&name.to_string()) else {
+                    unreachable!("the parser takes only the known functions");
+                };
+                let degrees: Vec<f64> = resolved.iter().map(|(_, degree)| *degree).collect();
+                match function.degree(&degrees) {
+                    Ok(degree) => {
+                        let arguments = resolved.into_iter().map(|(f, _)| f).collect();
+                        Some((Formula::Call(function, arguments), degree))
+                    }
+                    Err(why) => {
+                        errors.push(scalar.error(format!("`{name}` {why}")));
+                        None
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A degree in length in words: "a number", "a length", "a length squared", ...
+fn dimension(degree: f64) -> String {
+    match degree {
+        0.0 => "a number".to_string(),
+        1.0 => "a length".to_string(),
+        2.0 => "a length squared (an area)".to_string(),
+        _ => format!("a length to the power {degree}"),
     }
 }
 
@@ -847,51 +1009,34 @@ impl fmt::Display for ast::VectorSum {
 }
 
 /// The value of a function's argument: numbers (`30 deg` in radians, `pi`) and what
-/// arithmetic and the functions make of them. A declared name is an error: a function is
-/// evaluated at compile time, and a value computed from parameters belongs in a parameter of
-/// its own, which the mechanism's constructor can compute.
-fn constant_value(scalar: &Scalar, function: &Ident, errors: &mut Errors) -> Option<f64> {
+/// arithmetic and the functions make of them, evaluated at compile time. A function that
+/// mentions a declared name is a formula instead (see [`Scope::formula`]).
+fn constant_value(scalar: &Scalar) -> f64 {
     match scalar {
-        Scalar::Number(value, _) => Some(*value),
-        Scalar::Degrees(value, _) => Some(value.to_radians()),
-        Scalar::Name(name) if name == "pi" => Some(std::f64::consts::PI),
-        Scalar::Name(name) => {
-            errors.error_at(
-                name,
-                format!(
-                    "`{function}` takes numbers only (it is evaluated at compile time), not \
-                     `{name}`: make the value a parameter of its own, computed by the \
-                     mechanism's constructor"
-                ),
-            );
-            None
-        }
-        Scalar::Neg(_, inner) => Some(-constant_value(inner, function, errors)?),
+        Scalar::Number(value, _) => *value,
+        Scalar::Degrees(value, _) => value.to_radians(),
+        Scalar::Name(name) if name == "pi" => std::f64::consts::PI,
+        Scalar::Name(_) => unreachable!("a function of a declared name is a formula"),
+        Scalar::Neg(_, inner) => -constant_value(inner),
         Scalar::Binary(op, _, left, right) => {
-            let l = constant_value(left, function, errors);
-            let r = constant_value(right, function, errors);
-            let (l, r) = (l?, r?);
-            Some(match op {
+            let (l, r) = (constant_value(left), constant_value(right));
+            match op {
                 BinaryOp::Add => l + r,
                 BinaryOp::Sub => l - r,
                 BinaryOp::Mul => l * r,
                 BinaryOp::Div => l / r,
-            })
+            }
         }
-        Scalar::Call(inner, arguments, _) => {
-            let values: Option<Vec<f64>> = arguments
-                .iter()
-                .map(|argument| constant_value(argument, inner, errors))
-                .collect();
-            // The parser takes only the known functions, each with its number of arguments.
-            match (inner.to_string().as_str(), values?.as_slice()) {
-                ("sqrt", [x]) => Some(x.sqrt()),
-                ("sin", [x]) => Some(x.sin()),
-                ("cos", [x]) => Some(x.cos()),
-                ("tan", [x]) => Some(x.tan()),
-                ("atan2", [y, x]) => Some(y.atan2(*x)),
-                ("hypot", [x, y]) => Some(x.hypot(*y)),
-                _ => None,
+        Scalar::Call(function, arguments, _) => {
+            let values: Vec<f64> = arguments.iter().map(constant_value).collect();
+            match (function.to_string().as_str(), values.as_slice()) {
+                ("sqrt", [x]) => x.sqrt(),
+                ("sin", [x]) => x.sin(),
+                ("cos", [x]) => x.cos(),
+                ("tan", [x]) => x.tan(),
+                ("atan2", [y, x]) => y.atan2(*x),
+                ("hypot", [x, y]) => x.hypot(*y),
+                _ => unreachable!("the parser takes only the known functions, with their arity"),
             }
         }
     }

@@ -148,6 +148,11 @@ fn generic_rank(model: &Model, equations: &Equations, errors: &mut Errors) {
             .iter()
             .map(|row| row.iter().map(|e| values[e.index()]).collect())
             .collect();
+        // A formula of the parameters can be undefined at random dimensions (the square
+        // root of a difference): such a point tells nothing.
+        if matrix.iter().flatten().any(|value| !value.is_finite()) {
+            continue;
+        }
         match dependent_column(matrix) {
             Some(column) => dependent = Some(column),
             None => return,

@@ -327,3 +327,177 @@ fn functions_of_numbers_are_constants() {
         }
     }
 }
+
+mechanism! {
+    /// A four-bar whose fixed pivot O4 is given by its coordinates `(gx, gy)`: the ground
+    /// link is `hypot(gx, gy)` long at `atan2(gy, gx)`, and the coupler point sits `p` along
+    /// and `q` across the coupler, at `hypot(p, q)` and `atan2(q, p)` from it. Formulas of
+    /// parameters, in magnitudes and angles.
+    pub struct FromCoordinates {
+        params: gx, gy, l2, l3, l4, p, q;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - hypot(gx, gy) @ atan2(gy, gx);
+        point coupler = l2 @ theta2 + hypot(p, q) @ (theta3 + atan2(q, p));
+        generate: position, velocity, acceleration, sensitivities;
+        scene trace: coupler, coupler_dot;
+    }
+}
+
+mechanism! {
+    /// A slider whose line is offset by `sqrt(a² − b²)`: a formula that is undefined where
+    /// `b > a`.
+    pub struct Undefined {
+        params: a, b, l2, l3;
+        input: theta2: angle;
+        unknowns: theta3: angle, d: length;
+        loop: l2 @ theta2 + l3 @ theta3 - sqrt(a * a - b * b) @ (pi / 2) - d @ 0;
+    }
+}
+
+/// A pivot at (gx, gy) is the Example 1 four-bar turned by the ground's angle: the formula
+/// four-bar at `θ2` is the shipped one at `θ2 − atan2(gy, gx)`, every angle turned back.
+#[test]
+fn formulas_of_parameters_are_constants_of_the_mechanism() {
+    let (gx, gy): (f64, f64) = (180.0 * 0.6, 180.0 * 0.8);
+    let turn = gy.atan2(gx);
+    let linkage = FromCoordinates {
+        gx,
+        gy,
+        l2: 80.0,
+        l3: 200.0,
+        l4: 150.0,
+        p: 60.0,
+        q: 80.0,
+    };
+    let shipped = mechanisms::FourBar::new(180.0, 80.0, 200.0, 150.0)
+        .and_then(|four_bar| four_bar.with_coupler_point(100.0, 80f64.atan2(60.0)))
+        .unwrap();
+    let scenes = linkage.scenes().unwrap();
+    // 2^600 times larger, solved on the mechanism scaled back: its formulas scale with it.
+    let huge = 2f64.powi(600);
+    let large = FromCoordinates {
+        gx: gx * huge,
+        gy: gy * huge,
+        l2: 80.0 * huge,
+        l3: 200.0 * huge,
+        l4: 150.0 * huge,
+        p: 60.0 * huge,
+        q: 80.0 * huge,
+    };
+    for step in 0..36 {
+        let theta2 = f64::from(step) * 10f64.to_radians();
+        let ours = linkage.motion(theta2, Branch::Open, 3.0, 1.0).unwrap();
+        let scaled = large.motion(theta2, Branch::Open, 3.0, 1.0).unwrap();
+        assert_eq!(scaled.position, ours.position);
+        assert_eq!(scaled.acceleration, ours.acceleration);
+        let theirs = shipped
+            .motion(theta2 - turn, Branch::Open, 3.0, 1.0)
+            .unwrap();
+        let wrapped = |a: f64| (a + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU);
+        for (x, y) in [
+            (ours.position.theta3, theirs.position.theta3 + turn),
+            (ours.position.theta4, theirs.position.theta4 + turn),
+        ] {
+            assert!((wrapped(x) - wrapped(y)).abs() < 1e-12, "{x} against {y}");
+        }
+        for (x, y) in [
+            (ours.velocity.theta3, theirs.velocity.theta3),
+            (ours.acceleration.theta4, theirs.acceleration.theta4),
+        ] {
+            assert!((x - y).abs() <= 1e-12 * y.abs().max(1.0), "{x} against {y}");
+        }
+        // The coupler point: the shipped one's, turned by the ground's angle.
+        let point = linkage.points(theta2, &ours.position).unwrap().coupler;
+        let q = shipped.assemble(theta2 - turn, Branch::Open).unwrap();
+        let expected = shipped.points(theta2 - turn, &q).unwrap().coupler_point;
+        let (s, c) = turn.sin_cos();
+        let turned = (
+            expected.x * c - expected.y * s,
+            expected.x * s + expected.y * c,
+        );
+        assert!((point.x - turned.0).hypot(point.y - turned.1) < 1e-10);
+        // The scene, whose formulas are computed once by `scenes()`.
+        let traced = scenes.trace(theta2, Branch::Open, 3.0).unwrap();
+        assert!((traced.coupler.x - point.x).hypot(traced.coupler.y - point.y) < 1e-10);
+    }
+}
+
+/// The sensitivities differentiate through the formulas: `∂θ4/∂gx` and the coupler point's
+/// `∂/∂q` against central differences of the closed form.
+#[test]
+fn sensitivities_differentiate_through_formulas() {
+    let linkage = FromCoordinates {
+        gx: 108.0,
+        gy: 144.0,
+        l2: 80.0,
+        l3: 200.0,
+        l4: 150.0,
+        p: 60.0,
+        q: 80.0,
+    };
+    let theta2 = 1.0;
+    let q = linkage.assemble(theta2, Branch::Open).unwrap();
+    let found = linkage.sensitivities(theta2, &q).unwrap();
+    let points = linkage.point_sensitivities(theta2, &q).unwrap();
+    let h = 1e-5;
+    let along = |change: &dyn Fn(&mut FromCoordinates<f64>, f64)| {
+        let solve = |sign: f64| {
+            let mut moved = linkage;
+            change(&mut moved, sign * h);
+            let position = moved.assemble(theta2, Branch::Open).unwrap();
+            let point = moved.points(theta2, &position).unwrap().coupler;
+            (position.theta4, point)
+        };
+        let ((a, pa), (b, pb)) = (solve(1.0), solve(-1.0));
+        (
+            (a - b) / (2.0 * h),
+            ((pa.x - pb.x) / (2.0 * h), (pa.y - pb.y) / (2.0 * h)),
+        )
+    };
+    let (theta4_by_gx, _) = along(&|m, d| m.gx += d);
+    assert!(
+        (found.gx.theta4 - theta4_by_gx).abs() < 1e-8,
+        "{:?} vs {theta4_by_gx}",
+        found.gx
+    );
+    let (_, point_by_q) = along(&|m, d| m.q += d);
+    assert!(
+        (points.q.coupler.x - point_by_q.0).abs() < 1e-6,
+        "{:?}",
+        points.q.coupler
+    );
+    assert!(
+        (points.q.coupler.y - point_by_q.1).abs() < 1e-6,
+        "{:?}",
+        points.q.coupler
+    );
+}
+
+/// A formula undefined for the dimensions given is an error that names it, not a NaN.
+#[test]
+fn an_undefined_formula_is_an_error() {
+    let defined = Undefined {
+        a: 5.0f64,
+        b: 3.0,
+        l2: 40.0,
+        l3: 130.0,
+    };
+    let q = defined.assemble(1.0, Branch::Open).unwrap();
+    assert!(q.d.is_finite());
+    let undefined = Undefined { b: 6.0, ..defined };
+    assert_eq!(
+        undefined.assemble(1.0, Branch::Open),
+        Err(mechgen::Error::NonFinite {
+            quantity: "parameter formula `sqrt(a * a - b * b)`"
+        })
+    );
+    let guess = UndefinedUnknowns {
+        theta3: 0.0,
+        d: 100.0,
+    };
+    assert!(matches!(
+        undefined.position(1.0, &guess, &NewtonOptions::default()),
+        Err(mechgen::Error::NonFinite { .. })
+    ));
+}

@@ -215,7 +215,11 @@ impl Emitter<'_> {
                     }
                     statements[stage[i]].push(statement);
                 }
-                Node::Add(..) | Node::Mul(..) | Node::Recip(..) | Node::Sqrt(..)
+                Node::Add(..)
+                | Node::Mul(..)
+                | Node::Recip(..)
+                | Node::Sqrt(..)
+                | Node::Atan2(..)
                     if uses[i] > 1 && self.names[i].is_none() =>
                 {
                     let value = self.expr(id).0;
@@ -367,6 +371,11 @@ impl Emitter<'_> {
                 let a = self.operand(a, Precedence::Atom);
                 (quote!(#a.sqrt()), Precedence::Atom)
             }
+            Node::Atan2(y, x) => {
+                let y = self.operand(y, Precedence::Atom);
+                let x = self.operand(x, Precedence::Atom);
+                (quote!(#y.atan2(#x)), Precedence::Atom)
+            }
         }
     }
 }
@@ -400,7 +409,7 @@ pub fn children(node: Node) -> impl Iterator<Item = ExprId> {
         Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Recip(a) | Node::Sqrt(a) => {
             (Some(a), None)
         }
-        Node::Add(a, b) | Node::Mul(a, b) => (Some(a), Some(b)),
+        Node::Add(a, b) | Node::Mul(a, b) | Node::Atan2(a, b) => (Some(a), Some(b)),
     };
     a.into_iter().chain(b)
 }

@@ -7,6 +7,7 @@ use syn::ext::IdentExt;
 
 use super::docs::doc;
 use super::{Generator, arg, matrix};
+use crate::formula::{Formula, Function};
 use crate::symbolic::ExprId;
 use proc_macro2::Literal;
 
@@ -25,13 +26,14 @@ impl Generator<'_> {
         let input_labels = inputs
             .iter()
             .map(|input| format!("input `{}`", input.unraw()));
+        let (formulas, formula_labels) = self.formula_checks();
         quote! {
             /// Checks that the parameters and the input are finite.
             #[inline]
             fn mechgen_check_finite(&self, #input_params) -> ::core::result::Result<(), ::mechgen::Error<T>> {
                 ::mechgen::__private::check_all_finite(
-                    [#(self.#fields,)* #(#inputs),*],
-                    &[#(#labels,)* #(#input_labels),*],
+                    [#(self.#fields,)* #(#formulas,)* #(#inputs),*],
+                    &[#(#labels,)* #(#formula_labels,)* #(#input_labels),*],
                 )
             }
         }
@@ -56,12 +58,45 @@ impl Generator<'_> {
         let ddot_labels = input_ddots
             .iter()
             .map(|ddot| format!("input acceleration `{ddot}`"));
+        let (formulas, formula_labels) = self.formula_checks();
         quote! {
             ::mechgen::__private::check_all_finite(
-                [#(self.#fields,)* #(#inputs,)* #(#input_dots,)* #(#input_ddots),*],
-                &[#(#labels,)* #(#input_labels,)* #(#dot_labels,)* #(#ddot_labels),*],
+                [#(self.#fields,)* #(#formulas,)* #(#inputs,)* #(#input_dots,)* #(#input_ddots),*],
+                &[#(#labels,)* #(#formula_labels,)* #(#input_labels,)* #(#dot_labels,)* #(#ddot_labels),*],
             )?;
         }
+    }
+
+    /// Each formula of the parameters the loops and points hold (see [`crate::formula`]),
+    /// once, as a value computed from `self`'s fields and a label naming it as written:
+    /// checked finite with the parameters, so that a formula undefined for the dimensions
+    /// given (the square root of a negative difference) is an error, not a NaN.
+    pub(super) fn formula_checks(&self) -> (Vec<TokenStream>, Vec<String>) {
+        let mut seen: Vec<&Formula> = Vec::new();
+        let terms = self
+            .model
+            .loops
+            .iter()
+            .chain(self.model.points.iter().map(|point| &point.position))
+            .flat_map(|sum| &sum.terms)
+            .flat_map(|term| term.magnitude.formulas.iter().chain(&term.angle.formulas));
+        for (_, formula) in terms {
+            if !seen.contains(&formula) {
+                seen.push(formula);
+            }
+        }
+        let name = |i: usize| self.model.params[i].name.unraw().to_string();
+        seen.into_iter()
+            .map(|formula| {
+                (
+                    formula_tokens(formula, &|i| {
+                        let field = &self.model.params[i].name;
+                        quote!(self.#field)
+                    }),
+                    format!("parameter formula `{}`", formula.display(&name)),
+                )
+            })
+            .unzip()
     }
 
     pub(super) fn residual(&self) -> TokenStream {
@@ -179,6 +214,40 @@ impl Generator<'_> {
             ));
         }
         doc
+    }
+}
+
+/// `formula` as an expression of `T`, each parameter read as `param` writes it.
+fn formula_tokens(formula: &Formula, param: &dyn Fn(usize) -> TokenStream) -> TokenStream {
+    let tokens = |f: &Formula| formula_tokens(f, param);
+    match formula {
+        Formula::Param(i) => param(*i),
+        Formula::Number(value) => super::emit::constant(*value),
+        Formula::Neg(inner) => {
+            let inner = tokens(inner);
+            quote!((-#inner))
+        }
+        Formula::Add(a, b) | Formula::Sub(a, b) | Formula::Mul(a, b) | Formula::Div(a, b) => {
+            let (a, b) = (tokens(a), tokens(b));
+            match formula {
+                Formula::Add(..) => quote!((#a + #b)),
+                Formula::Sub(..) => quote!((#a - #b)),
+                Formula::Mul(..) => quote!((#a * #b)),
+                _ => quote!((#a / #b)),
+            }
+        }
+        Formula::Call(function, arguments) => {
+            let arguments: Vec<TokenStream> = arguments.iter().map(tokens).collect();
+            match (function, arguments.as_slice()) {
+                (Function::Sqrt, [x]) => quote!(#x.sqrt()),
+                (Function::Sin, [x]) => quote!(#x.sin()),
+                (Function::Cos, [x]) => quote!(#x.cos()),
+                (Function::Tan, [x]) => quote!(#x.tan()),
+                (Function::Atan2, [y, x]) => quote!(#y.atan2(#x)),
+                (Function::Hypot, [x, y]) => quote!(#x.hypot(#y)),
+                _ => unreachable!("the model builds each function with its arguments"),
+            }
+        }
     }
 }
 

@@ -260,15 +260,23 @@ impl Generator<'_> {
     pub(super) fn accuracy_size(&self, receiver: TokenStream) -> TokenStream {
         // The lengths of the loops' vectors only: a tracked point's distance (a coupler
         // point far off its link) does not make the loops' rates any less accurate.
+        // A formula's lengths count as the loop's: `hypot(a, b)` is at most `|a| + |b|`.
         let in_loops: std::collections::BTreeSet<usize> = self
             .model
             .loops
             .iter()
             .flat_map(|sum| &sum.terms)
-            .flat_map(|term| term.magnitude.coefficients.keys())
-            .filter_map(|symbol| match symbol {
-                SymbolRef::Param(i) => Some(*i),
-                _ => None,
+            .flat_map(|term| {
+                let direct = term
+                    .magnitude
+                    .coefficients
+                    .keys()
+                    .filter_map(|symbol| match symbol {
+                        SymbolRef::Param(i) => Some(*i),
+                        _ => None,
+                    });
+                let in_formulas = term.magnitude.formulas.iter().flat_map(|(_, f)| f.params());
+                direct.chain(in_formulas).collect::<Vec<_>>()
             })
             .collect();
         let lengths: Vec<&Ident> = self

@@ -63,6 +63,10 @@ impl<'a> Rewriter<'a> {
                     let a = self.expr(graph, a);
                     graph.sqrt(a)
                 }
+                Node::Atan2(y, x) => {
+                    let (y, x) = (self.expr(graph, y), self.expr(graph, x));
+                    graph.atan2(y, x)
+                }
             },
         };
         self.memo.insert(id, rewritten);

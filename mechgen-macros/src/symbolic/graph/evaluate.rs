@@ -19,6 +19,7 @@ impl Graph {
                 Node::Cos(a) => values[a.index()].cos(),
                 Node::Recip(a) => values[a.index()].recip(),
                 Node::Sqrt(a) => values[a.index()].sqrt(),
+                Node::Atan2(y, x) => values[y.index()].atan2(values[x.index()]),
             };
             values.push(value);
         }

@@ -8,6 +8,7 @@
 
 use std::collections::HashMap;
 
+use crate::formula::{Formula, Function};
 use crate::model::{Linear, SymbolRef};
 
 mod evaluate;
@@ -71,8 +72,12 @@ pub enum Node {
     /// `1/x`: only straight-line kernels build it, for reciprocals that are hoisted or
     /// shared.
     Recip(ExprId),
-    /// `√x` of a non-negative `x`: only straight-line kernels build it.
+    /// `√x` of a non-negative `x`: straight-line kernels, and a declaration's formulas
+    /// of its parameters (`sqrt(l1 * l1 + l2 * l2)`), build it.
     Sqrt(ExprId),
+    /// `atan2(y, x)`, as `Atan2(y, x)`: only a declaration's formulas of its parameters
+    /// (`atan2(b, a)`) build it, so it is always fixed.
+    Atan2(ExprId, ExprId),
 }
 
 #[derive(Default)]
@@ -129,7 +134,9 @@ impl Graph {
             Node::Neg(a) | Node::Sin(a) | Node::Cos(a) | Node::Recip(a) | Node::Sqrt(a) => {
                 self.fixed[a.index()]
             }
-            Node::Add(a, b) | Node::Mul(a, b) => self.fixed[a.index()] && self.fixed[b.index()],
+            Node::Add(a, b) | Node::Mul(a, b) | Node::Atan2(a, b) => {
+                self.fixed[a.index()] && self.fixed[b.index()]
+            }
         };
         self.nodes.push(node);
         self.fixed.push(fixed);
@@ -182,8 +189,62 @@ impl Graph {
             let term = self.mul(factor, var);
             sum = self.add(sum, term);
         }
+        for (coefficient, formula) in &linear.formulas {
+            let value = self.formula(formula);
+            let factor = self.constant(*coefficient);
+            let term = self.mul(factor, value);
+            sum = self.add(sum, term);
+        }
         let constant = self.constant(linear.constant);
         self.add(sum, constant)
+    }
+
+    /// A formula of the parameters (see [`crate::formula`]), built of the graph's own
+    /// nodes, so that it is fixed, hoisted and differentiated (by the parameters, for the
+    /// sensitivities) as any other expression of the dimensions: `tan` as `sin · 1/cos`,
+    /// `hypot(a, b)` as `√(a² + b²)` (its arguments lengths of a mechanism the solvers keep
+    /// near unit size, or within the range where such squares are normal).
+    pub fn formula(&mut self, formula: &Formula) -> ExprId {
+        match formula {
+            Formula::Param(i) => self.var(Var::Value(SymbolRef::Param(*i))),
+            Formula::Number(value) => self.constant(*value),
+            Formula::Neg(inner) => {
+                let inner = self.formula(inner);
+                self.neg(inner)
+            }
+            Formula::Add(a, b) | Formula::Sub(a, b) | Formula::Mul(a, b) | Formula::Div(a, b) => {
+                let (x, y) = (self.formula(a), self.formula(b));
+                match formula {
+                    Formula::Add(..) => self.add(x, y),
+                    Formula::Sub(..) => self.sub(x, y),
+                    Formula::Mul(..) => self.mul(x, y),
+                    _ => {
+                        let inverse = self.recip(y);
+                        self.mul(x, inverse)
+                    }
+                }
+            }
+            Formula::Call(function, arguments) => {
+                let arguments: Vec<ExprId> = arguments.iter().map(|a| self.formula(a)).collect();
+                match (function, arguments.as_slice()) {
+                    (Function::Sqrt, &[x]) => self.sqrt(x),
+                    (Function::Sin, &[x]) => self.sin(x),
+                    (Function::Cos, &[x]) => self.cos(x),
+                    (Function::Tan, &[x]) => {
+                        let (sine, cosine) = (self.sin(x), self.cos(x));
+                        let inverse = self.recip(cosine);
+                        self.mul(sine, inverse)
+                    }
+                    (Function::Atan2, &[y, x]) => self.atan2(y, x),
+                    (Function::Hypot, &[x, y]) => {
+                        let (xx, yy) = (self.mul(x, x), self.mul(y, y));
+                        let squared = self.add(xx, yy);
+                        self.sqrt(squared)
+                    }
+                    _ => unreachable!("the model builds each function with its arguments"),
+                }
+            }
+        }
     }
 
     pub fn neg(&mut self, a: ExprId) -> ExprId {
@@ -332,6 +393,14 @@ impl Graph {
         }
     }
 
+    /// `atan2(y, x)`.
+    pub fn atan2(&mut self, y: ExprId, x: ExprId) -> ExprId {
+        match (self.constant_value(y), self.constant_value(x)) {
+            (Some(y), Some(x)) => self.constant(snap(y.atan2(x))),
+            _ => self.intern(Node::Atan2(y, x)),
+        }
+    }
+
     /// `∂e/∂var`, memoised per (node, variable) so shared subgraphs are differentiated once.
     pub fn partial(&mut self, e: ExprId, var: Var) -> ExprId {
         if let Some(&d) = self.partials.get(&(e, var)) {
@@ -377,6 +446,16 @@ impl Graph {
                 let twice = self.mul(two, e);
                 let inverse = self.recip(twice);
                 self.mul(inverse, da)
+            }
+            // (x·dy − y·dx) / (x² + y²).
+            Node::Atan2(y, x) => {
+                let (dy, dx) = (self.partial(y, var), self.partial(x, var));
+                let (x_dy, y_dx) = (self.mul(x, dy), self.mul(y, dx));
+                let numerator = self.sub(x_dy, y_dx);
+                let (xx, yy) = (self.mul(x, x), self.mul(y, y));
+                let squared = self.add(xx, yy);
+                let inverse = self.recip(squared);
+                self.mul(numerator, inverse)
             }
         };
         self.partials.insert((e, var), d);

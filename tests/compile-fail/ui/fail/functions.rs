@@ -1,12 +1,22 @@
 use mechgen::mechanism;
 
-// A function of a parameter (evaluated at compile time, so of numbers only).
+// Functions and products take numbers and parameters, and keep a length a length.
 mechanism! {
-    pub struct OfAParameter {
+    pub struct OfAnUnknown {
         params: l1, l2, l3, l4, beta: angle;
         input: theta2: angle;
         unknowns: theta3: angle, theta4: angle;
-        loop: l2 @ theta2 + l3 @ (theta3 + sin(beta)) - l4 @ theta4 - l1 @ 0;
+        loop: l2 @ theta2 + l3 @ (theta3 + sin(theta3)) - l4 @ theta4 - l1 @ 0;
+    }
+}
+
+mechanism! {
+    pub struct Dimensions {
+        params: l1, l2, l3, l4, beta: angle;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: sqrt(l1) @ theta2 + l3 * l2 @ theta3 - hypot(l4, 1) @ theta4
+            - l1 @ (l2 * cos(beta)) + sin(l1) * l2 @ 0 + (l1 + beta) * l2 @ 0;
     }
 }
 

@@ -9,4 +9,14 @@ mechanism! {
     }
 }
 
+// A product or quotient of unknowns would make the loops nonlinear in them.
+mechanism! {
+    pub struct Products {
+        params: l1, l2, l3, l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ (theta4 * theta3) - l1 @ (theta2 / theta3);
+    }
+}
+
 fn main() {}
