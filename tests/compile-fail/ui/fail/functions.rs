@@ -6,7 +6,8 @@ mechanism! {
         params: l1, l2, l3, l4, beta: angle;
         input: theta2: angle;
         unknowns: theta3: angle, theta4: angle;
-        loop: l2 @ theta2 + l3 @ (theta3 + sin(theta3)) - l4 @ theta4 - l1 @ 0;
+        loop: l2 @ theta2 + l3 @ (theta3 + sin(theta3)) - l4 @ (theta4 + cos(theta2))
+            - hypot(l1, l2 / 0) @ 0;
     }
 }
 
