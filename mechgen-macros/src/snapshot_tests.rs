@@ -178,3 +178,26 @@ fn docs_say_which_loop_has_no_closed_form() {
         assert!(docs.contains(expected), "{docs}");
     }
 }
+
+/// Formulas of parameters: the ground from its pivot's coordinates, `hypot(gx, gy)` at
+/// `atan2(gy, gx)`, computed with the other quantities of the dimensions alone (hoisted in
+/// the general functions, once in `scenes()`), checked finite with the parameters, and
+/// differentiated by the sensitivities.
+#[test]
+fn formula_expansion() {
+    let declaration = quote::quote! {
+        /// Four-bar, its ground pivot O4 at (gx, gy).
+        pub struct FourBarFromPivot {
+            params: gx, gy, l2, l3, l4;
+            input: theta2: angle;
+            unknowns: theta3: angle, theta4: angle;
+            loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - hypot(gx, gy) @ atan2(gy, gx);
+            generate: position, velocity, sensitivities;
+            scene angles: theta3, theta4;
+        }
+    };
+    let expansion = pretty(crate::expand::expand(declaration));
+    assert!(expansion.contains("parameter formula `hypot(gx, gy)`"));
+    assert!(expansion.contains(".atan2("));
+    assert_expansion("FourBarFromPivot", &expansion);
+}
