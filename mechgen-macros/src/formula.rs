@@ -80,28 +80,6 @@ pub enum Formula {
 }
 
 impl Formula {
-    /// The parameters it reads, by index, each once, in order of first appearance.
-    pub fn params(&self) -> Vec<usize> {
-        let mut found = Vec::new();
-        self.collect_params(&mut found);
-        found
-    }
-
-    fn collect_params(&self, found: &mut Vec<usize>) {
-        match self {
-            Formula::Param(i) if !found.contains(i) => found.push(*i),
-            Formula::Param(_) | Formula::Number(_) => {}
-            Formula::Neg(inner) => inner.collect_params(found),
-            Formula::Add(a, b) | Formula::Sub(a, b) | Formula::Mul(a, b) | Formula::Div(a, b) => {
-                a.collect_params(found);
-                b.collect_params(found);
-            }
-            Formula::Call(_, arguments) => {
-                arguments.iter().for_each(|a| a.collect_params(found));
-            }
-        }
-    }
-
     /// As the declaration would write it, with `name` for each parameter.
     pub fn display<'a>(&'a self, name: &'a dyn Fn(usize) -> String) -> impl fmt::Display + 'a {
         Shown {
@@ -207,7 +185,5 @@ mod tests {
         assert_eq!(root.display(&name).to_string(), "sqrt(a * a - b * b)");
         let scaled = Formula::Mul(p(2), Box::new(difference));
         assert_eq!(scaled.display(&name).to_string(), "c * (a * a - b * b)");
-        assert_eq!(root.params(), [0, 1]);
-        assert_eq!(scaled.params(), [2, 0, 1]);
     }
 }

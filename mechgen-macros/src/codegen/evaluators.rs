@@ -218,7 +218,10 @@ impl Generator<'_> {
 }
 
 /// `formula` as an expression of `T`, each parameter read as `param` writes it.
-fn formula_tokens(formula: &Formula, param: &dyn Fn(usize) -> TokenStream) -> TokenStream {
+pub(super) fn formula_tokens(
+    formula: &Formula,
+    param: &dyn Fn(usize) -> TokenStream,
+) -> TokenStream {
     let tokens = |f: &Formula| formula_tokens(f, param);
     match formula {
         Formula::Param(i) => param(*i),

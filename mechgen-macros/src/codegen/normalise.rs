@@ -113,6 +113,13 @@ impl Generator<'_> {
                 sizes.push(quote!(#name));
             }
         }
+        // A length formula can be far longer than the parameters it is computed from.
+        sizes.extend(self.loop_length_formulas().into_iter().map(|formula| {
+            super::evaluators::formula_tokens(formula, &|i| {
+                let field = &self.model.params[i].name;
+                quote!(self.#field)
+            })
+        }));
         quote!(::mechgen::__private::as_given(&[#(#sizes),*]))
     }
 

@@ -260,38 +260,59 @@ impl Generator<'_> {
     pub(super) fn accuracy_size(&self, receiver: TokenStream) -> TokenStream {
         // The lengths of the loops' vectors only: a tracked point's distance (a coupler
         // point far off its link) does not make the loops' rates any less accurate.
-        // A formula's lengths count as the loop's: `hypot(a, b)` is at most `|a| + |b|`.
         let in_loops: std::collections::BTreeSet<usize> = self
             .model
             .loops
             .iter()
             .flat_map(|sum| &sum.terms)
-            .flat_map(|term| {
-                let direct = term
-                    .magnitude
-                    .coefficients
-                    .keys()
-                    .filter_map(|symbol| match symbol {
-                        SymbolRef::Param(i) => Some(*i),
-                        _ => None,
-                    });
-                let in_formulas = term.magnitude.formulas.iter().flat_map(|(_, f)| f.params());
-                direct.chain(in_formulas).collect::<Vec<_>>()
+            .flat_map(|term| term.magnitude.coefficients.keys())
+            .filter_map(|symbol| match symbol {
+                SymbolRef::Param(i) => Some(*i),
+                _ => None,
             })
             .collect();
-        let lengths: Vec<&Ident> = self
+        let lengths = self
             .model
             .params
             .iter()
             .enumerate()
             .filter(|(i, param)| param.kind == crate::model::Kind::Length && in_loops.contains(i))
-            .map(|(_, param)| &param.name)
-            .collect();
-        if lengths.is_empty() {
+            .map(|(_, param)| {
+                let name = &param.name;
+                quote!(#receiver.#name.abs())
+            });
+        // A formula in a magnitude is a length of the loop's own (which a product or a
+        // quotient of parameters can make far longer than any of them).
+        let formulas = self.loop_length_formulas().into_iter().map(|formula| {
+            let value = super::evaluators::formula_tokens(formula, &|i| {
+                let field = &self.model.params[i].name;
+                quote!(#receiver.#field)
+            });
+            quote!(#value.abs())
+        });
+        let terms: Vec<TokenStream> = lengths.chain(formulas).collect();
+        if terms.is_empty() {
             quote!(T::one())
         } else {
-            quote!(#(#receiver.#lengths.abs())+*)
+            quote!(#(#terms)+*)
         }
+    }
+
+    /// The formulas the loops' magnitudes hold, each once: lengths of their own.
+    pub(super) fn loop_length_formulas(&self) -> Vec<&crate::formula::Formula> {
+        let mut found = Vec::new();
+        let formulas = self
+            .model
+            .loops
+            .iter()
+            .flat_map(|sum| &sum.terms)
+            .flat_map(|term| &term.magnitude.formulas);
+        for (_, formula) in formulas {
+            if !found.contains(&formula) {
+                found.push(formula);
+            }
+        }
+        found
     }
 
     /// The closed-form plan's steps when the Jacobian is block lower-triangular in their
