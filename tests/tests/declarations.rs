@@ -501,3 +501,36 @@ fn an_undefined_formula_is_an_error() {
         Err(mechgen::Error::NonFinite { .. })
     ));
 }
+
+mechanism! {
+    /// Example 1's four-bar with its coupler's length a formula, `sqrt(l3 * l3)`: a turning
+    /// vector whose magnitude is a formula, in a scene (whose rate limits weigh it as a
+    /// column of its own).
+    pub struct CouplerFormula {
+        params: l1, l2, l3, l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + sqrt(l3 * l3) @ theta3 - l4 @ theta4 - l1 @ 0;
+        scene angles: theta3, theta4, theta3_dot, theta4_ddot;
+    }
+}
+
+#[test]
+fn a_turning_vector_may_be_a_formula() {
+    let linkage = CouplerFormula {
+        l1: 180.0,
+        l2: 80.0,
+        l3: 200.0,
+        l4: 150.0,
+    };
+    let shipped = mechanisms::FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+    let scenes = linkage.scenes().unwrap();
+    for step in 0..36 {
+        let theta2 = f64::from(step) * 10f64.to_radians();
+        let ours = scenes.angles(theta2, Branch::Open, 3.0, 1.0).unwrap();
+        let theirs = shipped.motion(theta2, Branch::Open, 3.0, 1.0).unwrap();
+        assert!((ours.theta3 - theirs.position.theta3).abs() < 1e-12);
+        assert!((ours.theta3_dot - theirs.velocity.theta3).abs() < 1e-12);
+        assert!((ours.theta4_ddot - theirs.acceleration.theta4).abs() < 1e-11);
+    }
+}

@@ -53,7 +53,8 @@ impl Generator<'_> {
         }
     }
 
-    /// `magnitude` over the parameters of `scaled`, if it is made of them alone.
+    /// `magnitude` over the parameters of `scaled` (and formulas of them), if it is made of
+    /// them alone.
     fn fixed_magnitude(&self, magnitude: &Linear, scaled: &Ident) -> Option<TokenStream> {
         let mut parts = Vec::new();
         for (symbol, coefficient) in &magnitude.coefficients {
@@ -62,6 +63,13 @@ impl Generator<'_> {
             };
             let name = &self.model.params[*i].name;
             parts.push(scaled_by(*coefficient, quote!(#scaled.#name)));
+        }
+        for (coefficient, formula) in &magnitude.formulas {
+            let value = crate::codegen::evaluators::formula_tokens(formula, &|i| {
+                let name = &self.model.params[i].name;
+                quote!(#scaled.#name)
+            });
+            parts.push(scaled_by(*coefficient, value));
         }
         let constant = magnitude.constant;
         if constant != 0.0 {
