@@ -100,11 +100,32 @@ pub fn sin_cos<T: Real>(x: T) -> (T, T) {
     sin_cos_offset(x, nan_beyond)
 }
 
+/// [`sin_cos`] for `|x| ≤` [`sin_cos_limit`], which the caller has checked, in lanes: the
+/// same bits and the same arithmetic, without the range check's (for a loop over several
+/// angles that branches on their range once).
+#[inline(always)]
+pub(crate) fn sin_cos_lanes_within_limit<T: Real>(x: T) -> (T, T) {
+    sin_cos_offset(x, T::zero())
+}
+
 /// [`sin_cos`] for `|x| ≤` [`sin_cos_limit`], which the caller has checked: the same bits,
-/// without the range check's arithmetic (scalar code that branches on the range anyway).
+/// for scalar code that branches on the range anyway. Without the range check's
+/// arithmetic, and with the quadrant's fix-up a choice on its two low bits rather than
+/// [`sin_cos`]'s arithmetic on the quadrant (which is for lanes): the same swaps and sign
+/// flips, so the same bits.
 #[inline(always)]
 pub(crate) fn sin_cos_within_limit<T: Real>(x: T) -> (T, T) {
-    sin_cos_offset(x, T::zero())
+    let shifted = x * T::SIN_COS_TWO_OVER_PI + T::SIN_COS_SHIFTER;
+    let n = shifted - T::SIN_COS_SHIFTER;
+    let (s, c) = reduced_sin_cos(x, n);
+    // sin(r + qπ/2), cos(r + qπ/2) for q = n mod 4 (the shifted sum holds n in its
+    // significand's low bits, in two's complement).
+    match shifted.low_two_bits() {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
 }
 
 /// [`sin_cos`]'s arithmetic, with `offset` (0, or NaN to poison both results) subtracted
@@ -114,14 +135,32 @@ fn sin_cos_offset<T: Real>(x: T, offset: T) -> (T, T) {
     let one = T::one();
     let two = T::constant(2.0);
     let four = T::constant(4.0);
-    let half = T::constant(0.5);
     let quarter = T::constant(0.25);
     let three_eighths = T::constant(0.375);
 
-    // Quadrant and Cody–Waite reduction: r + ρ = x − n·π/2. The first product is exact and
-    // cancels exactly (Sterbenz); the next two products are exact and their differences are
-    // kept whole by TwoSum; only n·p4, far below r's last bit, is rounded.
     let n = round(x * T::SIN_COS_TWO_OVER_PI);
+    let (s, c) = reduced_sin_cos(x, n);
+
+    // Quadrant fix-up: sin x = s·cos(nπ/2) + c·sin(nπ/2), cos x = c·cos(nπ/2) − s·sin(nπ/2).
+    // With q = n mod 4 in {0, 1, 2, 3}, cos(qπ/2) = |q − 2| − 1 and sin(qπ/2) = −m for
+    // m = |q − 1| − 1: triangle waves, each 0 or ±1, so every product below is exact and
+    // every sum has a zero term. At q = 0, m is +0, and subtracting c·m = +0 keeps s's sign
+    // of zero: sin(−0) = −0.
+    let q = (n - four * round(n * quarter - three_eighths)) - offset;
+    let cos_n = (q - two).abs() - one;
+    let m = (q - one).abs() - one;
+    (s * cos_n - c * m, c * cos_n + s * m)
+}
+
+/// `(sin r, cos r)` for `r = x − n·π/2`, the quadrant `n` rounded from `x·2/π`.
+#[inline(always)]
+fn reduced_sin_cos<T: Real>(x: T, n: T) -> (T, T) {
+    let one = T::one();
+    let half = T::constant(0.5);
+
+    // Cody–Waite reduction: r + ρ = x − n·π/2. The first product is exact and cancels
+    // exactly (Sterbenz); the next two products are exact and their differences are kept
+    // whole by TwoSum; only n·p4, far below r's last bit, is rounded.
     let [p1, p2, p3, p4] = T::SIN_COS_PI_OVER_2;
     let (h, e1) = two_diff(x - n * p1, n * p2);
     let (h, e2) = two_diff(h, n * p3);
@@ -141,16 +180,7 @@ fn sin_cos_offset<T: Real>(x: T, offset: T) -> (T, T) {
     // sin: r − (r³·(−S) − ρ·(1 − z/2)); the inner difference is +0 when r is ±0.
     let s = r - ((z * r) * -ps - rho * w);
     let c = w + (((one - w) - hz) + (z * z * pc - r * rho));
-
-    // Quadrant fix-up: sin x = s·cos(nπ/2) + c·sin(nπ/2), cos x = c·cos(nπ/2) − s·sin(nπ/2).
-    // With q = n mod 4 in {0, 1, 2, 3}, cos(qπ/2) = |q − 2| − 1 and sin(qπ/2) = −m for
-    // m = |q − 1| − 1: triangle waves, each 0 or ±1, so every product below is exact and
-    // every sum has a zero term. At q = 0, m is +0, and subtracting c·m = +0 keeps s's sign
-    // of zero: sin(−0) = −0.
-    let q = (n - four * round(n * quarter - three_eighths)) - offset;
-    let cos_n = (q - two).abs() - one;
-    let m = (q - one).abs() - one;
-    (s * cos_n - c * m, c * cos_n + s * m)
+    (s, c)
 }
 
 /// The angle of a unit vector `(x, y)`, in (−π, π] as `y.atan2(x)` gives it, with no branch
@@ -271,6 +301,63 @@ fn split<T: Real>(a: T) -> (T, T) {
 mod tests {
     use super::*;
     use core::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, FRAC_PI_4, PI};
+
+    /// The scalar path (the quadrant's fix-up a choice on its low bits) gives the lanes'
+    /// bits: on a dense grid over the range, either side of ±0, at the floats nearest each
+    /// multiple of π/2 up to 64 turns, at powers of two, and at random magnitudes.
+    #[test]
+    fn the_scalar_path_gives_the_lanes_bits() {
+        fn check<T: Real>(x: T) {
+            let (a, b) = (sin_cos(x), sin_cos_within_limit(x));
+            assert!(
+                a.0.to_f64().map(f64::to_bits) == b.0.to_f64().map(f64::to_bits)
+                    && a.1.to_f64().map(f64::to_bits) == b.1.to_f64().map(f64::to_bits),
+                "{x:?}: {a:?} against {b:?}"
+            );
+        }
+        let mut xs: std::vec::Vec<f64> =
+            (-200_000..=200_000).map(|k| f64::from(k) * 1e-4).collect();
+        xs.extend([
+            0.0,
+            -0.0,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+            1e-300,
+            1e6,
+            -1e6,
+        ]);
+        for k in -256..=256 {
+            let multiple = f64::from(k) * FRAC_PI_2;
+            let mut x = multiple;
+            for _ in 0..4 {
+                xs.extend([x, -x]);
+                x = f64::from_bits(x.to_bits() + 1);
+            }
+            let mut x = multiple;
+            for _ in 0..4 {
+                xs.push(x);
+                x = f64::from_bits(x.to_bits().wrapping_sub(1));
+            }
+        }
+        xs.extend((-60..20).map(|e| 2f64.powi(e)));
+        let mut state: u64 = 0x5eed;
+        for _ in 0..200_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
+            xs.push((unit * 2.0 - 1.0) * 10f64.powf(unit * 12.0 - 6.0));
+        }
+        for &x in &xs {
+            if x.abs() <= sin_cos_limit::<f64>() {
+                check(x);
+            }
+            let single = x as f32;
+            if single.abs() <= sin_cos_limit::<f32>() {
+                check(single);
+            }
+        }
+    }
 
     /// The number of floats from `a` to `b` (0 for equal values and for `+0` against `−0`).
     fn steps(a: f64, b: f64) -> u64 {

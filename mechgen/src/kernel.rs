@@ -40,8 +40,10 @@ pub fn all_finite<T: Real, const N: usize>(
 
 /// Whether every one of `values` is finite, as far as a fast kernel needs to know: their sum
 /// is NaN or infinite if one of them is (an infinity plus anything finite is infinite, and
-/// opposite infinities make NaN), so `sum·0 = 0` says all are finite. A sum that overflows
-/// from finite values says no, wrongly but safely: the checked kernel then decides.
+/// opposite infinities make NaN), and `sum − sum` is then NaN, else 0, so that it equals
+/// itself says all are finite (a test of its own bits, with no constant to load). Two sums,
+/// of the even-placed and the odd-placed values, each tested so. A sum that overflows from
+/// finite values says no, wrongly but safely: the checked kernel then decides.
 #[inline(always)]
 pub fn outputs_finite<T: Real, const N: usize>(values: &[T; N]) -> bool {
     // Two running sums, of the even-placed and the odd-placed values: a point's x and y sit
@@ -52,7 +54,12 @@ pub fn outputs_finite<T: Real, const N: usize>(values: &[T; N]) -> bool {
     for (k, value) in values.iter().enumerate() {
         sums[k % 2] = sums[k % 2] + *value;
     }
-    (sums[0] + sums[1]) * T::zero() == T::zero()
+    #[allow(clippy::eq_op)]
+    let [even, odd] = sums.map(|sum| sum - sum);
+    // Both tested (`&`, not `&&`): one comparison of the pair where it sits in one register.
+    #[allow(clippy::eq_op)]
+    let not_nan = (even == even) & (odd == odd);
+    not_nan
 }
 
 /// `sign·√(plus − minus)`: a loop's branch-dependent root. A radicand below zero by no more
@@ -287,11 +294,13 @@ pub mod lanes {
         }
     }
 
-    /// [`super::inverse_determinant`], with NaN for "singular".
+    /// [`super::inverse_determinant`], with NaN for "singular". The norms' inverse is
+    /// positive, so `|det|·inverse_norms` is `|det·inverse_norms|` bit for bit, and a
+    /// determinant passed negated costs no negation here.
     #[inline(always)]
     pub fn inverse_determinant<T: Real>(det: T, inverse_norms: T, threshold: T) -> T {
         let inverse = det.recip();
-        if (det * inverse_norms).abs() > threshold {
+        if det.abs() * inverse_norms > threshold {
             inverse
         } else {
             T::nan()
@@ -527,8 +536,10 @@ mod tests {
         }
         // Opposite infinities sum to NaN, not to a finite value.
         assert!(!outputs_finite(&[f64::INFINITY, f64::NEG_INFINITY]));
-        // A sum that overflows from finite values says no (the checked kernel decides).
-        assert!(!outputs_finite(&[f64::MAX, f64::MAX]));
+        // A sum that overflows from finite values says no (the checked kernel decides):
+        // two values in one of the sums, not one in each.
+        assert!(!outputs_finite(&[f64::MAX, 0.0, f64::MAX]));
+        assert!(outputs_finite(&[f64::MAX, f64::MAX]));
     }
 
     #[test]

@@ -963,7 +963,7 @@ fn fresh_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K]) {
     let mut sines = angles;
     let mut cosines = angles;
     for ((s, c), a) in sines.iter_mut().zip(&mut cosines).zip(angles) {
-        (*s, *c) = crate::fast::sin_cos_within_limit(a);
+        (*s, *c) = crate::fast::sin_cos_lanes_within_limit(a);
     }
     (sines, cosines)
 }

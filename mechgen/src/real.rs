@@ -55,6 +55,11 @@ pub trait Real: num_traits::Float + Debug + Display + Default + Send + Sync + 's
     #[doc(hidden)]
     fn sin_cos_polynomials(z: Self) -> (Self, Self);
 
+    /// The two lowest bits of the significand: of `y + 1.5·2^p` (see
+    /// [`SIN_COS_SHIFTER`](Self::SIN_COS_SHIFTER)), the rounded `y` modulo 4.
+    #[doc(hidden)]
+    fn low_two_bits(self) -> u32;
+
     /// `ε^(1/3)`, rounded to nearest: the accuracy required of a velocity
     /// ([`Accuracy::required`](crate::Accuracy::required)); a constant because `libm`'s
     /// `cbrt`, which `no_std` builds would call, keeps a panic path.
@@ -97,6 +102,11 @@ impl Real for f64 {
     const INLINE_SIN_COS: bool = cfg!(feature = "std");
     const SIN_COS_TWO_OVER_PI: Self = core::f64::consts::FRAC_2_PI;
     const SIN_COS_SHIFTER: Self = 6_755_399_441_055_744.0;
+
+    #[inline(always)]
+    fn low_two_bits(self) -> u32 {
+        (self.to_bits() & 3) as u32
+    }
     const SIN_COS_PI_OVER_2: [Self; 4] = [
         1.570_796_326_734_125_6,
         6.077_100_506_303_966e-11,
@@ -159,6 +169,11 @@ impl Real for f32 {
     const INLINE_SIN_COS: bool = false;
     const SIN_COS_TWO_OVER_PI: Self = core::f32::consts::FRAC_2_PI;
     const SIN_COS_SHIFTER: Self = 12_582_912.0;
+
+    #[inline(always)]
+    fn low_two_bits(self) -> u32 {
+        self.to_bits() & 3
+    }
     const SIN_COS_PI_OVER_2: [Self; 4] =
         [1.570_678_7, 1.176_148_65e-4, 9.920_313e-10, 6.223_372e-14];
 
