@@ -192,17 +192,16 @@ report() {
         echo "explanations of survivors live in [\`$EXPLAINED\`](../$EXPLAINED)."
         echo
         echo "Each mutant (a change cargo-mutants makes to one operator, comparison or function"
-        echo "body) is built and tested against its crate's own fast tests: a mutant of the"
+        echo "body) is built and tested against its own crate's fast tests: a mutant of the"
         echo "runtime (\`mechgen/\`) against \`cargo test -p mechgen\`, the runtime's unit tests and"
         echo "doctests, a few seconds a mutant; a mutant of the shipped mechanisms' analyses"
-        echo "(\`mechanisms/\`) against \`cargo test -p mechanisms\`, the library's unit"
-        echo "tests, the command-line program's end-to-end tests and the doctests, some 15 seconds a"
-        echo "mutant. *Caught*: a test failed."
-        echo "*Missed*: every test passed (a survivor). *Unviable*: the mutant does not compile."
-        echo "*Timeout*: the tests ran past the limit (a mutant that hangs a solver). A file's"
-        echo "counts may add up \`--iterate\` runs, which test again only the mutants not yet"
-        echo "caught: the counts are of the tests at the commit above. A file run in part"
-        echo "(\`--from\`, the rest of a run cut short) counts only the mutants run, whose"
+        echo "(\`mechanisms/\`) against \`cargo test -p mechanisms\`, the library's unit tests and"
+        echo "doctests and the command-line program's end-to-end tests, some 15 seconds a mutant."
+        echo "*Caught*: a test failed. *Missed*: every test passed (a survivor). *Unviable*: the"
+        echo "mutant does not compile. *Timeout*: the tests ran past the limit (a mutant that hangs"
+        echo "a solver). A file's counts may add up \`--iterate\` runs, which test again only the"
+        echo "mutants not yet caught: the counts are of the tests at the commit above. A file run in"
+        echo "part (\`--from\`, the rest of a run cut short) counts only the mutants run, whose"
         echo "positions in cargo-mutants' order are listed under the table."
         echo
         echo "| file | mutants | caught | missed | unviable | timeout |"
@@ -216,7 +215,7 @@ report() {
             unviable=$(outcome "$stem" unviable | grep -c . || true)
             timeout=$(outcome "$stem" timeout | grep -c . || true)
             total=$((caught + missed + unviable + timeout))
-            whole=$(grep -c . "$OUT/$stem/all.txt" 2>/dev/null || echo "$total")
+            whole=$(grep -c . "$OUT/$stem/all.txt" 2>/dev/null) || whole=$total
             if [ "$total" -lt "$whole" ]; then
                 partial+=("\`$file\`: mutants $(positions "$stem") of $whole.")
                 total="$total of $whole"
