@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Mutation testing of the runtime with cargo-mutants, and docs/MUTANTS.md from its results.
+# Mutation testing of the runtime and of the shipped mechanisms' analyses with cargo-mutants,
+# and docs/MUTANTS.md from its results.
 #
 #   bash tests/mutants.sh                      every file in FILES below, then the report
 #   bash tests/mutants.sh FILE...              only these files (earlier results replaced)
@@ -11,11 +12,15 @@
 #                                              with --iterate, added to)
 #   bash tests/mutants.sh --report             the report alone, from mutants.out/
 #
-# Each mutant is built and tested against the kill-set: `cargo test -p mechgen`, the runtime's
-# unit tests and doctests, a few seconds a mutant. The integration tests would kill more, but
-# at minutes a mutant; a solver's mistakes should be caught by the fast tests beside it.
-# Survivors that no test can kill are explained in tests/mutants-equivalent.txt, which the
-# report merges in. Slow (most of an hour for the whole list on two cores), so not in CI.
+# Each mutant is built and tested against the kill-set of its crate (`kill_set` below). For the
+# runtime, `cargo test -p mechgen`: its unit tests and doctests, a few seconds a mutant. For the
+# shipped analyses, `cargo test -p mechanisms`: the library's unit tests and doctests and the
+# command-line program's end-to-end tests (mechanisms/tests/), 13 s after a change to one file
+# (measured on the two shared cores), well under a minute, so the tests are not filtered by
+# name. The integration tests (tests/tests/) would kill more, but at minutes a mutant; a
+# solver's mistakes should be caught by the fast tests beside it. Survivors that no test can
+# kill are explained in tests/mutants-equivalent.txt, which the report merges in. Slow (most of
+# an hour for the runtime's files on two cores, longer for the shipped analyses'), so not in CI.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -26,7 +31,8 @@ EXPLAINED=tests/mutants-equivalent.txt
 REPORT=docs/MUTANTS.md
 
 # The files run, in order of importance: closed forms, the scene kernels' checked steps and
-# rate limits, the linear solves, Newton; then the shipped analyses.
+# rate limits, the linear solves, Newton; the runtime's analyses; then the shipped
+# mechanisms' analyses.
 FILES=(
     mechgen/src/closed.rs
     mechgen/src/kernel.rs
@@ -37,9 +43,50 @@ FILES=(
     mechgen/src/advantage.rs
     mechgen/src/accuracy.rs
     mechgen/src/sweep.rs
+    mechanisms/src/triangle.rs
+    mechanisms/src/tolerance.rs
+    mechanisms/src/four_bar.rs
+    mechanisms/src/slider_crank.rs
+    mechanisms/src/dimensions.rs
+    mechanisms/src/random.rs
+)
+
+# The files of `mechanisms/` that hold analyses (what the report counts as the shipped
+# analyses, run or not); the rest declare the mechanisms (`mechanism!` and constructors) or
+# are the command-line program. The synthesis is not in FILES: 658 mutants at some 15 s
+# each is hours, and its fits are tested mostly in tests/tests/synthesis.rs, not beside it
+# (a few doctests, and the command-line program's `synthesise`).
+ANALYSES=(
+    mechanisms/src/triangle.rs
+    mechanisms/src/tolerance.rs
+    mechanisms/src/four_bar.rs
+    mechanisms/src/slider_crank.rs
+    mechanisms/src/dimensions.rs
+    mechanisms/src/random.rs
+    mechanisms/src/synthesis/mod.rs
+    mechanisms/src/synthesis/fit.rs
 )
 
 mutants() { "$TOOLS/bin/cargo-mutants" mutants "$@"; }
+
+# The directory under mutants.out/ of one file's results: the runtime's by the file's stem
+# (`closed`), the shipped mechanisms' prefixed with `mechanisms-` and their path under src/
+# (`mechanisms-four_bar`, `mechanisms-synthesis-fit`), so no two files share one.
+stem() {
+    case $1 in
+        mechgen/src/*) basename "$1" .rs ;;
+        mechanisms/src/*) local rest=${1#mechanisms/src/}; echo "mechanisms-${rest%.rs}" | tr / - ;;
+        *) echo "not a file this script mutates: $1" >&2; exit 1 ;;
+    esac
+}
+
+# The cargo-mutants options that choose the tests a mutant of one file must fail.
+kill_set() {
+    case $1 in
+        mechgen/*) echo --test-package mechgen ;;
+        mechanisms/*) echo --test-package mechanisms ;;
+    esac
+}
 
 install() {
     if [ "$("$TOOLS/bin/cargo-mutants" mutants --version 2>/dev/null)" != "cargo-mutants $VERSION" ]; then
@@ -54,7 +101,7 @@ install() {
 run() {
     local file stem status results files=("$@")
     for file in "${files[@]}"; do
-        stem=$(basename "$file" .rs)
+        stem=$(stem "$file")
         results="$OUT/$stem/mutants.out"
         if [ "$ITERATE" = 1 ] && [ -d "$results" ]; then
             # cargo-mutants carries the caught forward (previously_caught.txt) but not the
@@ -76,7 +123,8 @@ run() {
                 sed 's/[][\\.*+?(){}|^$]/\\&/g' | paste -sd '|'))\$"
         fi
         status=0
-        mutants "$@" --file "$file" --test-package mechgen --jobs 1 --minimum-test-timeout 30 \
+        # shellcheck disable=SC2046 # the kill-set's options, split into words
+        mutants "$@" --file "$file" $(kill_set "$file") --jobs 1 --minimum-test-timeout 30 \
             --no-times --colors never --output "$OUT/$stem" || status=$?
         # 0: all caught; 2: some missed; 3: some timed out. Anything else is cargo-mutants failing.
         case $status in 0 | 2 | 3) ;; *) echo "cargo-mutants failed on $file ($status)" >&2; exit "$status" ;; esac
@@ -122,38 +170,44 @@ explanation() {
 report() {
     local file stem caught missed unviable timeout total whole line why
     local partial=() not_tested=()
-    local run_files=() not_run=() survivors=() equivalent=0 not_killed=0 unexplained=0
-    for file in mechgen/src/*.rs; do
-        if [ -f "$OUT/$(basename "$file" .rs)/mutants.out/outcomes.json" ]; then
+    local run_files=() not_run=() not_run_analyses=() survivors=() equivalent=0 not_killed=0
+    local unexplained=0
+    for file in mechgen/src/*.rs "${ANALYSES[@]}"; do
+        if [ -f "$OUT/$(stem "$file")/mutants.out/outcomes.json" ]; then
             run_files+=("$file")
-        else
+        elif [[ $file == mechgen/* ]]; then
             not_run+=("$file")
+        else
+            not_run_analyses+=("$file")
         fi
     done
     for file in "${run_files[@]}"; do
-        mapfile -t -O "${#survivors[@]}" survivors < <(outcome "$(basename "$file" .rs)" missed)
+        mapfile -t -O "${#survivors[@]}" survivors < <(outcome "$(stem "$file")" missed)
     done
     {
         echo "# Mutation testing"
         echo
         echo "Generated by \`bash tests/mutants.sh\` (cargo-mutants $VERSION, installed into"
-        echo "\`$TOOLS/\` by the script) at commit \`$(git rev-parse --short HEAD)\`$(git diff --quiet HEAD -- mechgen || echo ' with uncommitted changes to mechgen'). Do not edit:"
+        echo "\`$TOOLS/\` by the script) at commit \`$(git rev-parse --short HEAD)\`$(git diff --quiet HEAD -- mechgen mechanisms || echo ' with uncommitted changes to mechgen or mechanisms'). Do not edit:"
         echo "explanations of survivors live in [\`$EXPLAINED\`](../$EXPLAINED)."
         echo
         echo "Each mutant (a change cargo-mutants makes to one operator, comparison or function"
-        echo "body of the runtime) is built and tested against \`cargo test -p mechgen\`: the"
-        echo "runtime's unit tests and doctests, a few seconds a mutant. *Caught*: a test failed."
-        echo "*Missed*: every test passed (a survivor). *Unviable*: the mutant does not compile."
-        echo "*Timeout*: the tests ran past the limit (a mutant that hangs a solver). A file's"
-        echo "counts may add up \`--iterate\` runs, which test again only the mutants not yet"
-        echo "caught: the counts are of the tests at the commit above. A file run in part"
-        echo "(\`--from\`, the rest of a run cut short) counts only the mutants run, whose"
+        echo "body) is built and tested against its own crate's fast tests: a mutant of the"
+        echo "runtime (\`mechgen/\`) against \`cargo test -p mechgen\`, the runtime's unit tests and"
+        echo "doctests, a few seconds a mutant; a mutant of the shipped mechanisms' analyses"
+        echo "(\`mechanisms/\`) against \`cargo test -p mechanisms\`, the library's unit tests and"
+        echo "doctests and the command-line program's end-to-end tests, some 15 seconds a mutant."
+        echo "*Caught*: a test failed. *Missed*: every test passed (a survivor). *Unviable*: the"
+        echo "mutant does not compile. *Timeout*: the tests ran past the limit (a mutant that hangs"
+        echo "a solver). A file's counts may add up \`--iterate\` runs, which test again only the"
+        echo "mutants not yet caught: the counts are of the tests at the commit above. A file run in"
+        echo "part (\`--from\`, the rest of a run cut short) counts only the mutants run, whose"
         echo "positions in cargo-mutants' order are listed under the table."
         echo
         echo "| file | mutants | caught | missed | unviable | timeout |"
         echo "|---|---:|---:|---:|---:|---:|"
         for file in "${run_files[@]}"; do
-            stem=$(basename "$file" .rs)
+            stem=$(stem "$file")
             # An iterated run lists the unviable among the previously caught.
             caught=$( (outcome "$stem" caught; outcome "$stem" previously_caught) | sort -u |
                 grep -vxF -f <(outcome "$stem" unviable; echo) | grep -c . || true)
@@ -161,7 +215,7 @@ report() {
             unviable=$(outcome "$stem" unviable | grep -c . || true)
             timeout=$(outcome "$stem" timeout | grep -c . || true)
             total=$((caught + missed + unviable + timeout))
-            whole=$(grep -c . "$OUT/$stem/all.txt" 2>/dev/null || echo "$total")
+            whole=$(grep -c . "$OUT/$stem/all.txt" 2>/dev/null) || whole=$total
             if [ "$total" -lt "$whole" ]; then
                 partial+=("\`$file\`: mutants $(positions "$stem") of $whole.")
                 total="$total of $whole"
@@ -175,8 +229,15 @@ report() {
             echo
         fi
         # Not run for this report, which is of mutants.out/ alone: an earlier report may have.
-        echo "Not run for this report: $(printf '`%s` ' "${not_run[@]}")(the rest of the runtime);"
-        echo "nor the macro (\`mechgen-macros/\`) or the shipped mechanisms (\`mechanisms/\`)."
+        echo "Not run for this report:"
+        if [ "${#not_run[@]}" -gt 0 ]; then
+            echo "$(printf '`%s` ' "${not_run[@]}")(the rest of the runtime);"
+        fi
+        if [ "${#not_run_analyses[@]}" -gt 0 ]; then
+            echo "$(printf '`%s` ' "${not_run_analyses[@]}")(the rest of the shipped analyses);"
+        fi
+        echo "nor the macro (\`mechgen-macros/\`), nor the shipped mechanisms' declarations and"
+        echo "command-line program (the other files of \`mechanisms/\`)."
         echo
         echo "## Survivors"
         echo
@@ -211,8 +272,8 @@ report() {
         local stale=()
         while IFS= read -r line; do
             # Only for the files run: the others' survivors are not known.
-            stem=$(basename "${line%%:*}" .rs)
             printf '%s\n' "${run_files[@]}" | grep -qxF -- "${line%%:*}" || continue
+            stem=$(stem "${line%%:*}")
             if printf '%s\n' "${survivors[@]}" | grep -qxF -- "$line"; then
                 continue
             elif [ -f "$OUT/$stem/all.txt" ] && grep -qxF -- "$line" "$OUT/$stem/all.txt" &&

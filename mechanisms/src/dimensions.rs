@@ -72,3 +72,39 @@ pub(crate) fn non_negative<T: Real>(name: &'static str, value: T) -> Result<T, D
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each check refuses infinities and NaN, and draws its line at zero: a length must be
+    /// above it, a distance may be on it, an offset anywhere.
+    #[test]
+    fn each_dimension_is_checked_against_its_own_requirement() {
+        assert_eq!(positive("crank", 2.5), Ok(2.5));
+        assert_eq!(non_negative("distance", 0.0), Ok(0.0));
+        assert_eq!(non_negative("distance", 2.5), Ok(2.5));
+        for offset in [-3.0, 0.0, 3.0] {
+            assert_eq!(finite("offset", offset), Ok(offset));
+        }
+        let refused = |result: Result<f64, DimensionError<f64>>| {
+            let error = result.unwrap_err();
+            (error.name, error.requirement)
+        };
+        for bad in [0.0, -1.0, f64::INFINITY, f64::NAN] {
+            assert_eq!(
+                refused(positive("crank", bad)),
+                ("crank", "positive and finite")
+            );
+        }
+        for bad in [-1e-300, f64::INFINITY, f64::NAN] {
+            assert_eq!(
+                refused(non_negative("distance", bad)),
+                ("distance", "non-negative and finite")
+            );
+        }
+        for bad in [f64::NEG_INFINITY, f64::NAN] {
+            assert_eq!(refused(finite("offset", bad)), ("offset", "finite"));
+        }
+    }
+}

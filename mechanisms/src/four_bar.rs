@@ -480,3 +480,33 @@ impl<T: Real> FourBar<T> {
         MechanicalAdvantage::from_rates(T::one(), rates.theta4)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Found by mutation testing: on either branch, each dead centre is a position the
+    /// linkage assembles in, with the rocker's angle as `assemble` gives it (in (−π, π]),
+    /// the rocker at rest, and the crank and coupler in line: `θ2 = θ3` extended,
+    /// `θ2 = θ3 + π` folded. Example 1's rocker angles there, from the cosine rule:
+    /// `cos θ4 = ((l3 ± l2)² − l1² − l4²)/(2·l1·l4)`, 23500/54000 and −40500/54000.
+    #[test]
+    fn dead_centres_on_both_branches_line_up_crank_and_coupler() {
+        let linkage = FourBar::new(180.0f64, 80.0, 200.0, 150.0).unwrap();
+        let pi = core::f64::consts::PI;
+        for branch in [Branch::Open, Branch::Crossed] {
+            let centres = linkage.dead_centres(branch).unwrap();
+            for (centre, cosine, turn) in [
+                (centres[0], 23500.0 / 54000.0, 0.0),
+                (centres[1], -40500.0 / 54000.0, pi),
+            ] {
+                assert!((centre.theta4.cos() - cosine).abs() < 1e-12, "{centre:?}");
+                let q = linkage.assemble(centre.theta2, branch).unwrap();
+                assert!((q.theta4 - centre.theta4).abs() < 1e-12, "{centre:?} {q:?}");
+                assert!((centre.theta2 - (q.theta3 + turn)).abs() < 1e-12, "{q:?}");
+                let omega4 = linkage.velocity(centre.theta2, &q, 1.0).unwrap().theta4;
+                assert!(omega4.abs() < 1e-12, "{omega4}");
+            }
+        }
+    }
+}

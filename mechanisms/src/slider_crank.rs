@@ -269,3 +269,45 @@ impl<T: Real> SliderCrank<T> {
         MechanicalAdvantage::from_rates(T::one(), rates.d)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Found by mutation testing: the coupler point's angle is kept, not only its distance.
+    #[test]
+    fn a_coupler_point_keeps_its_distance_and_angle() {
+        let linkage = SliderCrank::new(50.0, 150.0, 20.0)
+            .and_then(|l| l.with_coupler_point(75.0, 0.3))
+            .unwrap();
+        assert_eq!(linkage.coupler_point(), (75.0, 0.3));
+        assert_eq!(linkage.dimensions(), [50.0, 150.0, 20.0]);
+    }
+
+    /// Found by mutation testing: with an offset, the stroke is
+    /// `√((l2 + l3)² − c²) − √((l3 − l2)² − c²)`, here `√39600 − √9600` (mpmath at 40 digits:
+    /// 101.0178977099968670190046), whichever side of the slide the offset is on.
+    #[test]
+    fn the_stroke_of_an_offset_slider_crank_on_either_side() {
+        for offset in [20.0, -20.0] {
+            let stroke = SliderCrank::new(50.0f64, 150.0, offset)
+                .unwrap()
+                .stroke()
+                .unwrap();
+            assert!((stroke - 101.017_897_709_996_87).abs() < 1e-12, "{stroke}");
+        }
+    }
+
+    /// The dead centres `asin(c/(l2 + l3))` and `π + asin(c/(l3 − l2))`, and the time ratio
+    /// `α/(2π − α)` with `α` their difference, for an offset of 40 (mpmath at 40 digits:
+    /// 0.2013579207903307914551, 3.553109499657281257847 and 1.143383030117571110018).
+    #[test]
+    fn dead_centres_and_time_ratio_of_an_offset_slider_crank() {
+        let linkage = SliderCrank::new(50.0f64, 150.0, 40.0).unwrap();
+        let [outer, inner] = linkage.dead_centres().unwrap();
+        assert!((outer - 0.201_357_920_790_330_8).abs() < 1e-15, "{outer}");
+        assert!((inner - 3.553_109_499_657_281_3).abs() < 1e-14, "{inner}");
+        let ratio = linkage.time_ratio().unwrap();
+        assert!((ratio - 1.143_383_030_117_571_1).abs() < 1e-14, "{ratio}");
+    }
+}

@@ -375,4 +375,197 @@ mod tests {
         assert!((a.root_sum_square - (0.01f64 + 0.04 + 0.01).sqrt()).abs() < 1e-15);
         assert!((root_sum_square(&[3e200f64, 4e200]) / 5e200 - 1.0).abs() < 1e-15);
     }
+
+    /// Found by mutation testing: the worst corner may take the derivatives with opposite
+    /// signs, and every such combination is tried.
+    #[test]
+    fn the_worst_corner_may_subtract() {
+        let (x, y) = (Vec2 { x: 1.0, y: 0.0 }, Vec2 { x: 0.0, y: 1.0 });
+        let minus_x = Vec2 { x: -1.0, y: 0.0 };
+        let d = point_deviation(&[x, minus_x], &[1.0, 0.5]);
+        assert_eq!(d.worst_case, 1.5);
+        assert_eq!(d.root_sum_square, 1.25f64.sqrt());
+        // (1, 0) − (−1, 0) ± (0, 1): √5, whichever sign the last takes.
+        let d = point_deviation(&[x, y, minus_x], &[1.0, 1.0, 1.0]);
+        assert_eq!(d.worst_case, 5f64.sqrt());
+        let d = point_deviation(&[y, minus_x, x, y], &[1.0, 1.0, 1.0, 1.0]);
+        assert_eq!(d.worst_case, 8f64.sqrt());
+    }
+
+    /// Found by mutation testing: no terms, or only zero ones, stack up to zero; an infinite
+    /// one to infinity (not NaN, which scaling by it would give).
+    #[test]
+    fn stack_ups_of_zeros_and_infinities() {
+        assert_eq!(root_sum_square::<f64>(&[0.0, 0.0]), 0.0);
+        assert_eq!(root_sum_square::<f64>(&[]), 0.0);
+        assert_eq!(root_sum_square(&[1.0, f64::INFINITY]), f64::INFINITY);
+        assert_eq!(root_sum_square(&[-3.0, 4.0]), 5.0);
+        let d = angle_deviation(&[0.0f64, 0.0], &[0.1, 0.1]);
+        assert_eq!((d.worst_case, d.root_sum_square), (0.0, 0.0));
+    }
+
+    /// A four-bar whose rocker stands near θ4 = π at θ2 = 90° (B near (l1 − l4, 0)), so that
+    /// the linkages within its tolerances put θ4 on either side of ±π.
+    fn near_pi() -> (FourBar<f64>, f64, Branch) {
+        let linkage = FourBar::new(100.0, 40.0, 64.0, 50.0)
+            .and_then(|l| l.with_coupler_point(30.0, 0.4))
+            .unwrap();
+        let theta2 = 90f64.to_radians();
+        let branch = [Branch::Open, Branch::Crossed]
+            .into_iter()
+            .find(|&b| linkage.assemble(theta2, b).unwrap().theta4.abs() > 3.1)
+            .unwrap();
+        (linkage, theta2, branch)
+    }
+
+    /// Found by mutation testing: for small tolerances, the nonlinear model at the box's
+    /// corners agrees with the first order to second order: the largest deviations with the worst cases, and
+    /// the root mean squares over the corners with the root-sum-square stack-ups (over every
+    /// corner the cross terms cancel). The rocker's angle changes are wrapped: θ4 lies on
+    /// both sides of ±π here.
+    #[test]
+    fn corners_agree_with_the_first_order_for_small_tolerances() {
+        let (linkage, theta2, branch) = near_pi();
+        let tolerances = FourBarTolerances {
+            ground: 0.02,
+            crank: 0.01,
+            coupler: 0.03,
+            rocker: 0.01,
+            distance: 0.02,
+            angle: 1e-3,
+        };
+        let first = linkage.tolerance(theta2, branch, &tolerances).unwrap();
+        let corners = linkage.corners(theta2, branch, &tolerances).unwrap();
+        // To second order: the tolerances are some 3e-4 of the lengths.
+        let near = |got: f64, want: f64| (got / want - 1.0).abs() < 1e-2;
+        assert!(first.output.worst_case > 1e-4, "{first:?}");
+        assert!(
+            near(corners.output_largest, first.output.worst_case),
+            "{corners:?} {first:?}"
+        );
+        assert!(
+            near(corners.output_rms, first.output.root_sum_square),
+            "{corners:?}"
+        );
+        assert!(near(
+            corners.coupler_point_largest,
+            first.coupler_point.worst_case
+        ));
+        assert!(near(
+            corners.coupler_point_rms,
+            first.coupler_point.root_sum_square
+        ));
+        assert_eq!((corners.assembled, corners.failed), (64, 0));
+        // The rocker's angle crosses ±π among the corners.
+        let [l1, l2, l3, l4] = linkage.lengths();
+        let t = tolerances;
+        let signs: [f64; 16] = core::array::from_fn(|corner| {
+            let sign = |bit: usize| if corner & (1 << bit) != 0 { -1.0 } else { 1.0 };
+            FourBar::new(
+                l1 + sign(0) * t.ground,
+                l2 + sign(1) * t.crank,
+                l3 + sign(2) * t.coupler,
+                l4 + sign(3) * t.rocker,
+            )
+            .map(|l| l.assemble(theta2, branch).unwrap().theta4.signum())
+            .unwrap()
+        });
+        assert!(signs.contains(&1.0) && signs.contains(&-1.0), "{signs:?}");
+    }
+
+    /// Found by mutation testing: corners that make no linkage (here a coupler point at a
+    /// negative distance, half of them) are counted as failed, the rest as assembled; only
+    /// the dimensions with a tolerance are varied.
+    #[test]
+    fn corners_that_make_no_linkage_are_counted_apart() {
+        let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+        let theta2 = 60f64.to_radians();
+        let sampled = linkage
+            .corners(theta2, Branch::Open, &FourBarTolerances::lengths(0.1))
+            .unwrap();
+        assert_eq!((sampled.assembled, sampled.failed), (16, 16));
+        assert!(sampled.output_largest > 0.0 && sampled.coupler_point_largest > 0.0);
+        let exact = FourBarTolerances::default();
+        let sampled = linkage.corners(theta2, Branch::Open, &exact).unwrap();
+        assert_eq!((sampled.assembled, sampled.failed), (1, 0));
+        assert_eq!(sampled.output_largest, 0.0);
+        assert_eq!(sampled.coupler_point_largest, 0.0);
+    }
+
+    /// Found by mutation testing: Monte Carlo is the nonlinear model at the seeded draws,
+    /// each dimension off by `t/3` times a standard normal deviate, six a sample in the
+    /// parameters' order (drawn here again, and the linkages solved one by one); its root
+    /// mean squares estimate the stack-ups over 3.
+    #[test]
+    fn monte_carlo_solves_the_seeded_draws() {
+        let (linkage, theta2, branch) = near_pi();
+        let tolerances = FourBarTolerances {
+            ground: 0.2,
+            crank: 0.1,
+            coupler: 0.3,
+            rocker: 0.1,
+            distance: 0.2,
+            angle: 1e-2,
+        };
+        let (samples, seed) = (2000, 7);
+        let sampled = linkage
+            .monte_carlo(theta2, branch, &tolerances, samples, seed)
+            .unwrap();
+        let q = linkage.assemble(theta2, branch).unwrap();
+        let p = linkage.points(theta2, &q).unwrap().coupler_point;
+        let [l1, l2, l3, l4] = linkage.lengths();
+        let (a, delta) = linkage.coupler_point();
+        let t = tolerances.as_array();
+        let mut random = SplitMix64(seed);
+        let (mut largest, mut squares, mut point_squares) = (0f64, 0.0, 0.0);
+        for _ in 0..samples {
+            let e: [f64; 6] = core::array::from_fn(|p| t[p] / 3.0 * random.normal::<f64>());
+            let l = FourBar::new(l1 + e[0], l2 + e[1], l3 + e[2], l4 + e[3])
+                .and_then(|l| l.with_coupler_point(a + e[4], delta + e[5]))
+                .unwrap();
+            let moved = l.assemble(theta2, branch).unwrap();
+            let (sine, cosine) = (moved.theta4 - q.theta4).sin_cos();
+            let change = sine.atan2(cosine);
+            largest = largest.max(change.abs());
+            squares += change * change;
+            let point = l.points(theta2, &moved).unwrap().coupler_point;
+            point_squares += (point - p).norm().powi(2);
+        }
+        let n = samples as f64;
+        let near = |got: f64, want: f64| (got / want - 1.0).abs() < 1e-9;
+        assert_eq!((sampled.assembled, sampled.failed), (samples, 0));
+        assert!(near(sampled.output_largest, largest), "{sampled:?}");
+        assert!(
+            near(sampled.output_rms, (squares / n).sqrt()),
+            "{sampled:?}"
+        );
+        assert!(near(sampled.coupler_point_rms, (point_squares / n).sqrt()));
+        let first = linkage.tolerance(theta2, branch, &tolerances).unwrap();
+        let estimate = |got: f64, rss: f64| (got / (rss / 3.0) - 1.0).abs() < 0.1;
+        assert!(estimate(sampled.output_rms, first.output.root_sum_square));
+        assert!(estimate(
+            sampled.coupler_point_rms,
+            first.coupler_point.root_sum_square
+        ));
+    }
+
+    #[test]
+    fn tolerances_are_taken_by_their_magnitude_and_must_be_finite() {
+        let (linkage, theta2, branch) = near_pi();
+        let plus = FourBarTolerances::lengths(0.1);
+        let minus = FourBarTolerances::lengths(-0.1);
+        assert_eq!(
+            linkage.tolerance(theta2, branch, &minus),
+            linkage.tolerance(theta2, branch, &plus)
+        );
+        for bad in [f64::NAN, f64::INFINITY] {
+            let tolerances = FourBarTolerances { angle: bad, ..plus };
+            assert_eq!(
+                linkage.tolerance(theta2, branch, &tolerances),
+                Err(Error::NonFinite {
+                    quantity: "tolerance"
+                })
+            );
+        }
+    }
 }

@@ -899,6 +899,49 @@ mod tests {
         }
     }
 
+    /// Found by mutation testing: just off the inside tangency (the chord a little longer
+    /// than `|r1 − r2|`), the solution's residual is rounding of the three lengths, not zero,
+    /// and it is held to their sum, not to `span − r1 + r2` (nearly zero there), which would
+    /// reject it.
+    #[test]
+    fn two_angles_meet_inside_near_a_tangency() {
+        for (q1, r1, r2, bend) in [
+            (0.5, 3.0, 2.0, 1e-3),
+            (0.5, 2.0, 3.0, 1e-3),
+            (2.1, 3.7, 2.3, -1e-5),
+            (-1.3, 2.3, 3.7, 1e-5),
+        ] {
+            // Link 2 nearly back along link 1, bent by `bend`.
+            let (w1, w2) = (v(r1, 0.0), v(r2, 0.0));
+            let q2 = q1 + core::f64::consts::PI - bend;
+            let k = scaled(turned(q1, w1) + turned(q2, w2), -1.0);
+            let sigma = two_angles_sign(k, w1, q1).signum();
+            let (_, _, d1, d2) = two_angles(k, w1, w2, sigma).unwrap();
+            // The angles are known to ε over the bend, about 1e-11 rad.
+            for (got, q) in [(d1, q1), (d2, q2)] {
+                let want = turned(q, v(1.0, 0.0));
+                assert!((got - want).norm() < 1e-9, "{got:?} != {want:?}");
+            }
+        }
+    }
+
+    /// Found by mutation testing: two equal links over a chord 1e-100 of their length stand
+    /// square to it, each reaching half the chord along it. The chord's direction is the
+    /// chord over its length; the chord times its length (whose square underflows) leaves
+    /// nothing to turn to.
+    #[test]
+    fn two_angles_over_a_chord_far_shorter_than_the_links() {
+        let chord = 1e-100;
+        let w = v(1.0, 0.0);
+        let (q1, q2, d1, d2) = two_angles(v(-chord, 0.0), w, w, 1.0).unwrap();
+        let half = core::f64::consts::FRAC_PI_2;
+        assert_direction(d1, q1, half);
+        assert_direction(d2, q2, -half);
+        for d in [d1, d2] {
+            assert!((d.x / (chord / 2.0) - 1.0).abs() < 1e-14, "{d:?}");
+        }
+    }
+
     #[test]
     fn two_angles_meet_at_a_tangency_and_fail_beyond_it() {
         // Links of 2 and 3 over a chord of 5: the circles touch, both angles zero.

@@ -461,7 +461,10 @@ mod tests {
     #[test]
     fn checked_angles_have_any_vector_s_direction() {
         // Norms of 1.5, 3, 1, 1e-300 and 1e300, where the arc sine or cosine of a component
-        // is wrong or NaN, or a square would underflow or overflow.
+        // is wrong or NaN, or a square would underflow or overflow; and (found by mutation
+        // testing) components in a ratio of 2 and 3.5, where the component whose arc sine or
+        // cosine is taken would still be the smaller one if it were multiplied rather than
+        // divided by the length.
         for (y, x) in [
             (1.2, -0.9),
             (-2.4, 1.8),
@@ -469,6 +472,10 @@ mod tests {
             (0.6, 0.8),
             (-0.6e-300, -0.8e-300),
             (1.2e300, -0.9e300),
+            (1.5, 3.0),
+            (-3.0, 1.5),
+            (2.0, -7.0),
+            (-7.0, -2.0),
         ] {
             let at = angle(y, x);
             assert!(
