@@ -57,6 +57,7 @@ FILES=(
 # each is hours, and its fits are tested mostly in tests/tests/synthesis.rs, not beside it
 # (a few doctests, and the command-line program's `synthesise`).
 ANALYSES=(
+    mechanisms/src/five_bar.rs
     mechanisms/src/triangle.rs
     mechanisms/src/tolerance.rs
     mechanisms/src/four_bar.rs
