@@ -130,7 +130,12 @@ fn generic_rank(model: &Model, equations: &Equations, errors: &mut Errors) {
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
     let mut dependent = None;
-    for _ in 0..3 {
+    // Three points where the Jacobian is defined, among at most twelve drawn.
+    let mut tested = 0;
+    for _ in 0..12 {
+        if tested == 3 {
+            break;
+        }
         let params: Vec<f64> = (0..model.params.len()).map(|_| 1.0 + random()).collect();
         let inputs = model.inputs.len();
         let point: Vec<f64> = (0..n + inputs)
@@ -153,6 +158,7 @@ fn generic_rank(model: &Model, equations: &Equations, errors: &mut Errors) {
         if matrix.iter().flatten().any(|value| !value.is_finite()) {
             continue;
         }
+        tested += 1;
         match dependent_column(matrix) {
             Some(column) => dependent = Some(column),
             None => return,
