@@ -1982,6 +1982,34 @@ mod tests {
     }
 
     #[test]
+    fn the_common_path_leaves_another_orientation_and_a_scale_that_is_not_finite_to_newton() {
+        // x0³ − x0 from 0.5, where the Jacobian's determinant 3·x0² − 1 is negative: one
+        // full step lands exactly on the root −1 (the residual falls from 0.375 to 0), where
+        // the determinant is positive. Asked to keep the orientation, the common path must
+        // not hand that root on; without the ask, it may.
+        let cubic = |scale: f64| {
+            move |x: &[f64; 2]| Linearisation {
+                residual: [x[0] * x[0] * x[0] - x[0], x[1]],
+                jacobian: [[3.0 * x[0] * x[0] - 1.0, 0.0], [0.0, 1.0]],
+                scale,
+                weights: [1.0; 2],
+                payload: (),
+            }
+        };
+        let options = NewtonOptions::default();
+        let guess = [0.5, 0.0];
+        assert!(newton_common(guess, &options, true, cubic(1.0), Some, || None).is_none());
+        let flipped = newton_common(guess, &options, false, cubic(1.0), Some, || None).unwrap();
+        assert_eq!(flipped.solved.value, [-1.0, 0.0]);
+        // A scale that is not finite sets no floor: even a guess that is a root is left to
+        // Newton, which says why.
+        for scale in [f64::INFINITY, f64::NAN] {
+            let root = [1.0, 0.0];
+            assert!(newton_common(root, &options, true, cubic(scale), Some, || None).is_none());
+        }
+    }
+
+    #[test]
     fn turnings_rotate_as_a_turning_does() {
         let mut turnings = Turnings::<f64, 2>::new();
         let mut turning = [Turning::<f64>::new(), Turning::new()];
