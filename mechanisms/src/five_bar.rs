@@ -146,30 +146,105 @@ impl<T: Real> FiveBar<T> {
             return None;
         }
         // Each leg is a triangle motor–elbow–P: the crank leaves the line motor → P at the
-        // triangle's angle at the motor, to the side the elbow is on.
-        let leg = |motor: Vec2<T>, proximal: T, distal: T, side: T| {
-            let (dx, dy) = (p.x - motor.x, p.y - motor.y);
-            let reach = dx.hypot(dy);
+        // triangle's angle at the motor, to the side the elbow is on. Both motors are on the
+        // x axis, the left at 0 and the right at l5.
+        let leg = |motor_x: T, proximal: T, distal: T, side: T| {
+            let dx = p.x - motor_x;
+            let reach = dx.hypot(p.y);
             let at_motor = crate::triangle::angle(proximal, reach, distal);
-            let toward = dy.atan2(dx);
+            let toward = p.y.atan2(dx);
             if side >= T::zero() {
                 toward + at_motor
             } else {
                 toward - at_motor
             }
         };
-        let zero = T::zero();
         Some([
-            leg(Vec2 { x: zero, y: zero }, self.l1, self.l2, elbows[0]),
-            leg(
-                Vec2 {
-                    x: self.l5,
-                    y: zero,
-                },
-                self.l4,
-                self.l3,
-                elbows[1],
-            ),
+            leg(T::zero(), self.l1, self.l2, elbows[0]),
+            leg(self.l5, self.l4, self.l3, elbows[1]),
         ])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use mechgen::Branch;
+
+    /// Unlike legs, so that a mix-up of the two, or of a leg's two links, shows: the left
+    /// leg's annulus about O1 = (0, 0) is 60 to 140 wide, the right one's about
+    /// O5 = (50, 0) is 30 to 90.
+    fn robot() -> FiveBar<f64> {
+        FiveBar::new(40.0, 100.0, 60.0, 30.0, 50.0).unwrap()
+    }
+
+    fn at(x: f64, y: f64) -> Vec2<f64> {
+        Vec2 { x, y }
+    }
+
+    #[test]
+    fn the_workspace_is_the_two_annuli_s_intersection() {
+        let robot = robot();
+        // 100 from O1 and hypot(30, 60) = 67.1 from O5: inside both annuli.
+        assert!(robot.reaches(at(80.0, 60.0)));
+        // 60 from O1, the left leg folded, and 78.1 from O5: on the left annulus's inner
+        // circle, which the leg reaches.
+        assert!(robot.reaches(at(0.0, 60.0)));
+        // 50 from O1, inside the left annulus's hole (60 wide), and 70.7 from O5.
+        assert!(!robot.reaches(at(0.0, 50.0)));
+        // 100 from O1 but 136 from O5: beyond the right leg's reach alone.
+        assert!(!robot.reaches(at(-60.0, -80.0)));
+        // 70 from O1 but 20 from O5, inside the right annulus's hole (30 wide).
+        assert!(!robot.reaches(at(70.0, 0.0)));
+        // 145 from O1 and 95 from O5: beyond both.
+        assert!(!robot.reaches(at(145.0, 0.0)));
+    }
+
+    #[test]
+    fn inverse_kinematics_puts_the_end_effector_where_asked_with_the_elbows_asked() {
+        let robot = robot();
+        for (p, elbows) in [
+            (at(80.0, 60.0), [1.0, -1.0]),
+            (at(80.0, 60.0), [-1.0, 1.0]),
+            (at(10.0, 70.0), [1.0, 1.0]),
+            (at(40.0, -65.0), [-1.0, -1.0]),
+        ] {
+            let [left, right] = robot.inverse(p, elbows).expect("within the workspace");
+            // The elbows, from the cranks' angles alone.
+            let a1 = at(40.0 * left.cos(), 40.0 * left.sin());
+            let a2 = at(50.0 + 30.0 * right.cos(), 30.0 * right.sin());
+            // Each distal link reaches P from its elbow.
+            assert!(
+                ((p.x - a1.x).hypot(p.y - a1.y) - 100.0).abs() < 1e-9,
+                "{p:?}"
+            );
+            assert!(
+                ((p.x - a2.x).hypot(p.y - a2.y) - 60.0).abs() < 1e-9,
+                "{p:?}"
+            );
+            // Each elbow on the side asked of the line from its motor to P: to the left
+            // (counter-clockwise) where (P − motor) × (elbow − motor) is positive.
+            let side = |motor: Vec2<f64>, elbow: Vec2<f64>| {
+                (p.x - motor.x) * (elbow.y - motor.y) - (p.y - motor.y) * (elbow.x - motor.x)
+            };
+            assert!(
+                side(at(0.0, 0.0), a1) * elbows[0] > 0.0,
+                "{p:?} {elbows:?}: left"
+            );
+            assert!(
+                side(at(50.0, 0.0), a2) * elbows[1] > 0.0,
+                "{p:?} {elbows:?}: right"
+            );
+            // And the forward kinematics, on one of its working modes, finds P there.
+            let found = [Branch::Open, Branch::Crossed].into_iter().any(|branch| {
+                robot.assemble(left, right, branch).is_ok_and(|q| {
+                    let e = robot.points(left, right, &q).unwrap().end_effector;
+                    (e.x - p.x).hypot(e.y - p.y) < 1e-9
+                })
+            });
+            assert!(found, "{p:?} {elbows:?}: no working mode puts P there");
+        }
+        assert_eq!(robot.inverse(at(0.0, 50.0), [1.0, 1.0]), None);
+        assert_eq!(robot.inverse(at(-60.0, -80.0), [1.0, 1.0]), None);
     }
 }

@@ -961,3 +961,6 @@ impl Residuals for WattProblem<'_> {
         Some(jacobian)
     }
 }
+
+#[cfg(test)]
+mod tests;
