@@ -376,3 +376,332 @@ fn fit_designs_a_declaration_it_has_never_seen() {
     );
     assert_eq!(offset, 12.0);
 }
+
+// The classical pieces, one at a time.
+
+#[test]
+fn least_squares_over_three_points_is_the_closed_form_and_wants_matched_points() {
+    let phi = [0.3, 1.2, 2.0];
+    let psi: Vec<f64> = outputs(&phi);
+    let closed = freudenstein(180.0, phi, [psi[0], psi[1], psi[2]]).unwrap();
+    let squares = freudenstein_least_squares(180.0, &phi, &psi).unwrap();
+    for (a, b) in squares.iter().zip(closed) {
+        assert!((a - b).abs() <= 1e-9 * b, "{squares:?} against {closed:?}");
+    }
+    for (a, b) in closed.iter().zip([180.0, 80.0, 200.0, 150.0]) {
+        assert!((a - b).abs() <= 1e-9 * b, "{closed:?}");
+    }
+    // Two points are too few; a point without its output, or an output without its point,
+    // is refused (not cut to the shorter of the two).
+    assert_eq!(
+        freudenstein_least_squares(180.0, &phi[..2], &psi[..2]),
+        None
+    );
+    let four = [0.3, 1.2, 2.0, 2.6];
+    assert_eq!(freudenstein_least_squares(180.0, &four, &psi), None);
+    let more: Vec<f64> = outputs(&four);
+    assert_eq!(freudenstein_least_squares(180.0, &phi, &more), None);
+    assert!(freudenstein_least_squares(180.0, &four, &more).is_some());
+}
+
+#[test]
+fn freudensteins_constants_make_a_linkage_only_with_positive_links() {
+    use super::lengths_from_freudenstein as lengths;
+    // Example 1: K1 = d/a = 2.25, K2 = d/c = 1.2, K3 = (a² + c² + d² − b²)/(2ac) = 0.8875.
+    let [d, a, b, c] = lengths(180.0, 2.25, 1.2, 0.8875).unwrap();
+    assert_eq!([d, a, c], [180.0, 80.0, 150.0]);
+    assert!((b - 200.0).abs() < 1e-12, "{b}");
+    // Each condition alone: a crank or a rocker of negative length; a coupler whose square
+    // is zero (exactly: a = c = 1, d = 2, K3 = 3) or negative; one that is not finite.
+    assert_eq!(lengths(180.0, -2.25, 1.2, 0.8875), None);
+    assert_eq!(lengths(180.0, 2.25, -1.2, 0.8875), None);
+    assert_eq!(lengths(2.0, 2.0, 2.0, 3.0), None);
+    assert!(lengths(2.0, 2.0, 2.0, 2.999).is_some());
+    assert_eq!(lengths(2.0, 2.0, 2.0, 3.5), None);
+    assert_eq!(lengths(2.0, 2.0, 2.0, f64::NEG_INFINITY), None);
+    assert_eq!(lengths(2.0, 2.0, 2.0, f64::NAN), None);
+}
+
+#[test]
+fn the_three_by_three_solve_is_cramers_rule_where_the_matrix_is_regular() {
+    use super::solve3;
+    let a = [[2.0, 1.0, -1.0], [-3.0, -1.0, 2.0], [-2.0, 1.0, 2.0]];
+    assert_eq!(solve3(a, [8.0, -11.0, -3.0]), Some([2.0, 3.0, -1.0]));
+    // Its columns, each alone as the right-hand side: each unit vector.
+    for k in 0..3 {
+        let b = [a[0][k], a[1][k], a[2][k]];
+        let mut unit = [0.0; 3];
+        unit[k] = 1.0;
+        assert_eq!(solve3(a, b), Some(unit), "column {k}");
+    }
+    // The same at any scale (the test of regularity is relative to the cube of the
+    // entries' size, as the determinant is).
+    for scale in [1e100, 1e-100] {
+        let scaled = a.map(|row| row.map(|v| v * scale));
+        let x = solve3(scaled, [8.0, -11.0, -3.0].map(|v| v * scale)).unwrap();
+        for (got, want) in x.iter().zip([2.0, 3.0, -1.0]) {
+            assert!((got - want).abs() < 1e-12, "{scale}: {x:?}");
+        }
+    }
+    // Singular (a row twice), singular but for a relative 1e-14, and not finite.
+    let singular = [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 5.0]];
+    assert_eq!(solve3(singular, [1.0, 2.0, 3.0]), None);
+    let nearly = [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0 + 1e-13], [0.0, 1.0, 5.0]];
+    assert_eq!(solve3(nearly, [1.0, 2.0, 3.0]), None);
+    let regular_enough = [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0 + 1e-9], [0.0, 1.0, 5.0]];
+    assert!(solve3(regular_enough, [1.0, 2.0, 3.0]).is_some());
+    let mut nan = a;
+    nan[1][1] = f64::NAN;
+    assert_eq!(solve3(nan, [8.0, -11.0, -3.0]), None);
+}
+
+fn refused<T: core::fmt::Debug>(result: Result<T, SynthesisError>) -> &'static str {
+    match result {
+        Err(SynthesisError::BadTargets(why)) => why,
+        other => panic!("not refused: {other:?}"),
+    }
+}
+
+#[test]
+fn function_generation_says_which_of_its_arguments_is_wrong() {
+    let phi = [0.0, 0.8, 1.6, 2.4];
+    let psi = outputs(&phi);
+    let quick = Options {
+        restarts: 0,
+        ..Options::default()
+    };
+    let pairs = "function generation needs three or more pairs of input and output angles";
+    let values = "the ground length must be positive and every angle finite";
+    let generate =
+        |ground: f64, phi: &[f64], psi: &[f64]| function_generation(ground, phi, psi, &quick);
+    // Three pairs are enough; two are not; an angle without its pair, either way.
+    assert!(generate(180.0, &phi[..3], &psi[..3]).is_ok());
+    assert_eq!(refused(generate(180.0, &phi[..2], &psi[..2])), pairs);
+    assert_eq!(refused(generate(180.0, &phi, &psi[..3])), pairs);
+    assert_eq!(refused(generate(180.0, &phi[..3], &psi)), pairs);
+    // Each value wrong alone.
+    for ground in [0.0, -180.0, f64::INFINITY, f64::NAN] {
+        assert_eq!(refused(generate(ground, &phi, &psi)), values, "{ground}");
+    }
+    let mut bad_phi = phi;
+    bad_phi[2] = f64::NAN;
+    assert_eq!(refused(generate(180.0, &bad_phi, &psi)), values);
+    let mut bad_psi = psi.clone();
+    bad_psi[3] = f64::INFINITY;
+    assert_eq!(refused(generate(180.0, &phi, &bad_psi)), values);
+}
+
+#[test]
+fn path_generation_says_which_of_its_arguments_is_wrong() {
+    let timing: Vec<f64> = (0..9).map(f64::from).collect();
+    let targets: Vec<Vec2<f64>> = timing.iter().map(|&t| target(t)).collect();
+    let quick = Options {
+        restarts: 2,
+        ..Options::default()
+    };
+    let timed = "path generation with prescribed crank angles needs five or more targets";
+    let untimed = "path generation without prescribed crank angles needs nine or more targets";
+    let finite = "every target needs finite coordinates, and a crank angle if any has one";
+    // Five with their crank angles are enough, four are not; nine without, eight are not.
+    assert!(!matches!(
+        path_generation(&targets[..5], Some(&timing[..5]), &quick),
+        Err(SynthesisError::BadTargets(_))
+    ));
+    assert_eq!(
+        refused(path_generation(&targets[..4], Some(&timing[..4]), &quick)),
+        timed
+    );
+    assert!(!matches!(
+        path_generation(&targets, None, &quick),
+        Err(SynthesisError::BadTargets(_))
+    ));
+    assert_eq!(
+        refused(path_generation(&targets[..8], None, &quick)),
+        untimed
+    );
+    // A crank angle too few or too many; each coordinate and crank angle not finite alone.
+    assert_eq!(
+        refused(path_generation(&targets[..6], Some(&timing[..5]), &quick)),
+        finite
+    );
+    assert_eq!(
+        refused(path_generation(&targets[..5], Some(&timing[..6]), &quick)),
+        finite
+    );
+    for k in 0..3 {
+        let (mut points, mut angles) = (targets.clone(), timing.clone());
+        match k {
+            0 => points[1].x = f64::NAN,
+            1 => points[2].y = f64::INFINITY,
+            _ => angles[3] = f64::NAN,
+        }
+        assert_eq!(
+            refused(path_generation(&points, Some(&angles), &quick)),
+            finite,
+            "{k}"
+        );
+        if k < 2 {
+            assert_eq!(
+                refused(path_generation(&points, None, &quick)),
+                finite,
+                "{k}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_random_start_is_a_crank_rocker_on_the_ground_with_the_crank_shortest() {
+    use super::crank_rocker;
+    use crate::random::SplitMix64;
+    let (mut shortest, mut longest) = (f64::MAX, 0.0f64);
+    for seed in 0..500 {
+        let [crank, coupler, rocker] = crank_rocker(100.0, &mut SplitMix64(seed));
+        let mut all = [100.0, crank, coupler, rocker];
+        all.sort_by(f64::total_cmp);
+        assert_eq!(all[0], crank, "{seed}: {all:?}");
+        assert!(
+            all[0] + all[3] < all[1] + all[2],
+            "{seed}: not Grashof, {all:?}"
+        );
+        // Within the documented ranges: the crank 0.1 to 0.6 of the ground, the others 0.4
+        // to 2 of it.
+        assert!((10.0..60.0).contains(&crank), "{crank}");
+        for l in [coupler, rocker] {
+            assert!((40.0..200.0).contains(&l), "{l}");
+            (shortest, longest) = (shortest.min(l), longest.max(l));
+        }
+    }
+    assert!(shortest < 45.0 && longest > 150.0, "{shortest} {longest}");
+}
+
+#[test]
+fn errors_ratios_and_angles_are_measured_as_documented() {
+    use super::{not_assembled, rms, within_ratio, wrapped};
+    assert_eq!(rms(&[3.0, -4.0]), 12.5f64.sqrt());
+    assert_eq!(rms(&[2.0]), 2.0);
+    assert_eq!(rms(&[]), 0.0);
+    // The longest within the ratio of the shortest, in any order, the bound included.
+    assert!(within_ratio(&[50.0, 1.0, 20.0], 50.0));
+    assert!(!within_ratio(&[50.0, 0.999, 20.0], 50.0));
+    assert!(!within_ratio(&[1.0, 20.0, 50.5], 50.0));
+    assert!(within_ratio(&[7.0], 1.0));
+    for (angle, want) in [
+        (0.5, 0.5),
+        (-0.5, -0.5),
+        (7.0, 7.0 - core::f64::consts::TAU),
+        (-7.0, -7.0 + core::f64::consts::TAU),
+        (4.0, 4.0 - core::f64::consts::TAU),
+        (-4.0, -4.0 + core::f64::consts::TAU),
+        (20.0, 20.0 - 3.0 * core::f64::consts::TAU),
+    ] {
+        assert!((wrapped(angle) - want).abs() < 1e-15, "{angle}");
+    }
+    // Where a target cannot be reached: as many NaNs as residuals.
+    let missing = not_assembled(None, 3);
+    assert_eq!(missing.len(), 3);
+    assert!(missing.iter().all(|v| v.is_nan()));
+    assert_eq!(
+        not_assembled(Some(std::vec![1.0, 2.0]), 5).as_slice(),
+        &[1.0, 2.0]
+    );
+}
+
+#[test]
+fn levenberg_marquardt_has_finished_at_a_minimum_or_where_it_cannot_improve() {
+    use super::finished;
+    use levenberg_marquardt::TerminationReason as Why;
+    for why in [
+        Why::ResidualsZero,
+        Why::Orthogonal,
+        Why::Converged {
+            ftol: true,
+            xtol: false,
+        },
+        Why::NoImprovementPossible("gtol"),
+    ] {
+        assert!(finished(&why), "{why:?}");
+    }
+    for why in [
+        Why::LostPatience,
+        Why::Numerical("jacobian"),
+        Why::User("residuals"),
+        Why::NoParameters,
+        Why::NoResiduals,
+        Why::WrongDimensions("jacobian"),
+    ] {
+        assert!(!finished(&why), "{why:?}");
+    }
+}
+
+#[test]
+fn the_best_start_is_the_feasible_one_with_the_least_error_ties_to_the_first() {
+    use super::best;
+    let linkage = |crank: f64| FourBar::new(180.0, crank, 200.0, 150.0).unwrap();
+    let at = |crank: f64, errors: Vec<f64>| {
+        Some((
+            linkage(crank),
+            (Vec2::default(), 0.0),
+            errors,
+            std::vec![0.0, 1.0],
+        ))
+    };
+    let options = Options {
+        max_ratio: 10.0,
+        ..Options::default()
+    };
+    // A start that did not converge, one whose crank breaks the ratio (200/15 > 10), two
+    // with the same least error, and a worse one.
+    let solved = std::vec![
+        None,
+        at(15.0, std::vec![0.0, 0.0]),
+        at(70.0, std::vec![0.5, -0.5]),
+        at(80.0, std::vec![0.1, 0.1]),
+        at(90.0, std::vec![-0.1, 0.1]),
+    ];
+    let found = best(solved, &options).unwrap();
+    assert_eq!(found.linkage, linkage(80.0));
+    assert_eq!((found.converged, found.feasible), (4, 3));
+    assert!((found.rms_error - 0.1).abs() < 1e-15);
+    assert_eq!(found.largest_error, 0.1);
+    let none = best(std::vec![None, at(15.0, std::vec![0.0])], &options);
+    assert_eq!(none, Err(SynthesisError::NothingFeasible { converged: 1 }));
+}
+
+#[test]
+fn the_constraints_are_the_ratio_a_crank_and_the_transmission_angle() {
+    use super::meets;
+    let example = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+    // Example 1 is a crank-rocker; its transmission angle is extreme where the crank lies
+    // along the ground, at the crank angles 0 and π.
+    let q = |t: f64| example.assemble(t, Branch::Open).unwrap();
+    let [at_0, at_pi] = [0.0, core::f64::consts::PI].map(|t| example.transmission_angle(&q(t)));
+    let (low, high) = (at_0.min(at_pi), at_0.max(at_pi));
+    let inputs = [1.0, 2.0];
+    let with = |crank: bool, transmission: Option<(f64, f64)>, max_ratio: f64| Options {
+        crank,
+        transmission,
+        max_ratio,
+        ..Options::default()
+    };
+    assert!(meets(&example, &inputs, &with(false, None, 2.5)));
+    assert!(!meets(&example, &inputs, &with(false, None, 2.4)));
+    assert!(meets(&example, &inputs, &with(true, None, 50.0)));
+    // Over the whole turn with a crank, at the inputs alone without one.
+    let window = Some((low - 1e-9, high + 1e-9));
+    assert!(meets(&example, &inputs, &with(true, window, 50.0)));
+    let narrow = Some((low + 0.05, high));
+    assert!(!meets(&example, &inputs, &with(true, narrow, 50.0)));
+    let between = [1.0, 2.0].map(|t| example.transmission_angle(&q(t)));
+    let around = Some((between[0].min(between[1]), between[0].max(between[1])));
+    assert!(meets(&example, &inputs, &with(false, around, 50.0)));
+    assert!(!meets(
+        &example,
+        &[0.0, 1.0, 2.0],
+        &with(false, around, 50.0)
+    ));
+    // A triple rocker is no crank, whatever else it meets.
+    let rocker = FourBar::new(100.0, 60.0, 50.0, 80.0).unwrap();
+    assert!(meets(&rocker, &[0.5], &with(false, None, 50.0)));
+    assert!(!meets(&rocker, &[0.5], &with(true, None, 50.0)));
+}
