@@ -341,37 +341,9 @@ pub fn path_generation(
         ));
     }
     let n = targets.len();
-    let centre = targets
-        .iter()
-        .fold(Vec2::default(), |c: Vec2<f64>, p| Vec2 {
-            x: c.x + p.x / n as f64,
-            y: c.y + p.y / n as f64,
-        });
-    let spread = targets
-        .iter()
-        .map(|p| (p.x - centre.x).hypot(p.y - centre.y))
-        .fold(0.0f64, f64::max)
-        .max(f64::MIN_POSITIVE);
-    let tau = core::f64::consts::TAU;
-    // [x0, y0, θ1, ln l1, ln l2, ln l3, ln l4, ln a, δ] and, without timing, each θ2.
+    let (centre, spread) = centre_and_spread(targets);
     let starts = starts(options, Vec::new(), |random| {
-        let mut x = Vec::with_capacity(9 + n);
-        let radius = spread * (1.0 + 2.0 * random.fraction());
-        let around = tau * random.fraction();
-        x.push(centre.x + radius * around.cos());
-        x.push(centre.y + radius * around.sin());
-        x.push(tau * random.fraction());
-        let ground = spread * (0.5 + 1.5 * random.fraction());
-        x.push(ground.ln());
-        x.extend(crank_rocker(ground, random).map(f64::ln));
-        x.push((spread * (0.1 + 1.9 * random.fraction())).ln());
-        x.push(tau * random.fraction());
-        if timing.is_none() {
-            // In order round the turn, from a random start.
-            let first = tau * random.fraction();
-            x.extend((0..n).map(|i| first + tau * i as f64 / n as f64));
-        }
-        x
+        path_start(centre, spread, timing.is_none().then_some(n), random)
     });
     let solve = |start: Vec<f64>| {
         let problem = PathProblem {
@@ -389,6 +361,54 @@ pub fn path_generation(
         Some((linkage, (Vec2 { x: x[0], y: x[1] }, x[2]), errors, inputs))
     };
     solved_with_restarts(starts, 0, solve, options)
+}
+
+/// The targets' centroid, and their largest distance from it (at least the smallest positive
+/// float): where path generation's random starts put the linkage, and their scale.
+fn centre_and_spread(targets: &[Vec2<f64>]) -> (Vec2<f64>, f64) {
+    let n = targets.len() as f64;
+    let centre = targets
+        .iter()
+        .fold(Vec2::default(), |c: Vec2<f64>, p| Vec2 {
+            x: c.x + p.x / n,
+            y: c.y + p.y / n,
+        });
+    let spread = targets
+        .iter()
+        .map(|p| (p.x - centre.x).hypot(p.y - centre.y))
+        .fold(0.0f64, f64::max)
+        .max(f64::MIN_POSITIVE);
+    (centre, spread)
+}
+
+/// A random start of path generation, `[x0, y0, θ1, ln l1, ln l2, ln l3, ln l4, ln a, δ]`:
+/// the crank pivot one to three spreads from the centre, any ground angle, a ground of half
+/// to twice the spread carrying a random crank-rocker, a coupler point 0.1 to 2 spreads from
+/// the crank pin at any angle; and, where the crank angles are to be found (`untimed` of
+/// them), each target's, in order round the turn from a random first.
+fn path_start(
+    centre: Vec2<f64>,
+    spread: f64,
+    untimed: Option<usize>,
+    random: &mut SplitMix64,
+) -> Vec<f64> {
+    let tau = core::f64::consts::TAU;
+    let mut x = Vec::with_capacity(9 + untimed.unwrap_or(0));
+    let radius = spread * (1.0 + 2.0 * random.fraction());
+    let around = tau * random.fraction();
+    x.push(centre.x + radius * around.cos());
+    x.push(centre.y + radius * around.sin());
+    x.push(tau * random.fraction());
+    let ground = spread * (0.5 + 1.5 * random.fraction());
+    x.push(ground.ln());
+    x.extend(crank_rocker(ground, random).map(f64::ln));
+    x.push((spread * (0.1 + 1.9 * random.fraction())).ln());
+    x.push(tau * random.fraction());
+    if let Some(n) = untimed {
+        let first = tau * random.fraction();
+        x.extend((0..n).map(|i| first + tau * i as f64 / n as f64));
+    }
+    x
 }
 
 /// The starts: `classical` first, then `options.restarts` random ones, each from its own

@@ -453,6 +453,8 @@ fn the_three_by_three_solve_is_cramers_rule_where_the_matrix_is_regular() {
     let mut nan = a;
     nan[1][1] = f64::NAN;
     assert_eq!(solve3(nan, [8.0, -11.0, -3.0]), None);
+    // Nothing at all: a zero determinant against a zero bound is not regular.
+    assert_eq!(solve3([[0.0; 3]; 3], [1.0, 2.0, 3.0]), None);
 }
 
 fn refused<T: core::fmt::Debug>(result: Result<T, SynthesisError>) -> &'static str {
@@ -704,4 +706,78 @@ fn the_constraints_are_the_ratio_a_crank_and_the_transmission_angle() {
     let rocker = FourBar::new(100.0, 60.0, 50.0, 80.0).unwrap();
     assert!(meets(&rocker, &[0.5], &with(false, None, 50.0)));
     assert!(!meets(&rocker, &[0.5], &with(true, None, 50.0)));
+}
+
+#[test]
+fn path_generation_starts_around_the_targets_at_their_scale() {
+    use super::{centre_and_spread, path_start};
+    use crate::random::SplitMix64;
+    let tau = core::f64::consts::TAU;
+    // A rectangle's corners: its centre, and half its diagonal.
+    let corners =
+        [(10.0, 20.0), (14.0, 20.0), (14.0, 22.0), (10.0, 22.0)].map(|(x, y)| Vec2 { x, y });
+    let (centre, spread) = centre_and_spread(&corners);
+    assert_eq!(centre, Vec2 { x: 12.0, y: 21.0 });
+    assert_eq!(spread, 5f64.sqrt());
+    let (_, none) = centre_and_spread(&[Vec2 { x: 3.0, y: 4.0 }; 5]);
+    assert_eq!(none, f64::MIN_POSITIVE);
+    // Each value within its documented range, over many seeds, and near both ends of it.
+    let ranges: [(f64, f64); 6] = [
+        (spread, 3.0 * spread), // the pivot's distance from the centre
+        (0.0, tau),             // the ground's angle
+        ((0.5 * spread).ln(), (2.0 * spread).ln()), // ln ground
+        ((0.1 * spread).ln(), (2.0 * spread).ln()), // ln a
+        (0.0, tau),             // δ
+        (0.0, tau),             // the first crank angle
+    ];
+    let mut seen = [(f64::MAX, f64::MIN); 6];
+    for seed in 0..2000 {
+        let x = path_start(centre, spread, Some(4), &mut SplitMix64(seed));
+        assert_eq!(x.len(), 13);
+        let values = [
+            (x[0] - centre.x).hypot(x[1] - centre.y),
+            x[2],
+            x[3],
+            x[7],
+            x[8],
+            x[9],
+        ];
+        for (k, (value, (low, high))) in values.iter().zip(ranges).enumerate() {
+            assert!(
+                *value >= low - 1e-12 && *value <= high + 1e-12,
+                "{k}: {value}"
+            );
+            seen[k] = (seen[k].0.min(*value), seen[k].1.max(*value));
+        }
+        // The crank-rocker on that ground, crank shortest.
+        let [ground, crank, coupler, rocker] = [x[3], x[4], x[5], x[6]].map(f64::exp);
+        assert!(crank < ground && crank < coupler && crank < rocker, "{x:?}");
+        // Four crank angles a quarter turn apart, in order.
+        for i in 1..4 {
+            assert!(
+                (x[9 + i] - x[9] - tau * i as f64 / 4.0).abs() < 1e-12,
+                "{x:?}"
+            );
+        }
+    }
+    for (k, ((low, high), (least, most))) in ranges.iter().zip(seen).enumerate() {
+        let margin = 0.02 * (high - low);
+        assert!(
+            least < low + margin && most > high - margin,
+            "{k}: {least}..{most}"
+        );
+    }
+    // With the crank angles given, the nine dimensions and placement alone.
+    assert_eq!(
+        path_start(centre, spread, None, &mut SplitMix64(1)).len(),
+        9
+    );
+    // Both coordinates of the pivot move: its angle round the centre covers the turn.
+    let quadrants = (0..64).fold([false; 4], |mut seen, seed| {
+        let x = path_start(centre, spread, None, &mut SplitMix64(seed));
+        let (dx, dy) = (x[0] - centre.x, x[1] - centre.y);
+        seen[usize::from(dx < 0.0) + 2 * usize::from(dy < 0.0)] = true;
+        seen
+    });
+    assert_eq!(quadrants, [true; 4]);
 }
