@@ -781,3 +781,223 @@ fn path_generation_starts_around_the_targets_at_their_scale() {
     });
     assert_eq!(quadrants, [true; 4]);
 }
+
+/// Each column of `make(x)`'s derivatives against central differences of its errors in `x`.
+fn derivatives_match_differences<R: super::Residuals>(make: impl Fn(&[f64]) -> R, x: &[f64]) {
+    let at = make(x);
+    let jacobian = at
+        .derivatives()
+        .expect("derivatives where the targets are reached");
+    let count = at.count();
+    assert_eq!(jacobian.shape(), (count, x.len()));
+    assert_eq!(at.errors().unwrap().len(), count);
+    let h = 1e-6;
+    for c in 0..x.len() {
+        let (mut up, mut down) = (x.to_vec(), x.to_vec());
+        up[c] += h;
+        down[c] -= h;
+        let (e_up, e_down) = (make(&up).errors().unwrap(), make(&down).errors().unwrap());
+        for r in 0..count {
+            let difference = (e_up[r] - e_down[r]) / (2.0 * h);
+            let want = jacobian[(r, c)];
+            assert!(
+                (difference - want).abs() < 1e-6 * (1.0 + want.abs()),
+                "row {r}, column {c}: {difference} against {want}"
+            );
+        }
+    }
+}
+
+#[test]
+fn every_synthesis_differentiates_its_errors_as_they_change() {
+    use super::{FunctionProblem, PathProblem, WattProblem};
+    use crate::WattSixBarBranches;
+    use nalgebra::DVector;
+    // Function generation, near Example 1 (its lengths through their logarithms).
+    let phi = [0.2, 0.9, 1.7, 2.5];
+    let psi: Vec<f64> = outputs(&phi).iter().map(|p| p + 0.01).collect();
+    derivatives_match_differences(
+        |x| FunctionProblem {
+            ground: 180.0,
+            phi: &phi,
+            psi: &psi,
+            branch: Branch::Open,
+            x: DVector::from_row_slice(x),
+        },
+        &[85f64.ln(), 190f64.ln(), 155f64.ln()],
+    );
+    // Path generation, placed and turned, with its crank angles given and found.
+    let timing = [0.3, 1.1, 2.0];
+    let targets = timing.map(target);
+    let placed = [
+        25.0,
+        -15.0,
+        0.4,
+        175f64.ln(),
+        82f64.ln(),
+        205f64.ln(),
+        148f64.ln(),
+        95f64.ln(),
+        0.5,
+    ];
+    derivatives_match_differences(
+        |x| PathProblem {
+            targets: &targets,
+            timing: Some(&timing),
+            branch: Branch::Open,
+            x: DVector::from_row_slice(x),
+        },
+        &placed,
+    );
+    let mut untimed = placed.to_vec();
+    untimed.extend([0.35, 1.05, 2.1]);
+    derivatives_match_differences(
+        |x| PathProblem {
+            targets: &targets,
+            timing: None,
+            branch: Branch::Open,
+            x: DVector::from_row_slice(x),
+        },
+        &untimed,
+    );
+    // The Watt six-bar's output, its six free dimensions.
+    let start = crate::WattSixBar::new(
+        [180.0, 80.0, 210.0, 145.0],
+        105.0,
+        0.75,
+        230.0,
+        150.0,
+        (300.0, 150.0),
+    )
+    .unwrap();
+    let watt_phi = [0.0, 0.7, 1.4, 2.1, 2.8, 3.5];
+    let watt_psi = [0.1; 6];
+    derivatives_match_differences(
+        |x| WattProblem {
+            start,
+            phi: &watt_phi,
+            psi: &watt_psi,
+            branches: WattSixBarBranches::default(),
+            x: DVector::from_row_slice(x),
+        },
+        &[
+            210f64.ln(),
+            145f64.ln(),
+            105f64.ln(),
+            0.75,
+            230f64.ln(),
+            150f64.ln(),
+        ],
+    );
+}
+
+#[test]
+fn six_bar_function_generation_says_which_of_its_arguments_is_wrong() {
+    use super::watt_function_generation;
+    use crate::{WattSixBar, WattSixBarBranches};
+    let start = WattSixBar::new(
+        [180.0, 80.0, 200.0, 150.0],
+        100.0,
+        0.8,
+        220.0,
+        160.0,
+        (300.0, 150.0),
+    )
+    .unwrap();
+    let branches = WattSixBarBranches::default();
+    let phi: Vec<f64> = (0..7).map(|k| 0.7 * f64::from(k)).collect();
+    let psi: Vec<f64> = phi
+        .iter()
+        .map(|&p| start.assemble(p, branches).unwrap().theta6)
+        .collect();
+    let quick = Options {
+        restarts: 0,
+        ..Options::default()
+    };
+    let generate =
+        |phi: &[f64], psi: &[f64]| watt_function_generation(&start, phi, psi, branches, &quick);
+    let pairs = "six-bar function generation needs six or more pairs of input and output angles";
+    assert!(generate(&phi[..6], &psi[..6]).is_ok());
+    assert_eq!(refused(generate(&phi[..5], &psi[..5])), pairs);
+    assert_eq!(refused(generate(&phi, &psi[..6])), pairs);
+    assert_eq!(refused(generate(&phi[..6], &psi)), pairs);
+    let (mut bad_phi, mut bad_psi) = (phi.clone(), psi.clone());
+    bad_phi[1] = f64::NAN;
+    bad_psi[2] = f64::NEG_INFINITY;
+    assert_eq!(
+        refused(generate(&bad_phi, &psi)),
+        "every angle must be finite"
+    );
+    assert_eq!(
+        refused(generate(&phi, &bad_psi)),
+        "every angle must be finite"
+    );
+}
+
+#[test]
+fn output_errors_are_wrapped_and_missing_where_a_point_is_not_reached() {
+    use super::output_errors;
+    let tau = core::f64::consts::TAU;
+    let errors = output_errors(&[1.0, 2.0], &[0.5, 2.0 - tau + 0.25], |phi| Some(phi)).unwrap();
+    assert!(
+        (errors[0] - 0.5).abs() < 1e-15 && (errors[1] + 0.25).abs() < 1e-12,
+        "{errors:?}"
+    );
+    assert_eq!(
+        output_errors(&[1.0, 2.0], &[0.0, 0.0], |phi| (phi < 1.5).then_some(phi)),
+        None
+    );
+}
+
+#[test]
+fn the_starts_are_the_classical_ones_then_one_per_restart_from_its_own_seed() {
+    use super::starts;
+    use crate::random::SplitMix64;
+    let options = |restarts: usize, seed: u64| Options {
+        restarts,
+        seed,
+        ..Options::default()
+    };
+    let draw = |random: &mut SplitMix64| random.fraction();
+    let all = starts(&options(3, 9), std::vec![-1.0, -2.0], draw);
+    assert_eq!(all.len(), 5);
+    assert_eq!(&all[..2], &[-1.0, -2.0]);
+    // Each restart's own generator: the same for the same seed and index whatever the
+    // count, different across indices and seeds.
+    let more = starts(&options(5, 9), Vec::new(), draw);
+    assert_eq!(&more[..3], &all[2..]);
+    assert!(more.windows(2).all(|w| w[0] != w[1]), "{more:?}");
+    let other = starts(&options(3, 10), Vec::new(), draw);
+    assert!(other.iter().zip(&more).all(|(a, b)| a != b), "{other:?}");
+    assert!(all[2..].iter().all(|v| (0.0..1.0).contains(v)));
+}
+
+#[test]
+fn the_first_start_alone_where_it_is_good_enough_every_start_otherwise() {
+    use super::solved_from_first;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let run = |first_error: Option<f64>, good_enough: Option<f64>| {
+        let calls = AtomicUsize::new(0);
+        let options = Options {
+            good_enough,
+            ..Options::default()
+        };
+        let solved = solved_from_first(
+            std::vec![0, 1, 2, 3],
+            |k: usize| {
+                calls.fetch_add(1, Ordering::Relaxed);
+                let error = if k == 0 { first_error? } else { 1.0 };
+                Some((k, std::vec![error]))
+            },
+            &options,
+        );
+        (
+            calls.load(Ordering::Relaxed),
+            solved.iter().map(|(k, _)| *k).collect::<Vec<_>>(),
+        )
+    };
+    assert_eq!(run(Some(0.01), Some(0.01)), (1, std::vec![0]));
+    assert_eq!(run(Some(0.02), Some(0.01)), (4, std::vec![0, 1, 2, 3]));
+    assert_eq!(run(Some(0.0), None), (4, std::vec![0, 1, 2, 3]));
+    assert_eq!(run(None, Some(0.01)), (4, std::vec![1, 2, 3]));
+}
