@@ -938,7 +938,7 @@ fn six_bar_function_generation_says_which_of_its_arguments_is_wrong() {
 fn output_errors_are_wrapped_and_missing_where_a_point_is_not_reached() {
     use super::output_errors;
     let tau = core::f64::consts::TAU;
-    let errors = output_errors(&[1.0, 2.0], &[0.5, 2.0 - tau + 0.25], |phi| Some(phi)).unwrap();
+    let errors = output_errors(&[1.0, 2.0], &[0.5, 2.0 - tau + 0.25], Some).unwrap();
     assert!(
         (errors[0] - 0.5).abs() < 1e-15 && (errors[1] + 0.25).abs() < 1e-12,
         "{errors:?}"
