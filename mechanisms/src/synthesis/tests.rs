@@ -419,6 +419,9 @@ fn freudensteins_constants_make_a_linkage_only_with_positive_links() {
     assert!(lengths(2.0, 2.0, 2.0, 2.999).is_some());
     assert_eq!(lengths(2.0, 2.0, 2.0, 3.5), None);
     assert_eq!(lengths(2.0, 2.0, 2.0, f64::NEG_INFINITY), None);
+    // A crank or a rocker of zero length (an infinite K1 or K2) is no linkage either.
+    assert_eq!(lengths(2.0, f64::INFINITY, 2.0, 1.0), None);
+    assert_eq!(lengths(2.0, 2.0, f64::INFINITY, 1.0), None);
     assert_eq!(lengths(2.0, 2.0, 2.0, f64::NAN), None);
 }
 
