@@ -968,6 +968,11 @@ fn the_starts_are_the_classical_ones_then_one_per_restart_from_its_own_seed() {
     let other = starts(&options(3, 10), Vec::new(), draw);
     assert!(other.iter().zip(&more).all(|(a, b)| a != b), "{other:?}");
     assert!(all[2..].iter().all(|v| (0.0..1.0).contains(v)));
+    // Whatever the seed, even one with every bit set, no two restarts share a stream.
+    let ones = starts(&options(4, u64::MAX), Vec::new(), draw);
+    for (i, a) in ones.iter().enumerate() {
+        assert!(ones[i + 1..].iter().all(|b| a != b), "{ones:?}");
+    }
 }
 
 #[test]
