@@ -2044,4 +2044,29 @@ mod tests {
         assert_eq!(sines[0], 2e6f64.sin());
         assert!(sines[1].is_nan());
     }
+
+    /// Found by mutation testing: the common path's first evaluation takes the fresh pairs as
+    /// they are, the bits [`Turnings`]' and [`Turning`]'s first evaluation takes, the sign of
+    /// a zero included. Turned through a step of zero instead, they would be the same values
+    /// but for the sine of −0, which would come out +0 (`−0·1 + 1·0`).
+    #[test]
+    fn the_common_paths_first_pairs_are_the_fresh_ones_to_the_bit() {
+        let bits = |(s, c): ([f64; 2], [f64; 2])| (s.map(f64::to_bits), c.map(f64::to_bits));
+        for angles in [[-0.0, 0.0], [0.0, -0.0], [-0.0, -1.5], [0.3, -2.0]] {
+            let fresh = Turnings::<f64, 2>::new().sin_cos(angles);
+            let started = Started::<f64, 2>::at(angles).sin_cos(angles);
+            assert_eq!(bits(started), bits(fresh), "{angles:?}");
+        }
+        let (sines, cosines) = Started::<f64, 2>::at([-0.0, 0.0]).sin_cos([-0.0, 0.0]);
+        assert_eq!(
+            sines.map(f64::to_bits),
+            [(-0.0f64).to_bits(), 0.0f64.to_bits()]
+        );
+        assert_eq!(cosines, [1.0, 1.0]);
+        // One angle's, the platform's `sin_cos` as a `Turning` computes it.
+        let (sin, cos) = Turning::<f64>::new().sin_cos(-0.0);
+        let ([s], [c]) = Started::<f64, 1>::at([-0.0]).sin_cos([-0.0]);
+        assert_eq!((s.to_bits(), c), (sin.to_bits(), cos));
+        assert_eq!(s.to_bits(), (-0.0f64).to_bits());
+    }
 }
