@@ -20,6 +20,20 @@ fn example() -> FourBar<f64> {
         .unwrap()
 }
 
+/// The Watt six-bar the integration tests use (tests/tests/common): Example 1 carrying a
+/// second dyad.
+fn watt_example() -> crate::WattSixBar<f64> {
+    crate::WattSixBar::new(
+        [180.0, 80.0, 200.0, 150.0],
+        100.0,
+        0.8,
+        220.0,
+        160.0,
+        (300.0, 150.0),
+    )
+    .unwrap()
+}
+
 /// Example 1's rocker angles at `phi`, open branch.
 fn outputs(phi: &[f64]) -> Vec<f64> {
     phi.iter()
@@ -285,16 +299,7 @@ fn fit_recovers_a_watt_six_bar_from_its_output_angles() {
     use super::{Target, fit};
     use crate::{WattSixBar, WattSixBarBranches};
     use mechgen::Design;
-    // The Watt six-bar the integration tests use (tests/tests/common).
-    let truth = WattSixBar::new(
-        [180.0, 80.0, 200.0, 150.0],
-        100.0,
-        0.8,
-        220.0,
-        160.0,
-        (300.0, 150.0),
-    )
-    .unwrap();
+    let truth = watt_example();
     let branches = WattSixBarBranches::default();
     let targets: Vec<Target> = (0..8)
         .map(|k| {
@@ -892,16 +897,8 @@ fn every_synthesis_differentiates_its_errors_as_they_change() {
 #[test]
 fn six_bar_function_generation_says_which_of_its_arguments_is_wrong() {
     use super::watt_function_generation;
-    use crate::{WattSixBar, WattSixBarBranches};
-    let start = WattSixBar::new(
-        [180.0, 80.0, 200.0, 150.0],
-        100.0,
-        0.8,
-        220.0,
-        160.0,
-        (300.0, 150.0),
-    )
-    .unwrap();
+    use crate::WattSixBarBranches;
+    let start = watt_example();
     let branches = WattSixBarBranches::default();
     let phi: Vec<f64> = (0..7).map(|k| 0.7 * f64::from(k)).collect();
     let psi: Vec<f64> = phi
