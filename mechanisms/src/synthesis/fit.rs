@@ -206,10 +206,7 @@ where
 /// A random start near `first`: each value moved by up to ±0.4, uniformly (a length, by its
 /// logarithm, times a factor within e^±0.4).
 fn perturbed(first: &[f64], random: &mut SplitMix64) -> Vec<f64> {
-    first
-        .iter()
-        .map(|x| x + 0.8 * (random.fraction() - 0.5))
-        .collect()
+    first.iter().map(|&x| perturbed_value(x, random)).collect()
 }
 
 /// A parameter as the fit moves it: a length by its logarithm, an angle as it is.
@@ -365,6 +362,12 @@ where
         }
         Some(jacobian)
     }
+}
+
+/// One value of a random start ([`perturbed`]'s, and the Watt six-bar's): `x` moved by up to
+/// ±0.4, uniformly.
+pub(super) fn perturbed_value(x: f64, random: &mut SplitMix64) -> f64 {
+    x + 0.8 * (random.fraction() - 0.5)
 }
 
 #[cfg(test)]

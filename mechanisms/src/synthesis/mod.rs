@@ -883,7 +883,7 @@ pub fn watt_function_generation(
     let ([_, _, l3, l4], l5, beta, l6, l7, _) = start.dimensions();
     let first = [l3.ln(), l4.ln(), l5.ln(), beta, l6.ln(), l7.ln()];
     let starts = starts(options, vec![first], |random| {
-        core::array::from_fn(|k| first[k] + 0.8 * (random.fraction() - 0.5))
+        core::array::from_fn(|k| fit::perturbed_value(first[k], random))
     });
     let solve = |x: [f64; 6]| {
         let (solved, finished) = minimise(problem(x));
