@@ -131,7 +131,8 @@ pub fn classify<T: Real>(ground: T, input: T, coupler: T, output: T) -> Grashof 
 }
 
 /// [`classify`] with lengths counted equal when they differ by at most
-/// `relative_tolerance` times the total length.
+/// `relative_tolerance` times the total length. A tolerance that is negative or not a
+/// number counts as zero: lengths are then equal only exactly.
 ///
 /// ```
 /// use mechgen::grashof::{classify_with_tolerance, Class, Special};
@@ -163,7 +164,8 @@ pub fn classify_with_tolerance<T: Real>(
     let links = normalised([ground, input, coupler, output]);
     let [ground, input, coupler, output] = links;
     let total = links.iter().fold(T::zero(), |sum, l| sum + *l);
-    let margin = relative_tolerance * total;
+    // `max` passes over a NaN: a tolerance that is NaN, or negative, is zero.
+    let margin = relative_tolerance.max(T::zero()) * total;
     let equal = |a: T, b: T| (a - b).abs() <= margin;
     let shortest = links.iter().fold(T::infinity(), |m, l| m.min(*l));
     let longest = links.iter().fold(T::neg_infinity(), |m, l| m.max(*l));
@@ -256,6 +258,28 @@ fn power_of_two<T: Real>(k: i32) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_tolerance_that_is_negative_or_nan_is_zero() {
+        // The seeds' crank-rocker, and a parallelogram off by a part in 10⁶: with no
+        // tolerance, the crank is still the one shortest link and the parallelogram no
+        // longer one (not every link a shortest, nor a double rocker).
+        for tolerance in [-1e-3, f64::NAN, -0.0, 0.0] {
+            let g = classify_with_tolerance(180.0, 80.0, 200.0, 150.0, tolerance);
+            assert_eq!(
+                (g.class, g.inversion),
+                (Class::Grashof, Inversion::CrankRocker)
+            );
+            let g = classify_with_tolerance(200.0, 80.0, 200.0, 80.0001, tolerance);
+            assert_eq!((g.class, g.special), (Class::Grashof, None));
+            // Exactly equal lengths are equal at any tolerance.
+            let g = classify_with_tolerance(200.0, 80.0, 200.0, 80.0, tolerance);
+            assert_eq!(
+                (g.class, g.special),
+                (Class::ChangePoint, Some(Special::Parallelogram))
+            );
+        }
+    }
 
     fn inversion(ground: f64, input: f64, coupler: f64, output: f64) -> (Class, Inversion) {
         let g = classify(ground, input, coupler, output);

@@ -638,7 +638,7 @@ fn output_errors(
         .collect()
 }
 
-/// `angle` wrapped to (−π, π].
+/// `angle` wrapped to [−π, π] (an exact half turn to −π: a residual's square is the same).
 fn wrapped(angle: f64) -> f64 {
     let tau = core::f64::consts::TAU;
     angle - tau * (angle / tau).round()
