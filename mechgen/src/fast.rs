@@ -614,6 +614,33 @@ mod tests {
     }
 
     #[test]
+    fn unit_angle_f32_is_correctly_rounded_where_the_splits_tails_decide() {
+        // Inputs where the last bit rests on the rounding of the split's tail products
+        // (`hi` need only hold half the bits for `hi² + lo·(a + hi) = a²`, so a split made
+        // with another constant, or with `hi` near −a, is still exact, and only those
+        // roundings move): a search over every f32 angle's sine and cosine found these among
+        // the few hundred where such a split loses the correctly rounded value this one
+        // gives (each of length within ε/4 of 1, from a sine and cosine rounded to f32).
+        let pairs: [(u32, u32); 8] = [
+            (0x3b70_48d5, 0x3f7f_ff8f),
+            (0x3b70_48d6, 0x3f7f_ff8f),
+            (0x3b82_a8c4, 0x3f7f_ff7b),
+            (0x3bba_e271, 0x3f7f_feef),
+            (0x3c80_09de, 0x3f7f_f7ff),
+            (0x3c80_49da, 0x3f7f_f7f7),
+            (0x3c80_69d8, 0x3f7f_f7f3),
+            (0x3c80_89d6, 0x3f7f_f7ef),
+        ];
+        for (y, x) in pairs {
+            for y in [f32::from_bits(y), -f32::from_bits(y)] {
+                let x = f32::from_bits(x);
+                let want = f64::from(y).atan2(f64::from(x)) as f32;
+                assert_eq!(unit_angle(y, x).to_bits(), want.to_bits(), "({x:e}, {y:e})");
+            }
+        }
+    }
+
+    #[test]
     fn unit_angle_corrects_for_a_length_far_off_one() {
         // Length 1 + k·ε for k up to 2^16, still first order: within 1 + 0.002·k ulp of
         // atan2 (the slope's 0.06%), against 2·k ulp uncorrected; so within 2 + 0.002·k
