@@ -85,6 +85,8 @@ stem() {
 # The cargo-mutants options that choose the tests a mutant of one file must fail.
 kill_set() {
     case $1 in
+        # Compiled only with its feature, and tested by its doctests.
+        mechgen/src/nalgebra_support.rs) echo --test-package mechgen --features nalgebra ;;
         mechgen/*) echo --test-package mechgen ;;
         mechanisms/*) echo --test-package mechanisms ;;
     esac
