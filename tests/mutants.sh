@@ -30,18 +30,24 @@ OUT=mutants.out
 EXPLAINED=tests/mutants-equivalent.txt
 REPORT=docs/MUTANTS.md
 
-# The files run, in order of importance: closed forms, the scene kernels' checked steps and
-# rate limits, the linear solves, Newton; the runtime's analyses; then the shipped
+# The files run, in order of importance: closed forms, the scene kernels' checked steps, the
+# branch-free maths and rate limits, the linear solves, Newton; the runtime's analyses; its
+# scalar type, accuracy estimates, branches, errors and vectors; the sweep; then the shipped
 # mechanisms' analyses.
 FILES=(
     mechgen/src/closed.rs
     mechgen/src/kernel.rs
+    mechgen/src/fast.rs
     mechgen/src/rate_limits.rs
     mechgen/src/linear.rs
     mechgen/src/newton.rs
     mechgen/src/grashof.rs
     mechgen/src/advantage.rs
+    mechgen/src/real.rs
     mechgen/src/accuracy.rs
+    mechgen/src/branch.rs
+    mechgen/src/error.rs
+    mechgen/src/vec2.rs
     mechgen/src/sweep.rs
     mechanisms/src/five_bar.rs
     mechanisms/src/triangle.rs
