@@ -30,19 +30,28 @@ OUT=mutants.out
 EXPLAINED=tests/mutants-equivalent.txt
 REPORT=docs/MUTANTS.md
 
-# The files run, in order of importance: closed forms, the scene kernels' checked steps and
-# rate limits, the linear solves, Newton; the runtime's analyses; then the shipped
+# The files run, in order of importance: closed forms, the scene kernels' checked steps, the
+# branch-free maths and rate limits, the linear solves, Newton; the runtime's analyses; its
+# scalar type, accuracy estimates, branches, errors and vectors; the sweep; the wider
+# instructions' choice and nalgebra's conversions (with its feature); then the shipped
 # mechanisms' analyses.
 FILES=(
     mechgen/src/closed.rs
     mechgen/src/kernel.rs
+    mechgen/src/fast.rs
     mechgen/src/rate_limits.rs
     mechgen/src/linear.rs
     mechgen/src/newton.rs
     mechgen/src/grashof.rs
     mechgen/src/advantage.rs
+    mechgen/src/real.rs
     mechgen/src/accuracy.rs
+    mechgen/src/branch.rs
+    mechgen/src/error.rs
+    mechgen/src/vec2.rs
     mechgen/src/sweep.rs
+    mechgen/src/simd.rs
+    mechgen/src/nalgebra_support.rs
     mechanisms/src/five_bar.rs
     mechanisms/src/triangle.rs
     mechanisms/src/tolerance.rs
@@ -174,11 +183,13 @@ explanation() {
 report() {
     local file stem caught missed unviable timeout total whole line why
     local partial=() not_tested=()
-    local run_files=() not_run=() not_run_analyses=() survivors=() equivalent=0 not_killed=0
-    local unexplained=0
+    local run_files=() not_run=() not_run_analyses=() no_mutants=() survivors=() equivalent=0
+    local not_killed=0 unexplained=0
     for file in mechgen/src/*.rs "${ANALYSES[@]}"; do
         if [ -f "$OUT/$(stem "$file")/mutants.out/outcomes.json" ]; then
             run_files+=("$file")
+        elif [ -z "$(mutants --list --file "$file" 2>/dev/null)" ]; then
+            no_mutants+=("$file")
         elif [[ $file == mechgen/* ]]; then
             not_run+=("$file")
         else
@@ -232,6 +243,10 @@ report() {
             printf -- '- %s\n' "${partial[@]}"
             echo
         fi
+        if [ "${#no_mutants[@]}" -gt 0 ]; then
+            echo "No mutants to make (declarations and re-exports): $(printf '`%s` ' "${no_mutants[@]}" | sed 's/ $//')."
+            echo
+        fi
         # Not run for this report, which is of mutants.out/ alone: an earlier report may have.
         echo "Not run for this report:"
         if [ "${#not_run[@]}" -gt 0 ]; then
@@ -240,7 +255,11 @@ report() {
         if [ "${#not_run_analyses[@]}" -gt 0 ]; then
             echo "$(printf '`%s` ' "${not_run_analyses[@]}")(the rest of the shipped analyses);"
         fi
-        echo "nor the macro (\`mechgen-macros/\`), nor the shipped mechanisms' declarations and"
+        if [ "$((${#not_run[@]} + ${#not_run_analyses[@]}))" -gt 0 ]; then
+            echo "nor the macro (\`mechgen-macros/\`), nor the shipped mechanisms' declarations and"
+        else
+            echo "the macro (\`mechgen-macros/\`), and the shipped mechanisms' declarations and"
+        fi
         echo "command-line program (the other files of \`mechanisms/\`)."
         echo
         echo "## Survivors"

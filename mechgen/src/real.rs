@@ -229,3 +229,50 @@ pub(crate) fn power_of_two<T: Real>(k: i32) -> T {
 pub(crate) fn normaliser<T: Real>(largest: T) -> T {
     power_of_two(-(binary_exponent(largest) + 1))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn binary_exponent_is_the_floor_of_log2_subnormals_included() {
+        assert_eq!(binary_exponent(1.0f64), 0);
+        assert_eq!(binary_exponent(0.75f64), -1);
+        assert_eq!(binary_exponent(-8.0f64), 3);
+        assert_eq!(binary_exponent(f64::MAX), 1023);
+        assert_eq!(binary_exponent(f64::MIN_POSITIVE), -1022);
+        assert_eq!(binary_exponent(f64::from_bits(3)), -1073);
+        assert_eq!(binary_exponent(f64::from_bits(1)), -1074);
+        assert_eq!(binary_exponent(0.0f64), 0);
+        assert_eq!(binary_exponent(3.0f32), 1);
+        assert_eq!(binary_exponent(f32::MAX), 127);
+        assert_eq!(binary_exponent(f32::from_bits(1)), -149);
+    }
+
+    #[test]
+    fn powers_of_two_stop_where_they_and_their_inverses_are_normal() {
+        assert_eq!(power_of_two::<f64>(0), 1.0);
+        assert_eq!(power_of_two::<f64>(5), 32.0);
+        assert_eq!(power_of_two::<f64>(-3), 0.125);
+        assert_eq!(power_of_two::<f64>(1020), 2f64.powi(1020));
+        assert_eq!(power_of_two::<f64>(1021), 2f64.powi(1020));
+        assert_eq!(power_of_two::<f64>(-1020), 0.5f64.powi(1020));
+        assert_eq!(power_of_two::<f64>(-5000), 0.5f64.powi(1020));
+        assert_eq!(power_of_two::<f32>(124), 2f32.powi(124));
+        assert_eq!(power_of_two::<f32>(125), 2f32.powi(124));
+        assert_eq!(power_of_two::<f32>(-7), 0.007_812_5);
+        assert_eq!(power_of_two::<f32>(-500), 0.5f32.powi(124));
+    }
+
+    #[test]
+    fn the_normaliser_brings_the_largest_into_a_half_to_one_as_far_as_it_can() {
+        assert_eq!(normaliser(1.0f64), 0.5);
+        assert_eq!(normaliser(0.75f64), 1.0);
+        assert_eq!(normaliser(-3.0f64), 0.25);
+        assert_eq!(normaliser(100.0f32), 0.007_812_5);
+        // 2^-1024 and 2^1074 are beyond the clamp: the nearest it allows.
+        assert_eq!(normaliser(f64::MAX), 0.5f64.powi(1020));
+        assert_eq!(normaliser(f64::from_bits(1)), 2f64.powi(1020));
+        assert_eq!(normaliser(1e-40f32), 2f32.powi(124));
+    }
+}
