@@ -6,6 +6,9 @@
 //! [`symbolic`] builds the loop equations as an expression graph and differentiates them,
 //! [`structure`] checks the equations can determine the unknowns, and [`codegen`] emits Rust.
 #![forbid(unsafe_code)]
+// The stages above are private: their links are for `cargo doc --document-private-items`,
+// the contributors' view of this crate.
+#![allow(rustdoc::private_intra_doc_links)]
 
 mod ast;
 mod codegen;

@@ -436,7 +436,7 @@ pub fn two_angles_sign<T: Real>(k: Vec2<T>, w1: Vec2<T>, q1: T) -> T {
 }
 
 /// [`two_angles_sign`], or zero where the solution is within `margin` of the loop's tangency
-/// (see [`side`]).
+/// (see `side`).
 pub fn two_angles_side<T: Real>(k: Vec2<T>, w1: Vec2<T>, q1: T, margin: T) -> T {
     let (sin, cos) = q1.sin_cos();
     let p1 = times(Vec2::new(cos, sin), w1);
@@ -444,13 +444,13 @@ pub fn two_angles_side<T: Real>(k: Vec2<T>, w1: Vec2<T>, q1: T, margin: T) -> T 
 }
 
 /// [`length_and_own_angle_sign`], or zero where the solution is within `margin` of the loop's
-/// tangency (see [`side`]).
+/// tangency (see `side`).
 pub fn length_and_own_angle_side<T: Real>(w0: Vec2<T>, w1: Vec2<T>, l: T, margin: T) -> T {
     side(w1, scaled(w1, l) + w0, margin, dot)
 }
 
 /// [`length_and_other_angle_sign`], or zero where the solution is within `margin` of the
-/// loop's tangency (see [`side`]).
+/// loop's tangency (see `side`).
 pub fn length_and_other_angle_side<T: Real>(k: Vec2<T>, v: Vec2<T>, l: T, margin: T) -> T {
     side(v, k + scaled(v, l), margin, dot)
 }

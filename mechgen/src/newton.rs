@@ -146,7 +146,7 @@ const CREEPING: u32 = 16;
 ///   10 times; if none does, the iteration has stagnated;
 /// - with the default zero tolerance, a point is accepted when its residual is at the
 ///   rounding floor `16 ε Σ|r|` and the step to it started within `√ε·Σ|r|/κ` (so, Newton
-///   being quadratic, the loops' curvature leaves less than the floor: [`polished`]), or the
+///   being quadratic, the loops' curvature leaves less than the floor: `polished`), or the
 ///   Jacobian is near singular
 ///   (κ ≥ ε^(-1/4), where a step from the floor would move along the singular direction
 ///   rather than polish), or no step lowers it;
@@ -439,7 +439,7 @@ pub fn stagnated<T: Real, const N: usize, P>(
 /// Newton takes full steps each of which lowers the residual, else `otherwise()` (which
 /// generated code makes an out-of-line call of [`newton`] from `guess` again, with an
 /// evaluation in its initial state). The common path makes the same iterates from the same
-/// evaluations, the same factors ([`Factored::quick`], which defers the relative determinant's
+/// evaluations, the same factors (`Factored::quick`, which defers the relative determinant's
 /// square root and division to the solution) and the same tests in the same arithmetic, so
 /// that what it hands `then` is what [`newton`] returns, bit for bit. It leaves the solve to
 /// `otherwise` wherever [`newton`] would do something else or its verdict is not certain

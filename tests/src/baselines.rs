@@ -89,7 +89,7 @@ fn four_bar_rates_from_vectors(
 /// `2·l3`, `l3²`, `l4²`, `1/l3`, `1/l4`.
 ///
 /// Per call ([`motion`](Self::motion)): one `sin_cos` (θ2), one `sqrt` (h), one `asin` or
-/// `acos` per angle (of the link's unit vector, [`unit_angle`]: under half the cost of
+/// `acos` per angle (of the link's unit vector, `unit_angle`: under half the cost of
 /// `atan2`), one division, about 65 multiplications and
 /// additions. No further trigonometry: the coupler's direction comes from the half-angle,
 /// `l3·e^{iθ3} = l3·(den² − num², 2·num·den)/(num² + den²)`, the rocker's from the loop,
@@ -327,7 +327,7 @@ impl FourBarCouplerPoint {
 /// It iterates on the link vectors `b3 = l3·e^{iθ3}`, `b4 = l4·e^{iθ4}` as well as the
 /// angles: a Newton update moves each angle by a small step, so rather than call `sin_cos`
 /// again it turns the vector through the step. Each vector is turned from the last one that
-/// came from `sin_cos` ([`turned`]), through the whole way from that one's angle (exact: two
+/// came from `sin_cos` (`Link::turned`), through the whole way from that one's angle (exact: two
 /// nearby floats differ exactly), so a turn's rounding never accumulates; `e^{iδ}` is a short
 /// series, good to rounding for `|δ| ≤ 2⁻¹⁰`, beyond which it calls `sin_cos` afresh (a cold
 /// start's first steps). From the sweep's predicted guess, the updates are about 1e-4, 1e-8
@@ -531,7 +531,7 @@ impl SliderCrankClosed {
 /// `(c·sin γ)²`, `l2²` (one `sin_cos` of γ).
 ///
 /// Per call ([`motion`](Self::motion)): one `sin_cos` (θ2), one `sqrt` (h), one `asin` or
-/// `acos` (of the rocker's unit vector, [`unit_angle`]: θ4, the one angle returned, in
+/// `acos` (of the rocker's unit vector, `unit_angle`: θ4, the one angle returned, in
 /// (−π, π]), two divisions (`1/|R|²` for that unit vector, and `1/(|R|²·h)`, giving `1/h`),
 /// about 45 multiplications and additions.
 #[derive(Clone, Copy, Debug, PartialEq)]
