@@ -173,7 +173,7 @@ impl<T: Real> FourBar<T> {
         for corner in 0..(1u32 << count) {
             let mut errors = [T::zero(); 6];
             for (bit, &p) in indices[..count].iter().enumerate() {
-                errors[p] = if corner & (1 << bit) != 0 {
+                errors[p] = if at_lower_limit(corner, bit) {
                     -t[p]
                 } else {
                     t[p]
@@ -320,7 +320,7 @@ fn point_deviation<T: Real, const N: usize>(v: &[Vec2<T>; N], t: &[T; N]) -> Dev
             .iter()
             .enumerate()
             .fold(Vec2::default(), |sum: Vec2<T>, (p, d)| {
-                if p > 0 && corner & (1 << (p - 1)) != 0 {
+                if p > 0 && at_lower_limit(corner, p - 1) {
                     Vec2 {
                         x: sum.x - d.x,
                         y: sum.y - d.y,
@@ -353,9 +353,24 @@ fn root_sum_square<T: Real>(terms: &[T]) -> T {
     largest * sum.sqrt()
 }
 
+/// Whether the corner numbered `corner` (one bit per varied dimension, set for `−t`) puts
+/// its `bit`th varied dimension at its lower limit.
+fn at_lower_limit(corner: u32, bit: usize) -> bool {
+    corner & (1 << bit) != 0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_corners_set_bits_are_its_dimensions_at_their_lower_limits() {
+        assert!(at_lower_limit(0b10, 1));
+        assert!(!at_lower_limit(0b10, 0));
+        assert!(!at_lower_limit(0b10, 2));
+        assert!(at_lower_limit(0b101, 2));
+        assert!(!at_lower_limit(0, 0));
+    }
 
     #[test]
     fn the_worst_corner_of_a_box_is_found() {

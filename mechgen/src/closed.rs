@@ -144,6 +144,13 @@ fn closes<T: Real>(residual: Vec2<T>, magnitudes: T) -> Result<(), Failure> {
     }
 }
 
+/// The sum of a loop's magnitudes, which scales [`closes`]'s tolerance: one function, tested
+/// on its own, for every closed form (a wrong sum would only loosen or tighten the tolerance,
+/// which the solutions, closing far inside it, would not show).
+fn sum_of<T: Real, const M: usize>(magnitudes: [T; M]) -> T {
+    magnitudes.iter().fold(T::zero(), |sum, m| sum + *m)
+}
+
 /// A length solved at unit scale, brought back: `l / s`, or [`Failure::NonFinite`] if that
 /// is too large for `T`.
 fn unscaled_length<T: Real>(l: T, s: T) -> Result<T, Failure> {
@@ -214,7 +221,7 @@ pub fn two_lengths<T: Real>(k: Vec2<T>, v1: Vec2<T>, v2: Vec2<T>) -> Result<[T; 
     // opposite the directions, so long as they are not parallel to rounding.
     closes(
         k + scaled(u1, along1) + scaled(u2, along2),
-        (length(k) + along1.abs() + along2.abs()) / determinant.abs(),
+        sum_of([length(k), along1.abs(), along2.abs()]) / determinant.abs(),
     )?;
     Ok([
         unscaled_length(along1 / norm1, s)?,
@@ -267,7 +274,7 @@ pub fn length_and_own_direction<T: Real>(
     let direction = turn(scaled(k, -T::one()), point)?;
     closes(
         k + times(direction, scaled(u, along) + w0),
-        radius + along.abs() + length(w0),
+        sum_of([radius, along.abs(), length(w0)]),
     )?;
     Ok((unscaled_length(along / norm, s)?, direction))
 }
@@ -337,7 +344,7 @@ pub fn length_and_other_direction<T: Real>(
     let direction = turn(scaled(point, -T::one()), w0)?;
     closes(
         k + scaled(u, along) + times(direction, w0),
-        length(k) + along.abs() + radius,
+        sum_of([length(k), along.abs(), radius]),
     )?;
     Ok((unscaled_length(along / norm, s)?, direction))
 }
@@ -415,7 +422,7 @@ pub fn two_directions<T: Real>(
     let (direction1, direction2) = (turn(p1, w1)?, turn(p2, w2)?);
     closes(
         k + times(direction1, w1) + times(direction2, w2),
-        span + r1 + r2,
+        sum_of([span, r1, r2]),
     )?;
     Ok((direction1, direction2))
 }
@@ -985,6 +992,8 @@ mod tests {
             Err(Failure::CannotClose)
         );
         assert_eq!(closes(v(32.0 * e * 3.0, 0.0), 3.0), Ok(()));
+        assert_eq!(sum_of([1.0, 2.0, 4.0]), 7.0);
+        assert_eq!(sum_of([0.5f32, 0.25]), 0.75);
         assert_eq!(unscaled_length(3.0, 0.5), Ok(6.0));
         assert_eq!(unscaled_length(f64::MAX, 0.5), Err(Failure::NonFinite));
     }

@@ -255,8 +255,8 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             let shorter = piece_used * half;
             // The last chance: a shorter piece would be below the resolution, so a rough path
             // is accepted (Newton converged on the branch: that is all that can be known).
-            let last_chance = shorter.abs() < smallest || x + shorter == x;
-            let rough = shorter.abs() < roughest || x + shorter == x;
+            let last_chance = unresolved(x, shorter, smallest);
+            let rough = unresolved(x, shorter, roughest);
             let refusal = match self.piece(x, q, m, y) {
                 Ok((position, velocity, smooth)) if smooth || rough => {
                     if y == target {
@@ -410,12 +410,32 @@ impl<T: Real, M: Kinematics<T, N>, const N: usize> Iterator for Sweep<'_, T, M, 
     }
 }
 
+/// Whether a piece `piece` long from `x` is below the walk's resolution: shorter than
+/// `finest`, or lost in rounding at `x`.
+fn unresolved<T: Real>(x: T, piece: T, finest: T) -> bool {
+    piece.abs() < finest || x + piece == x
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::Solved;
     use std::vec;
     use std::vec::Vec;
+
+    #[test]
+    fn a_piece_is_unresolved_below_the_finest_or_where_rounding_loses_it() {
+        assert!(unresolved(0.0, 0.25, 0.5));
+        assert!(unresolved(0.0, -0.25, 0.5));
+        // A piece exactly the finest is resolved.
+        assert!(!unresolved(0.0, 0.5, 0.5));
+        // At 1, a power of two, half an ulp of 1 is lost upwards (a tie, rounded to even) but
+        // not downwards, where the floats are twice as dense.
+        let half_ulp = f64::EPSILON / 2.0;
+        assert!(unresolved(1.0, half_ulp, 0.0));
+        assert!(!unresolved(1.0, -half_ulp, 0.0));
+        assert!(!unresolved(1.0, f64::EPSILON, 0.0));
+    }
 
     /// `q = input`, on one branch, everywhere.
     struct Line;

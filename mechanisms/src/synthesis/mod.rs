@@ -23,7 +23,7 @@ use std::vec;
 use std::vec::Vec;
 
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};
-use mechgen::grashof::Inversion;
+use mechgen::grashof::{Class, Inversion};
 use mechgen::{Branch, Vec2};
 use nalgebra::storage::Owned;
 use nalgebra::{DMatrix, DVector, Dyn};
@@ -577,12 +577,12 @@ fn crank_rocker(ground: f64, random: &mut SplitMix64) -> [f64; 3] {
         let crank = ground * (0.1 + 0.5 * random.fraction());
         let [coupler, rocker] = [0; 2].map(|_| ground * (0.4 + 1.6 * random.fraction()));
         lengths = [crank, coupler, rocker];
-        let sorted = {
-            let mut all = [ground, crank, coupler, rocker];
-            all.sort_by(f64::total_cmp);
-            all
-        };
-        if crank == sorted[0] && sorted[0] + sorted[3] < sorted[1] + sorted[2] {
+        // Classified as the runtime classifies: a start on (or within rounding of) Grashof's
+        // change point is refused, since its crank could stop there at a toggle.
+        let grashof = mechgen::grashof::classify(ground, crank, coupler, rocker);
+        let kind = (grashof.class, grashof.inversion);
+        // Of Grashof's four inversions, the only one whose crank turns fully and rocker not.
+        if kind == (Class::Grashof, Inversion::CrankRocker) {
             break;
         }
     }
