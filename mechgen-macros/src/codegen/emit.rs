@@ -298,6 +298,32 @@ impl Emitter<'_> {
         }
     }
 
+    /// `(minuend, subtrahend)` where `id` is printed inline as a difference (an unnamed sum
+    /// with a negated operand, see the `Add` case of [`Self::expr`]) whose negation is
+    /// printed the other way round.
+    fn difference(&self, id: ExprId) -> Option<(ExprId, Negated)> {
+        if self.names[id.index()].is_some() {
+            return None;
+        }
+        let Node::Add(a, b) = self.graph.node(id) else {
+            return None;
+        };
+        let (minuend, subtrahend) = match (self.negated(a), self.negated(b)) {
+            (_, Some(subtrahend)) => (a, subtrahend),
+            (Some(subtrahend), None) => (b, subtrahend),
+            (None, None) => return None,
+        };
+        // Not where the subtrahend is a lone variable or a number (`-(t0 - l1)`, a loop's
+        // constant vector): measured, the compiler pairs such a difference with its
+        // neighbours' into vector instructions better as it is.
+        match subtrahend {
+            Negated::Expr(x) if !matches!(self.graph.node(x), Node::Var(_)) => {
+                Some((minuend, subtrahend))
+            }
+            _ => None,
+        }
+    }
+
     fn operand_or_constant(&mut self, negated: Negated, required: Precedence) -> TokenStream {
         match negated {
             Negated::Expr(id) => self.operand(id, required),
@@ -325,6 +351,13 @@ impl Emitter<'_> {
                 (quote!(#name), Precedence::Atom)
             }
             Node::Neg(a) => {
+                // `-(x - y)` reads `y - x`: the same value (rounding is symmetric), but for
+                // the sign of a zero, without the negation.
+                if let Some((minuend, subtrahend)) = self.difference(a) {
+                    let left = self.operand_or_constant(subtrahend, Precedence::Sum);
+                    let right = self.operand(minuend, Precedence::Product);
+                    return (quote!(#left - #right), Precedence::Sum);
+                }
                 let a = self.operand(a, Precedence::Unary);
                 (quote!(-#a), Precedence::Unary)
             }
