@@ -22,6 +22,16 @@ impl Graph {
             let product = self.mul(a, y);
             return self.neg(product);
         }
+        // The square of a moving product (a crank's `l2·sin θ2`) is that product times itself:
+        // one multiplication where the kernel computes the product anyway, and no more than
+        // the grouped `l2²·sin²θ2` where it does not.
+        if a == b
+            && self.group_fixed
+            && !self.fixed[a.index()]
+            && matches!(self.node(a), Node::Mul(..))
+        {
+            return self.intern(Node::Mul(a, a));
+        }
         // A product is kept as one constant times its other factors sorted by arena order,
         // so `x·(y·z)` and `(z·x)·y` are one node, and a negative constant becomes a negation.
         let mut factors = Vec::new();
