@@ -281,13 +281,13 @@ pub mod lanes {
             * ((sum_squared - span_squared) * (span_squared - difference_squared)).sqrt()
     }
 
-    /// [`inverse_determinant`] for a block whose columns' norms move, from the square of
-    /// their product: `det² > threshold²·squared_norms` without a square root or a division
-    /// (the relative determinant's rounding aside, the same test).
+    /// [`inverse_determinant`] for a block whose columns' norms move, from the squares of
+    /// their product and of the threshold: `det² > threshold²·norms²` without a square root
+    /// or a division (the relative determinant's rounding aside, the same test).
     #[inline(always)]
-    pub fn inverse_determinant_squared<T: Real>(det: T, squared_norms: T, threshold: T) -> T {
+    pub fn inverse_determinant_squared<T: Real>(det: T, squared_norms: T, squared: T) -> T {
         let inverse = det.recip();
-        if det * det > threshold * threshold * squared_norms {
+        if det * det > squared * squared_norms {
             inverse
         } else {
             T::nan()
@@ -518,8 +518,11 @@ mod tests {
     fn the_squared_condition_test_fails_at_the_threshold_itself() {
         // |det|·inverse_norms = 0.5/2 = 1/4, the threshold, exactly: singular either way.
         assert!(inverse_determinant(0.5, 0.5, 0.25).is_err());
-        assert!(lanes::inverse_determinant_squared(0.5f64, 4.0, 0.25).is_nan());
-        assert_eq!(lanes::inverse_determinant_squared(0.5f64, 4.0, 0.2499), 2.0);
+        assert!(lanes::inverse_determinant_squared(0.5f64, 4.0, 0.25 * 0.25).is_nan());
+        assert_eq!(
+            lanes::inverse_determinant_squared(0.5f64, 4.0, 0.2499 * 0.2499),
+            2.0
+        );
     }
 
     #[test]
@@ -568,7 +571,8 @@ mod tests {
         let (norms, threshold) = (2.0f64, 0.1f64);
         for det in [0.5, 0.21, 0.19, -0.21, -0.19, 0.0] {
             let relative = inverse_determinant(det, 1.0 / norms, threshold);
-            let squared = lanes::inverse_determinant_squared(det, norms * norms, threshold);
+            let squared =
+                lanes::inverse_determinant_squared(det, norms * norms, threshold * threshold);
             assert_eq!(relative.is_ok(), !squared.is_nan(), "det {det}");
             if let Ok(inverse) = relative {
                 assert_eq!(inverse, squared);

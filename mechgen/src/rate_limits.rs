@@ -18,6 +18,8 @@ pub struct RateLimits<T> {
     /// The relative determinants at or below which a block's velocities (`[0]`) and
     /// accelerations (`[1]`) are refused: infinite where no condition would do.
     pub thresholds: [T; 2],
+    /// The thresholds squared, for kernels that test `det² > threshold²·norms²`.
+    pub squared_thresholds: [T; 2],
     aspect: T,
     required: Accuracy<T>,
 }
@@ -26,11 +28,13 @@ impl<T: Real> RateLimits<T> {
     /// The limits for rates required to be within `required`, in a mechanism of aspect
     /// `aspect`.
     pub fn new(required: &Accuracy<T>, aspect: T) -> Self {
+        let thresholds = [
+            rate_threshold(Order::Velocity, required, aspect),
+            rate_threshold(Order::Acceleration, required, aspect),
+        ];
         RateLimits {
-            thresholds: [
-                rate_threshold(Order::Velocity, required, aspect),
-                rate_threshold(Order::Acceleration, required, aspect),
-            ],
+            thresholds,
+            squared_thresholds: thresholds.map(|threshold| threshold * threshold),
             aspect,
             required: *required,
         }

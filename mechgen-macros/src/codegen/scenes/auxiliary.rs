@@ -30,6 +30,7 @@ impl Generator<'_> {
             inputs,
             mode,
             rates_threshold,
+            rates_threshold_squared,
             rates_order,
         } = kernel;
         // Fast and batch kernels pass a failure on as NaN, for the checked kernel to explain.
@@ -73,13 +74,20 @@ impl Generator<'_> {
                 ..
             } if lanes => {
                 let [det, norms] = [&args[0], &args[1]];
-                let threshold = match threshold {
-                    Threshold::Position => quote!(T::constant(8.0) * T::epsilon()),
-                    Threshold::Rates => rates_threshold.clone(),
-                };
                 if squared_norms.is_some() {
-                    quote!(::mechgen::__private::lanes::inverse_determinant_squared(#det, #norms, #threshold))
+                    // The threshold squared: (8ε)² is 64ε², exactly.
+                    let squared = match threshold {
+                        Threshold::Position => {
+                            quote!(T::constant(64.0) * T::epsilon() * T::epsilon())
+                        }
+                        Threshold::Rates => rates_threshold_squared.clone(),
+                    };
+                    quote!(::mechgen::__private::lanes::inverse_determinant_squared(#det, #norms, #squared))
                 } else {
+                    let threshold = match threshold {
+                        Threshold::Position => quote!(T::constant(8.0) * T::epsilon()),
+                        Threshold::Rates => rates_threshold.clone(),
+                    };
                     quote!(::mechgen::__private::lanes::inverse_determinant(#det, #norms, #threshold))
                 }
             }
@@ -154,6 +162,8 @@ pub(super) struct KernelKind {
     pub(super) inputs: TokenStream,
     pub(super) mode: Mode,
     pub(super) rates_threshold: TokenStream,
+    /// Its square, for blocks whose columns' norms move.
+    pub(super) rates_threshold_squared: TokenStream,
     /// The highest order the kernel's rates are for.
     pub(super) rates_order: Ident,
 }

@@ -104,21 +104,25 @@ impl Generator<'_> {
 
         // A block's rates are refused where they would be less accurate than required, for
         // the highest order the scene asks for.
-        let (rates_threshold, rates_order) = if order >= Order::Acceleration {
-            (
-                quote!(self.rate_limits.thresholds[1]),
-                format_ident!("Acceleration"),
-            )
-        } else {
-            (
-                quote!(self.rate_limits.thresholds[0]),
-                format_ident!("Velocity"),
-            )
-        };
+        let (rates_threshold, rates_threshold_squared, rates_order) =
+            if order >= Order::Acceleration {
+                (
+                    quote!(self.rate_limits.thresholds[1]),
+                    quote!(self.rate_limits.squared_thresholds[1]),
+                    format_ident!("Acceleration"),
+                )
+            } else {
+                (
+                    quote!(self.rate_limits.thresholds[0]),
+                    quote!(self.rate_limits.squared_thresholds[0]),
+                    format_ident!("Velocity"),
+                )
+            };
         let kind = KernelKind {
             inputs: inputs.clone(),
             mode,
             rates_threshold,
+            rates_threshold_squared,
             rates_order,
         };
         // Statements of stage k, then auxiliary value k; an angle that only an output reads

@@ -267,6 +267,9 @@ impl Graph {
             }
             _ if self.is_zero(a) => b,
             _ if self.is_zero(b) => a,
+            // cos²x + sin²x = 1: a unit vector's squared length (a slide's direction at a
+            // fixed angle to its link) is exactly 1, not its rounded sum.
+            _ if self.pythagorean(a, b) => self.constant(1.0),
             (Node::Neg(x), _) if x == b => self.constant(0.0),
             (_, Node::Neg(y)) if y == a => self.constant(0.0),
             // x − (y + x) = −y, and (y + x) − x = y: a length found as one part plus another
@@ -300,6 +303,20 @@ impl Graph {
                 self.mul(factor, sum)
             }
             _ => self.intern(Node::Add(a, b)),
+        }
+    }
+
+    /// Whether `a + b` is `cos²x + sin²x` (in either order) for one `x`.
+    fn pythagorean(&self, a: ExprId, b: ExprId) -> bool {
+        let square_of = |e: ExprId| match self.node(e) {
+            Node::Mul(p, q) if p == q => Some(self.node(p)),
+            _ => None,
+        };
+        match (square_of(a), square_of(b)) {
+            (Some(Node::Cos(x)), Some(Node::Sin(y))) | (Some(Node::Sin(y)), Some(Node::Cos(x))) => {
+                x == y
+            }
+            _ => false,
         }
     }
 
