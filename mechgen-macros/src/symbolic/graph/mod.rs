@@ -297,6 +297,11 @@ impl Graph {
                 let sum = self.add(x, y);
                 self.neg(sum)
             }
+            _ if self.common_input_rate(a, b).is_some() => {
+                let (rate, x, y) = self.common_input_rate(a, b).expect("just matched");
+                let sum = self.add(x, y);
+                self.mul(rate, sum)
+            }
             _ if self.common_fixed_factor(a, b).is_some() => {
                 let (factor, x, y) = self.common_fixed_factor(a, b).expect("just matched");
                 let sum = self.add(x, y);
@@ -356,6 +361,56 @@ impl Graph {
         let x = if negate_x { self.neg(x) } else { x };
         let y = if negate_y { self.neg(y) } else { y };
         Some((fixed, x, y))
+    }
+
+    /// `(v, x, y)` where `a = v·x` and `b = v·y` (either possibly negated, the sign carried
+    /// into `x` or `y`) for an input's rate or acceleration `v`, once products group their
+    /// fixed factors: `v·x + v·y` is then built as `v·(x + y)`, one product fewer (a rate
+    /// solve's `ω2` in every term of its right-hand side).
+    fn common_input_rate(&mut self, a: ExprId, b: ExprId) -> Option<(ExprId, ExprId, ExprId)> {
+        if !self.group_fixed {
+            return None;
+        }
+        let split = |graph: &Self, e: ExprId| {
+            let (negated, inner) = match graph.node(e) {
+                Node::Neg(inner) => (true, inner),
+                _ => (false, e),
+            };
+            let mut factors = Vec::new();
+            let mut constant = 1.0;
+            graph.collect_factors(inner, &mut factors, &mut constant);
+            (negated, factors, constant)
+        };
+        let (negate_x, mut x, constant_x) = split(self, a);
+        let (negate_y, mut y, constant_y) = split(self, b);
+        if x.len() + usize::from(constant_x != 1.0) < 2
+            || y.len() + usize::from(constant_y != 1.0) < 2
+        {
+            return None;
+        }
+        let rate = x.iter().copied().find(|&f| {
+            matches!(
+                self.node(f),
+                Node::Var(Var::Rate(SymbolRef::Input(_)) | Var::Accel(SymbolRef::Input(_)))
+            ) && y.contains(&f)
+        })?;
+        for factors in [&mut x, &mut y] {
+            let at = factors
+                .iter()
+                .position(|&f| f == rate)
+                .expect("found in both");
+            factors.remove(at);
+        }
+        let mut rebuild = |factors: Vec<ExprId>, constant: f64, negated: bool| {
+            let start = self.constant(constant);
+            let product = factors
+                .into_iter()
+                .fold(start, |product, factor| self.mul(product, factor));
+            if negated { self.neg(product) } else { product }
+        };
+        let x = rebuild(x, constant_x, negate_x);
+        let y = rebuild(y, constant_y, negate_y);
+        Some((rate, x, y))
     }
 
     pub fn sub(&mut self, a: ExprId, b: ExprId) -> ExprId {

@@ -172,7 +172,7 @@ impl Graph {
 
     /// The non-constant factors of a product (pushed to `factors`) and the product of its
     /// constant ones (multiplied into `constant`).
-    fn collect_factors(&self, e: ExprId, factors: &mut Vec<ExprId>, constant: &mut f64) {
+    pub(super) fn collect_factors(&self, e: ExprId, factors: &mut Vec<ExprId>, constant: &mut f64) {
         match self.node(e) {
             Node::Const(bits) => *constant *= f64::from_bits(bits),
             Node::Mul(x, y) => {
