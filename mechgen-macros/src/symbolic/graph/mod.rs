@@ -636,6 +636,47 @@ mod tests {
     }
 
     #[test]
+    fn cos_squared_plus_sin_squared_is_one() {
+        let mut g = Graph::default();
+        let x = x(&mut g);
+        let (c, s) = (g.cos(x), g.sin(x));
+        let (cc, ss) = (g.mul(c, c), g.mul(s, s));
+        assert_eq!(g.add(cc, ss), g.constant(1.0));
+        assert_eq!(g.add(ss, cc), g.constant(1.0));
+        // Of different angles, it stays a sum.
+        let y = g.var(Var::Value(SymbolRef::Unknown(1)));
+        let other = g.sin(y);
+        let other_squared = g.mul(other, other);
+        let mixed = g.add(cc, other_squared);
+        assert!(matches!(g.node(mixed), Node::Add(..)));
+    }
+
+    #[test]
+    fn an_input_rate_common_to_two_terms_is_factored_out() {
+        let mut g = Graph::default();
+        g.group_fixed_factors();
+        let rate = g.var(Var::Rate(SymbolRef::Input(0)));
+        let (p, q) = (
+            g.var(Var::Value(SymbolRef::Unknown(0))),
+            g.var(Var::Value(SymbolRef::Unknown(1))),
+        );
+        let (rp, rq) = (g.mul(rate, p), g.mul(rate, q));
+        // ω·p − ω·q = ω·(p − q).
+        let minus_rq = g.neg(rq);
+        let difference = g.add(rp, minus_rq);
+        let expected = {
+            let minus_q = g.neg(q);
+            let inner = g.add(p, minus_q);
+            g.mul(rate, inner)
+        };
+        assert_eq!(difference, expected);
+        // An unknown's value common to both is not an input's rate: left as it is.
+        let (pq, pp) = (g.mul(p, q), g.mul(p, p));
+        let sum = g.add(pq, pp);
+        assert_eq!(g.node(sum), Node::Add(pq, pp));
+    }
+
+    #[test]
     fn derivative_of_polar_component_is_exact() {
         // d/dx (r·cos x) = -(r·sin x)
         let mut g = Graph::default();

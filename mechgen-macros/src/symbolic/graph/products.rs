@@ -310,4 +310,21 @@ mod tests {
         // x·w·w reads the square w·w whole.
         assert_eq!(g.node(xww), Node::Mul(square, x));
     }
+
+    #[test]
+    fn the_square_of_a_moving_product_is_that_product_squared() {
+        let mut g = Graph::default();
+        g.group_fixed_factors();
+        let (l, x) = (param(&mut g, 0), unknown(&mut g, 0));
+        let sine = g.sin(x);
+        let crank = g.mul(l, sine);
+        // (l·sin x)² is the crank times itself, not l²·sin²x.
+        let square = g.mul(crank, crank);
+        assert_eq!(g.node(square), Node::Mul(crank, crank));
+        // A fixed product's square is still grouped with the other fixed factors.
+        let (m, n) = (param(&mut g, 1), param(&mut g, 2));
+        let fixed = g.mul(m, n);
+        let squared = g.mul(fixed, fixed);
+        assert_ne!(g.node(squared), Node::Mul(fixed, fixed));
+    }
 }
