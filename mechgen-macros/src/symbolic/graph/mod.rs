@@ -334,6 +334,14 @@ impl Graph {
         }
     }
 
+    /// `(true, x)` for `−x`, else `(false, e)`.
+    fn unnegated(&self, e: ExprId) -> (bool, ExprId) {
+        match self.node(e) {
+            Node::Neg(inner) => (true, inner),
+            _ => (false, e),
+        }
+    }
+
     /// `(f, x, y)` where `a = f·x` and `b = f·y` (either possibly negated, the sign carried
     /// into `x` or `y`) for one factor `f` fixed by the dimensions, once products group
     /// their fixed factors: `f·x + f·y` is then built as `f·(x + y)`, one product fewer.
@@ -342,10 +350,7 @@ impl Graph {
             return None;
         }
         let split = |graph: &Self, e: ExprId| {
-            let (negated, inner) = match graph.node(e) {
-                Node::Neg(inner) => (true, inner),
-                _ => (false, e),
-            };
+            let (negated, inner) = graph.unnegated(e);
             match graph.node(inner) {
                 Node::Mul(fixed, moving) if graph.is_fixed(fixed) && !graph.is_fixed(moving) => {
                     Some((negated, fixed, moving))
@@ -372,10 +377,7 @@ impl Graph {
             return None;
         }
         let split = |graph: &Self, e: ExprId| {
-            let (negated, inner) = match graph.node(e) {
-                Node::Neg(inner) => (true, inner),
-                _ => (false, e),
-            };
+            let (negated, inner) = graph.unnegated(e);
             let mut factors = Vec::new();
             let mut constant = 1.0;
             graph.collect_factors(inner, &mut factors, &mut constant);
