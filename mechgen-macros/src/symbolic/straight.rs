@@ -498,7 +498,12 @@ pub fn build(graph: &mut Graph, steps: &[Step], exprs: &SceneExprs, lengths: &[b
     let velocity_rhs = builder.substituted(&exprs.velocity_rhs);
     let rates = builder.solve(steps, &jacobian, &velocity_rhs);
     builder.solved_derivatives(Var::Rate, &rates);
-    let acceleration_rhs = builder.substituted(&exprs.acceleration_rhs);
+    // The product rule makes a Coriolis term twice; the rates known, it is one term doubled.
+    let acceleration_rhs: Vec<ExprId> = builder
+        .substituted(&exprs.acceleration_rhs)
+        .into_iter()
+        .map(|rhs| builder.graph.gather_like_terms(rhs))
+        .collect();
     let accelerations = builder.solve(steps, &jacobian, &acceleration_rhs);
     builder.solved_derivatives(Var::Accel, &accelerations);
     let points: Vec<[[ExprId; 2]; 3]> = exprs

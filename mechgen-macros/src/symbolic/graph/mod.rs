@@ -12,6 +12,7 @@ use crate::formula::{Formula, Function};
 use crate::model::{Linear, SymbolRef};
 
 mod evaluate;
+mod like_terms;
 mod products;
 
 /// A variable of the generated code.
