@@ -26,6 +26,9 @@ impl Graph {
         self.terms_of(root, 1.0, &mut terms);
         let mut gathered = false;
         for p in 0..terms.len() {
+            if terms[p].coefficient == 0.0 {
+                continue;
+            }
             let sums: Vec<usize> = (0..terms[p].factors.len())
                 .filter(|&k| matches!(self.node(terms[p].factors[k]), Node::Add(..)))
                 .collect();
@@ -38,7 +41,10 @@ impl Graph {
             self.terms_of(sum, 1.0, &mut inner);
             let mut folded = false;
             for q in 0..terms.len() {
-                if q == p || terms[q].coefficient == 0.0 {
+                // Only where the constants divide exactly: the sum is then the same number
+                // to rounding, not a coefficient rounded anew.
+                let ratio = terms[q].coefficient / terms[p].coefficient;
+                if q == p || ratio == 0.0 || ratio * terms[p].coefficient != terms[q].coefficient {
                     continue;
                 }
                 let within = inner.iter_mut().find(|term| {
@@ -48,8 +54,8 @@ impl Graph {
                     factors == terms[q].factors
                 });
                 if let Some(term) = within {
-                    // c_q·F = c_p·(c_q/c_p)·F: the constants are small integers, exactly.
-                    term.coefficient += terms[q].coefficient / terms[p].coefficient;
+                    // c_q·F = c_p·(c_q/c_p)·F.
+                    term.coefficient += ratio;
                     terms[q].coefficient = 0.0;
                     folded = true;
                 }
