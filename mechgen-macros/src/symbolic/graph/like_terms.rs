@@ -5,7 +5,7 @@
 use super::{ExprId, Graph, Node};
 
 /// A term of a sum: its constant and its other factors, sorted (as products keep them).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Debug)]
 struct Term {
     coefficient: f64,
     factors: Vec<ExprId>,
@@ -96,16 +96,11 @@ impl Graph {
     fn sum_of(&mut self, terms: &[Term]) -> ExprId {
         let mut sum = self.constant(0.0);
         for term in terms.iter().filter(|term| term.coefficient != 0.0) {
-            let start = self.constant(term.coefficient.abs());
-            let product = term
-                .factors
-                .iter()
-                .fold(start, |product, &factor| self.mul(product, factor));
-            let signed = if term.coefficient < 0.0 {
-                self.neg(product)
-            } else {
-                product
-            };
+            let signed = self.rebuilt_product(
+                term.coefficient < 0.0,
+                term.coefficient.abs(),
+                &term.factors,
+            );
             sum = self.add(sum, signed);
         }
         sum

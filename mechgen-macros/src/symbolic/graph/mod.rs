@@ -404,15 +404,8 @@ impl Graph {
                 .expect("found in both");
             factors.remove(at);
         }
-        let mut rebuild = |factors: Vec<ExprId>, constant: f64, negated: bool| {
-            let start = self.constant(constant);
-            let product = factors
-                .into_iter()
-                .fold(start, |product, factor| self.mul(product, factor));
-            if negated { self.neg(product) } else { product }
-        };
-        let x = rebuild(x, constant_x, negate_x);
-        let y = rebuild(y, constant_y, negate_y);
+        let x = self.rebuilt_product(negate_x, constant_x, &x);
+        let y = self.rebuilt_product(negate_y, constant_y, &y);
         Some((rate, x, y))
     }
 

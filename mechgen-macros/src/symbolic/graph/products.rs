@@ -163,6 +163,22 @@ impl Graph {
         }
     }
 
+    /// `constant` times `factors`, built by [`Graph::mul`] (so in products' one form), and
+    /// negated where `negated`: a product taken apart by [`Graph::collect_factors`] and put
+    /// back together after a change.
+    pub(super) fn rebuilt_product(
+        &mut self,
+        negated: bool,
+        constant: f64,
+        factors: &[ExprId],
+    ) -> ExprId {
+        let start = self.constant(constant);
+        let product = factors
+            .iter()
+            .fold(start, |product, &factor| self.mul(product, factor));
+        if negated { self.neg(product) } else { product }
+    }
+
     /// `factors` multiplied left to right, if there are any.
     fn product(&mut self, factors: Vec<ExprId>) -> Option<ExprId> {
         factors
