@@ -3,12 +3,23 @@
 
 use std::process::Command;
 
-/// The short hash of HEAD, with `-dirty` if a tracked file differs from it.
+/// The short hash of HEAD, with `-dirty` if a tracked file other than Markdown differs from
+/// it. The Markdown files are the reports themselves and the prose around them, which no
+/// figure depends on: a report written over its last version, or beside a README being
+/// edited, is still of the code at HEAD.
 pub fn commit() -> String {
     let Some(hash) = output("git", &["rev-parse", "--short", "HEAD"]) else {
         return "unknown".into();
     };
-    match output("git", &["status", "--porcelain", "--untracked-files=no"]) {
+    let status = [
+        "status",
+        "--porcelain",
+        "--untracked-files=no",
+        "--",
+        ":/",
+        ":(top,exclude,glob)**/*.md",
+    ];
+    match output("git", &status) {
         Some(s) if s.is_empty() => hash,
         _ => format!("{hash}-dirty"),
     }
