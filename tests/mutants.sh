@@ -2,6 +2,11 @@
 # Mutation testing of the runtime and of the shipped mechanisms' analyses with cargo-mutants,
 # and docs/MUTANTS.md from its results.
 #
+# Each run's results (mutants.out/, not kept) go into tests/mutants-record.tsv, which is: one
+# row per file, of the commit the file was last run at, and its survivors. A run of some files
+# replaces their rows and keeps the others', so a change to one file needs a run of that file
+# alone; the report marks a row whose file has changed since its commit.
+#
 #   bash tests/mutants.sh                      every file in FILES below, then the report
 #   bash tests/mutants.sh FILE...              only these files (earlier results replaced)
 #   bash tests/mutants.sh --iterate [FILE...]  only the mutants not yet caught (or unviable)
@@ -10,7 +15,8 @@
 #                                              cargo-mutants' order (`--list`): the rest of
 #                                              a run cut short (earlier results replaced;
 #                                              with --iterate, added to)
-#   bash tests/mutants.sh --report             the report alone, from mutants.out/
+#   bash tests/mutants.sh --report             the report alone, from the record (and the
+#                                              results in mutants.out/ not yet recorded)
 #
 # Each mutant is built and tested against the kill-set of its crate (`kill_set` below). For the
 # runtime, `cargo test -p mechgen`: its unit tests and doctests, a few seconds a mutant. For the
@@ -29,6 +35,7 @@ TOOLS=.tools
 OUT=mutants.out
 EXPLAINED=tests/mutants-equivalent.txt
 REPORT=docs/MUTANTS.md
+RECORD=tests/mutants-record.tsv
 
 # The files run, in order of importance: closed forms, the scene kernels' checked steps, the
 # branch-free maths and rate limits, the linear solves, Newton; the runtime's analyses; its
@@ -141,6 +148,8 @@ run() {
             --no-times --colors never --output "$OUT/$stem" || status=$?
         # 0: all caught; 2: some missed; 3: some timed out. Anything else is cargo-mutants failing.
         case $status in 0 | 2 | 3) ;; *) echo "cargo-mutants failed on $file ($status)" >&2; exit "$status" ;; esac
+        stamp > "$OUT/$stem/commit"
+        rm -f "$OUT/$stem/recorded"
         sort -u "$OUT/$stem/unviable.before" "$results/unviable.txt" -o "$results/unviable.txt"
     done
 }
@@ -180,13 +189,73 @@ explanation() {
     ' "$EXPLAINED"
 }
 
+# HEAD's short hash, with `-dirty` where mechgen/ or mechanisms/ differ from it: what a file's
+# results are of, written beside them when the file is run.
+stamp() {
+    local hash
+    hash=$(git rev-parse --short HEAD)
+    if git diff --quiet HEAD -- mechgen mechanisms; then echo "$hash"; else echo "$hash-dirty"; fi
+}
+
+# One file's fresh results (mutants.out/) into the record: its row and survivors replace the
+# record's, so the record keeps every file's last run, whichever runs came since.
+record_file() {
+    local file=$1 stem caught missed unviable timeout total whole part="" commit
+    stem=$(stem "$file")
+    # An iterated run lists the unviable among the previously caught.
+    caught=$( (outcome "$stem" caught; outcome "$stem" previously_caught) | sort -u |
+        grep -vxF -f <(outcome "$stem" unviable; echo) | grep -c . || true)
+    missed=$(outcome "$stem" missed | grep -c . || true)
+    unviable=$(outcome "$stem" unviable | grep -c . || true)
+    timeout=$(outcome "$stem" timeout | grep -c . || true)
+    total=$((caught + missed + unviable + timeout))
+    whole=$(grep -c . "$OUT/$stem/all.txt" 2>/dev/null) || whole=$total
+    if [ "$total" -lt "$whole" ]; then
+        part="$(positions "$stem") of $whole"
+    fi
+    # Results from before the script wrote their commit: HEAD's, as the report said then.
+    commit=$(cat "$OUT/$stem/commit" 2>/dev/null || stamp)
+    {
+        awk -F '\t' -v file="$file" '
+            ($1 == "row" && $2 == file) || ($1 == "survivor" && index($2, file ":") == 1) { next }
+            { print }' "$RECORD"
+        printf 'row\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$file" "$commit" "$total" "$caught" \
+            "$missed" "$unviable" "$timeout" "$part"
+        outcome "$stem" missed | grep . | sed 's/^/survivor\t/' || true
+    } > "$RECORD.new"
+    # Rows in the order of the report's files, each file's survivors after the rows.
+    {
+        grep '^#' "$RECORD.new" || true
+        for f in mechgen/src/*.rs "${ANALYSES[@]}"; do
+            awk -F '\t' -v file="$f" '$1 == "row" && $2 == file' "$RECORD.new"
+        done
+        for f in mechgen/src/*.rs "${ANALYSES[@]}"; do
+            awk -F '\t' -v file="$f" '$1 == "survivor" && index($2, file ":") == 1' "$RECORD.new"
+        done
+    } > "$RECORD"
+    rm "$RECORD.new"
+}
+
+# The record's fields for one file's row: commit, mutants, caught, missed, unviable, timeout,
+# part (tab-separated), or nothing if the file was never run.
+recorded() { awk -F '\t' -v file="$1" '$1 == "row" && $2 == file { print; exit }' "$RECORD" | cut -f3-; }
+
 report() {
-    local file stem caught missed unviable timeout total whole line why
-    local partial=() not_tested=()
+    local file stem commit total caught missed unviable timeout part line why changed
+    local partial=() not_tested=() changed_since=()
     local run_files=() not_run=() not_run_analyses=() no_mutants=() survivors=() equivalent=0
     local not_killed=0 unexplained=0
+    # Fresh results first: a file run since the last report replaces its record, once (so
+    # that results left in mutants.out/ never overwrite a record made since, elsewhere).
     for file in mechgen/src/*.rs "${ANALYSES[@]}"; do
-        if [ -f "$OUT/$(stem "$file")/mutants.out/outcomes.json" ]; then
+        stem=$(stem "$file")
+        if [ -f "$OUT/$stem/mutants.out/outcomes.json" ] && [ ! -f "$OUT/$stem/recorded" ]; then
+            record_file "$file"
+            touch "$OUT/$stem/recorded"
+        fi
+    done
+    for file in mechgen/src/*.rs "${ANALYSES[@]}"; do
+        if [ -n "$(recorded "$file")" ]; then
             run_files+=("$file")
         elif [ -z "$(mutants --list --file "$file" 2>/dev/null)" ]; then
             no_mutants+=("$file")
@@ -196,15 +265,16 @@ report() {
             not_run_analyses+=("$file")
         fi
     done
-    for file in "${run_files[@]}"; do
-        mapfile -t -O "${#survivors[@]}" survivors < <(outcome "$(stem "$file")" missed)
-    done
+    mapfile -t survivors < <(awk -F '\t' '$1 == "survivor" { print $2 }' "$RECORD")
     {
         echo "# Mutation testing"
         echo
-        echo "Generated by \`bash tests/mutants.sh\` (cargo-mutants $VERSION, installed into"
-        echo "\`$TOOLS/\` by the script) at commit \`$(git rev-parse --short HEAD)\`$(git diff --quiet HEAD -- mechgen mechanisms || echo ' with uncommitted changes to mechgen or mechanisms'). Do not edit:"
-        echo "explanations of survivors live in [\`$EXPLAINED\`](../$EXPLAINED)."
+        echo "Written by \`bash tests/mutants.sh\` (cargo-mutants $VERSION, installed into"
+        echo "\`$TOOLS/\` by the script) from the results it keeps in"
+        echo "[\`$RECORD\`](../$RECORD), a file at a time: each file's row is of the commit it"
+        echo "names, the last at which the script ran that file (a commit marked -dirty had"
+        echo "uncommitted changes to mechgen or mechanisms). Do not edit: explanations of"
+        echo "survivors live in [\`$EXPLAINED\`](../$EXPLAINED)."
         echo
         echo "Each mutant (a change cargo-mutants makes to one operator, comparison or function"
         echo "body) is built and tested against its own crate's fast tests: a mutant of the"
@@ -215,31 +285,31 @@ report() {
         echo "*Caught*: a test failed. *Missed*: every test passed (a survivor). *Unviable*: the"
         echo "mutant does not compile. *Timeout*: the tests ran past the limit (a mutant that hangs"
         echo "a solver). A file's counts may add up \`--iterate\` runs, which test again only the"
-        echo "mutants not yet caught: the counts are of the tests at the commit above. A file run in"
+        echo "mutants not yet caught: the counts are of the tests at its commit. A file run in"
         echo "part (\`--from\`, the rest of a run cut short) counts only the mutants run, whose"
-        echo "positions in cargo-mutants' order are listed under the table."
+        echo "positions in cargo-mutants' order are listed under the table. A file changed since"
+        echo "its commit is marked so: its row is of the file as it was then, and"
+        echo "\`bash tests/mutants.sh FILE\` brings it up to date."
         echo
-        echo "| file | mutants | caught | missed | unviable | timeout |"
-        echo "|---|---:|---:|---:|---:|---:|"
+        echo "| file | commit | mutants | caught | missed | unviable | timeout |"
+        echo "|---|---|---:|---:|---:|---:|---:|"
         for file in "${run_files[@]}"; do
-            stem=$(stem "$file")
-            # An iterated run lists the unviable among the previously caught.
-            caught=$( (outcome "$stem" caught; outcome "$stem" previously_caught) | sort -u |
-                grep -vxF -f <(outcome "$stem" unviable; echo) | grep -c . || true)
-            missed=$(outcome "$stem" missed | grep -c . || true)
-            unviable=$(outcome "$stem" unviable | grep -c . || true)
-            timeout=$(outcome "$stem" timeout | grep -c . || true)
-            total=$((caught + missed + unviable + timeout))
-            whole=$(grep -c . "$OUT/$stem/all.txt" 2>/dev/null) || whole=$total
-            if [ "$total" -lt "$whole" ]; then
-                partial+=("\`$file\`: mutants $(positions "$stem") of $whole.")
-                total="$total of $whole"
+            IFS=$'\t' read -r commit total caught missed unviable timeout part < <(recorded "$file")
+            changed=""
+            if ! git diff --quiet "${commit%-dirty}" HEAD -- "$file" 2>/dev/null ||
+                ! git diff --quiet HEAD -- "$file"; then
+                changed=" (file changed since)"
+                changed_since+=("$file")
             fi
-            echo "| \`$file\` | $total | $caught | $missed | $unviable | $timeout |"
+            if [ -n "$part" ]; then
+                partial+=("\`$file\`: mutants $part.")
+                total="$total of ${part##* of }"
+            fi
+            echo "| \`$file\` | \`$commit\`$changed | $total | $caught | $missed | $unviable | $timeout |"
         done
         echo
         if [ "${#partial[@]}" -gt 0 ]; then
-            echo "Run in part (the other mutants of these files were not run for this report):"
+            echo "Run in part (the other mutants of these files were not run):"
             printf -- '- %s\n' "${partial[@]}"
             echo
         fi
@@ -247,8 +317,7 @@ report() {
             echo "No mutants to make (declarations and re-exports): $(printf '`%s` ' "${no_mutants[@]}" | sed 's/ $//')."
             echo
         fi
-        # Not run for this report, which is of mutants.out/ alone: an earlier report may have.
-        echo "Not run for this report:"
+        echo "Never run:"
         if [ "${#not_run[@]}" -gt 0 ]; then
             echo "$(printf '`%s` ' "${not_run[@]}")(the rest of the runtime);"
         fi
@@ -290,17 +359,27 @@ report() {
         echo
         echo "${#survivors[@]} survivors: $equivalent equivalent, $not_killed not killed (with the"
         echo "reason), $unexplained unexplained."
+        if [ "${#changed_since[@]}" -gt 0 ]; then
+            echo
+            echo "Changed since their run (their rows and survivors are of the file at its commit):"
+            echo "$(printf '`%s` ' "${changed_since[@]}" | sed 's/ $//')."
+        fi
         # Explanations of mutants that no longer survive: a test kills them now, or the code
         # moved; either way the explanation should go.
+        # (Sets, not `printf | grep -q`: grep leaving early can fail printf with SIGPIPE,
+        # which pipefail makes a failed test.)
         local stale=()
+        local -A is_run=() is_survivor=()
+        for file in "${run_files[@]}"; do is_run[$file]=1; done
+        for line in "${survivors[@]}"; do is_survivor[$line]=1; done
         while IFS= read -r line; do
             # Only for the files run: the others' survivors are not known.
-            printf '%s\n' "${run_files[@]}" | grep -qxF -- "${line%%:*}" || continue
-            stem=$(stem "${line%%:*}")
-            if printf '%s\n' "${survivors[@]}" | grep -qxF -- "$line"; then
+            file=${line%%:*}
+            [ -n "${is_run[$file]:-}" ] || continue
+            if [ -n "${is_survivor[$line]:-}" ]; then
                 continue
-            elif [ -f "$OUT/$stem/all.txt" ] && grep -qxF -- "$line" "$OUT/$stem/all.txt" &&
-                ! tested "$stem" | grep -xF -- "$line" > /dev/null; then
+            elif [ -n "$(recorded "$file" | cut -f7)" ]; then
+                # Run in part: the mutant may be among those not run.
                 not_tested+=("$line")
             else
                 stale+=("$line")
@@ -313,8 +392,8 @@ report() {
         fi
         if [ "${#not_tested[@]}" -gt 0 ]; then
             echo
-            echo "Explanations in \`$EXPLAINED\` of mutants not run for this report (files run in"
-            echo "part), neither confirmed nor stale:"
+            echo "Explanations in \`$EXPLAINED\` of mutants of files run in part that are not"
+            echo "survivors, maybe not run, neither confirmed nor stale:"
             printf -- '- `%s`\n' "${not_tested[@]}"
         fi
     } > "$REPORT"
