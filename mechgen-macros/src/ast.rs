@@ -73,6 +73,8 @@ pub enum Scalar {
     /// `sqrt(21.25)`, `atan2(1, 4.5)`: one of [`FUNCTIONS`] of numbers, evaluated at compile
     /// time; the span is the closing parenthesis's.
     Call(Ident, Vec<Scalar>, Span),
+    /// `(inner)`: kept so that messages and docs show the expression as it was written.
+    Paren(Box<Scalar>),
 }
 
 /// The functions a declaration may apply to numbers, with how many arguments each takes.
@@ -101,6 +103,7 @@ impl Scalar {
             Scalar::Number(_, span) | Scalar::Degrees(_, span) | Scalar::Neg(span, _) => *span,
             Scalar::Binary(_, _, left, _) => left.span(),
             Scalar::Call(function, ..) => function.span(),
+            Scalar::Paren(inner) => inner.span(),
         }
     }
 
@@ -112,7 +115,7 @@ impl Scalar {
             Scalar::Name(_) | Scalar::Degrees(..) | Scalar::Call(..) => {
                 Box::new(std::iter::empty())
             }
-            Scalar::Neg(_, inner) => inner.numbers(),
+            Scalar::Neg(_, inner) | Scalar::Paren(inner) => inner.numbers(),
             Scalar::Binary(_, _, left, right) => Box::new(left.numbers().chain(right.numbers())),
         }
     }
@@ -122,7 +125,7 @@ impl Scalar {
         match self {
             Scalar::Name(name) => Box::new(std::iter::once(name)),
             Scalar::Number(..) | Scalar::Degrees(..) => Box::new(std::iter::empty()),
-            Scalar::Neg(_, inner) => inner.names(),
+            Scalar::Neg(_, inner) | Scalar::Paren(inner) => inner.names(),
             Scalar::Binary(_, _, left, right) => Box::new(left.names().chain(right.names())),
             Scalar::Call(_, arguments, _) => Box::new(arguments.iter().flat_map(Scalar::names)),
         }
@@ -133,7 +136,9 @@ impl Scalar {
         match self {
             Scalar::Name(name) => name.span(),
             Scalar::Number(_, span) | Scalar::Degrees(_, span) => *span,
-            Scalar::Neg(_, inner) | Scalar::Binary(_, _, _, inner) => inner.last_span(),
+            Scalar::Neg(_, inner) | Scalar::Binary(_, _, _, inner) | Scalar::Paren(inner) => {
+                inner.last_span()
+            }
             Scalar::Call(_, _, close) => *close,
         }
     }
@@ -413,7 +418,7 @@ fn parse_atom(input: ParseStream) -> syn::Result<Scalar> {
         if !inner.is_empty() {
             return Err(inner.error("expected `+`, `-`, `*`, `/` or `)`"));
         }
-        Ok(scalar)
+        Ok(Scalar::Paren(Box::new(scalar)))
     } else if lookahead.peek(Ident) {
         let name: Ident = input.parse()?;
         count_node(name.span())?;

@@ -80,6 +80,32 @@ pub enum Formula {
 }
 
 impl Formula {
+    /// Its value with each parameter's from `param`, as the generated code computes it.
+    pub fn value(&self, param: &mut dyn FnMut(usize) -> f64) -> f64 {
+        match self {
+            Formula::Param(i) => param(*i),
+            Formula::Number(value) => *value,
+            Formula::Neg(inner) => -inner.value(param),
+            Formula::Add(a, b) => a.value(param) + b.value(param),
+            Formula::Sub(a, b) => a.value(param) - b.value(param),
+            Formula::Mul(a, b) => a.value(param) * b.value(param),
+            Formula::Div(a, b) => a.value(param) / b.value(param),
+            Formula::Call(function, arguments) => {
+                let values: Vec<f64> = arguments.iter().map(|a| a.value(param)).collect();
+                match (function, values.as_slice()) {
+                    (Function::Sqrt, [x]) => x.sqrt(),
+                    (Function::Sin, [x]) => x.sin(),
+                    (Function::Cos, [x]) => x.cos(),
+                    (Function::Tan, [x]) => x.tan(),
+                    (Function::Atan2, [y, x]) => y.atan2(*x),
+                    (Function::Hypot, [x, y]) => x.hypot(*y),
+                    // The parser takes each function with its number of arguments.
+                    _ => f64::NAN,
+                }
+            }
+        }
+    }
+
     /// As the declaration would write it, with `name` for each parameter.
     pub fn display<'a>(&'a self, name: &'a dyn Fn(usize) -> String) -> impl fmt::Display + 'a {
         Shown {

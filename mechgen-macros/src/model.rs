@@ -14,7 +14,7 @@ use syn::{Attribute, Ident, Visibility};
 use crate::ast::{self, BinaryOp, Declaration, Scalar, Section, SymbolDecl};
 use crate::errors::Errors;
 use crate::formula::{Formula, Function};
-use crate::scene::{self, Scene};
+use crate::scene::{self, Declared, Scene};
 
 /// Whether a symbol is a length or an angle. Magnitudes must be lengths, angles angles.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -111,6 +111,29 @@ impl Linear {
         self
     }
 
+    /// Without the names and formulas whose factor is zero (`0 * theta2`, or a product of
+    /// numbers that underflows), as a cancellation leaves it: the loops do not depend on them.
+    fn without_zeros(mut self) -> Self {
+        self.coefficients.retain(|_, c| *c != 0.0);
+        self.formulas.retain(|(c, _)| *c != 0.0);
+        self
+    }
+
+    /// Its value with each symbol's from `value_of`.
+    fn value(&self, value_of: &mut dyn FnMut(SymbolRef) -> f64) -> f64 {
+        let symbols: f64 = self
+            .coefficients
+            .iter()
+            .map(|(&symbol, factor)| factor * value_of(symbol))
+            .sum();
+        let formulas: f64 = self
+            .formulas
+            .iter()
+            .map(|(factor, formula)| factor * formula.value(&mut |i| value_of(SymbolRef::Param(i))))
+            .sum();
+        symbols + formulas + self.constant
+    }
+
     fn as_constant(&self) -> Option<f64> {
         (self.coefficients.is_empty() && self.formulas.is_empty()).then_some(self.constant)
     }
@@ -192,6 +215,10 @@ impl Model {
     }
 }
 
+/// The sizes a name's factor in a magnitude or an angle may have (see [`Scope::resolve`]):
+/// `2 * l3`, `l3 / 1000`, `-3 * theta2` are far inside.
+const FACTORS: std::ops::RangeInclusive<f64> = 1e-6..=1e6;
+
 /// Names a declaration cannot give its values: the generated code binds each with `let`,
 /// where these are patterns.
 const PRELUDE_VARIANTS: [&str; 4] = ["Ok", "Err", "Some", "None"];
@@ -213,7 +240,19 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
     let mut points = Vec::new();
     let mut generate = None;
     let mut scenes = Vec::new();
+    // Every declared name with what it names, in the order written.
+    let mut declared = Vec::new();
     for section in sections {
+        let names = |what, decls: &[SymbolDecl]| -> Vec<(Declared, Ident)> {
+            decls.iter().map(|d| (what, d.name.clone())).collect()
+        };
+        match &section {
+            Section::Params(_, decls) => declared.extend(names(Declared::Param, decls)),
+            Section::Input(_, decls) => declared.extend(names(Declared::Input, decls)),
+            Section::Unknowns(_, decls) => declared.extend(names(Declared::Unknown, decls)),
+            Section::Point(_, name, _) => declared.push((Declared::Point, name.clone())),
+            _ => {}
+        }
         match section {
             Section::Params(keyword, decls) => set_once(&mut params, keyword, decls, &mut errors),
             Section::Input(keyword, decls) => set_once(&mut input, keyword, decls, &mut errors),
@@ -221,11 +260,29 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
                 set_once(&mut unknowns, keyword, decls, &mut errors)
             }
             Section::Loop(sum) => loops.push(sum),
-            Section::Point(docs, name, sum) => points.push((docs, name, sum)),
+            Section::Point(attrs, name, sum) => {
+                let docs = docs_only(
+                    attrs,
+                    &format!("point `{name}`"),
+                    "a point is a field of several generated structs and a part of every \
+                     generated function, which an attribute cannot all follow",
+                    &mut errors,
+                );
+                points.push((docs, name, sum))
+            }
             Section::Generate(keyword, outputs) => {
                 set_once(&mut generate, keyword, outputs, &mut errors)
             }
-            Section::Scene(docs, name, outputs) => scenes.push((docs, name, outputs)),
+            Section::Scene(attrs, name, outputs) => {
+                let docs = docs_only(
+                    attrs,
+                    &format!("scene `{name}`"),
+                    "a scene is several generated items (its output struct, its method, its \
+                     batch kernel), which an attribute cannot all follow",
+                    &mut errors,
+                );
+                scenes.push((docs, name, outputs))
+            }
         }
     }
 
@@ -283,11 +340,17 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
             .map(|symbol| symbol.name.to_string())
             .filter(|name| PRELUDE_VARIANTS.contains(&name.as_str())),
     );
-    let loops: Vec<VectorSum> = loops
+    // Each loop, and whether every magnitude and angle in it resolved.
+    let (loops, resolved): (Vec<VectorSum>, Vec<bool>) = loops
         .iter()
-        .map(|sum| scope.vector_sum(sum, &mut errors))
-        .collect();
+        .map(|sum| {
+            let failures = scope.failures;
+            let sum = scope.vector_sum(sum, &mut errors);
+            (sum, scope.failures == failures)
+        })
+        .unzip();
     let in_loops = std::mem::take(&mut scope.appearing);
+    let written_in_loops = std::mem::take(&mut scope.written);
     let mut point_names: Vec<&Ident> = Vec::new();
     let points: Vec<Point> = points
         .iter()
@@ -307,8 +370,18 @@ pub fn build(declaration: Declaration) -> syn::Result<Model> {
         })
         .collect();
 
-    check_counts(&loops, &unknowns, unknowns_span, &mut errors);
-    check_every_symbol_in_a_loop(&scope, &in_loops, &input, &unknowns, &mut errors);
+    if !check_no_loop_is_identically_zero(&loops, &resolved, &params, &mut errors) {
+        check_counts(&loops, &unknowns, unknowns_span, &mut errors);
+    }
+    check_every_symbol_in_a_loop(
+        &scope,
+        &in_loops,
+        &written_in_loops,
+        &input,
+        &unknowns,
+        &mut errors,
+    );
+    scene::check_unambiguous(&declared, &mut errors);
     let outputs = outputs(generate, input.len(), &mut errors);
     let scenes = scene::resolve(
         scenes,
@@ -366,6 +439,23 @@ fn set_once<T>(
     }
 }
 
+/// Rule: a declared name, a point or a scene takes doc comments (which document what is
+/// generated for it) and no other attribute: `#[cfg]` or `#[allow]` would reach only one of
+/// the items generated for it, and the others would no longer compile or mean the same.
+/// Returns the doc comments.
+fn docs_only(attrs: Vec<Attribute>, what: &str, why: &str, errors: &mut Errors) -> Vec<Attribute> {
+    let (docs, others): (Vec<_>, Vec<_>) = attrs
+        .into_iter()
+        .partition(|attr| attr.path().is_ident("doc"));
+    for attr in others {
+        errors.error_at(
+            attr,
+            format!("only doc comments are allowed on {what}: {why}"),
+        );
+    }
+    docs
+}
+
 /// Resolves kinds. `default` is the kind of an undeclared one; `None` makes the kind required.
 ///
 /// A symbol whose kind is missing or misspelled is reported here and recorded in
@@ -385,17 +475,14 @@ fn symbols(
                  name,
                  kind,
              }| {
-                // A doc comment documents the field; any other attribute (`#[cfg]` would
-                // remove a value the loops read) has no meaning here.
-                for attr in attrs.iter().filter(|attr| !attr.path().is_ident("doc")) {
-                    errors.error_at(
-                        attr,
-                        format!(
-                            "only doc comments are allowed on `{name}`: the loops need every \
-                             declared name, whatever an attribute would do to its field"
-                        ),
-                    );
-                }
+                // `#[cfg]` would remove a value the loops read.
+                let docs = docs_only(
+                    attrs,
+                    &format!("`{name}`"),
+                    "the loops need every declared name, whatever an attribute would do to its \
+                     field",
+                    errors,
+                );
                 if !matches!(vis, Visibility::Inherited) && default.is_none() {
                     errors.error_at(
                         &vis,
@@ -429,7 +516,7 @@ fn symbols(
                 Symbol {
                     name,
                     kind,
-                    docs: attrs,
+                    docs,
                     vis,
                 }
             },
@@ -447,6 +534,10 @@ struct Scope {
     appearing: BTreeSet<SymbolRef>,
     /// Symbols mentioned by the expression being resolved.
     seen: BTreeSet<SymbolRef>,
+    /// Symbols the resolved sums mention so far, whether they depend on them or not.
+    written: BTreeSet<SymbolRef>,
+    /// How many magnitudes and angles failed to resolve so far.
+    failures: usize,
 }
 
 impl Scope {
@@ -507,6 +598,8 @@ impl Scope {
             poisoned: BTreeSet::new(),
             appearing: BTreeSet::new(),
             seen: BTreeSet::new(),
+            written: BTreeSet::new(),
+            failures: 0,
         }
     }
 
@@ -528,6 +621,28 @@ impl Scope {
             .filter(|(distance, _)| *distance <= name.chars().count() / 3)
             .min()
             .map(|(_, candidate)| candidate.to_string())
+    }
+
+    /// The name of a symbol or formula term of `linear` whose factor is out of [`FACTORS`],
+    /// with the factor.
+    fn factor_out_of_range(&self, linear: &Linear) -> Option<(String, f64)> {
+        let name_of = |symbol: SymbolRef| {
+            self.names
+                .iter()
+                .find(|(_, (s, _))| *s == symbol)
+                .map_or_else(String::new, |(name, _)| name.clone())
+        };
+        let symbols = linear
+            .coefficients
+            .iter()
+            .map(|(&symbol, &factor)| (name_of(symbol), factor));
+        let formulas = linear.formulas.iter().map(|(factor, formula)| {
+            let param = |i| name_of(SymbolRef::Param(i));
+            (formula.display(&param).to_string(), *factor)
+        });
+        symbols
+            .chain(formulas)
+            .find(|(_, factor)| !FACTORS.contains(&factor.abs()))
     }
 
     /// Whether `symbol` is the one its name resolves to (a duplicate declaration is not).
@@ -553,17 +668,35 @@ impl Scope {
     }
 
     /// Resolves one magnitude or angle and records which symbols it really depends on (a
-    /// name whose coefficient cancels, as in `theta2 - theta2`, does not count). After an
-    /// error, every name it mentions counts, so no "appears in no loop" follows from it.
+    /// name whose coefficient cancels, as in `theta2 - theta2`, or is zero, as in
+    /// `0 * theta2`, does not count). After an error, every name it mentions counts, so no
+    /// "appears in no loop" follows from it.
     fn resolve(&mut self, scalar: &Scalar, expected: Kind, errors: &mut Errors) -> Linear {
         self.seen.clear();
         let resolved = self.linear(scalar, expected, errors).and_then(|linear| {
             if linear.is_finite() {
-                Some(linear)
+                Some(linear.without_zeros())
             } else {
                 errors.push(scalar.error("this expression overflows f64"));
                 None
             }
+        });
+        // Rule: a name's factor is within [`FACTORS`]. A factor far from 1 scales that name's
+        // column of the Jacobian away from the others' (`1e300 * theta3` makes the system
+        // singular in any precision), and one beyond f32's range (`1e-320 * l3`) is zero or
+        // infinite in the generated f32 code.
+        let resolved = resolved.and_then(|linear| match self.factor_out_of_range(&linear) {
+            Some((name, factor)) => {
+                errors.push(scalar.error(format!(
+                    "`{scalar}` multiplies `{name}` by {}: a name's factor must be between {:e} \
+                     and {:e} in size, so that its derivatives stay in proportion to the others'",
+                    number(factor),
+                    FACTORS.start(),
+                    FACTORS.end(),
+                )));
+                None
+            }
+            None => Some(linear),
         });
         // A bare number in an angle is radians: beyond a turn, it is degrees written without
         // their unit far more often than an angle of several turns.
@@ -578,7 +711,8 @@ impl Scope {
                         span,
                         format!(
                             "`{value}` in an angle is {value} radians, more than a turn: \
-                             write `{value} deg` for degrees"
+                             write `{value} deg` for degrees",
+                            value = number(value),
                         ),
                     );
                     None
@@ -603,10 +737,12 @@ impl Scope {
         match resolved {
             Some(linear) => {
                 self.appearing.extend(linear.coefficients.keys().copied());
+                self.written.append(&mut self.seen);
                 linear
             }
             None => {
                 self.appearing.append(&mut self.seen);
+                self.failures += 1;
                 Linear::default()
             }
         }
@@ -623,7 +759,8 @@ impl Scope {
                 )));
                 None
             }
-            Scalar::Degrees(value, _) => Some(Linear::constant(value.to_radians())),
+            Scalar::Degrees(value, _) => Some(Linear::constant(radians(*value))),
+            Scalar::Paren(inner) => self.linear(inner, expected, errors),
             Scalar::Name(name) => match self.names.get(&name.to_string()).copied() {
                 Some((symbol, kind)) => {
                     self.seen.insert(symbol);
@@ -775,7 +912,8 @@ impl Scope {
     fn formula(&mut self, scalar: &Scalar, errors: &mut Errors) -> Option<(Formula, f64)> {
         match scalar {
             Scalar::Number(value, _) => Some((Formula::Number(*value), 0.0)),
-            Scalar::Degrees(value, _) => Some((Formula::Number(value.to_radians()), 0.0)),
+            Scalar::Degrees(value, _) => Some((Formula::Number(radians(*value)), 0.0)),
+            Scalar::Paren(inner) => self.formula(inner, errors),
             Scalar::Name(name) => match self.names.get(&name.to_string()).copied() {
                 Some((symbol @ SymbolRef::Param(i), kind)) => {
                     self.seen.insert(symbol);
@@ -858,6 +996,24 @@ impl Scope {
     }
 }
 
+/// `degrees` in radians, reduced to within a turn first: `%` is exact in floating point, so
+/// `1e308 deg` is exactly the angle of `296 deg` (1e308 mod 360), where converting first
+/// would scale the number's rounding error by π/180 into an unrelated angle.
+fn radians(degrees: f64) -> f64 {
+    (degrees % 360.0).to_radians()
+}
+
+/// A number as a message or a doc shows it: as Rust prints it where that is short, else in
+/// scientific notation (`1e300`, not its 301 digits).
+fn number(value: f64) -> String {
+    let plain = value.to_string();
+    if plain.len() <= 24 {
+        plain
+    } else {
+        format!("{value:e}")
+    }
+}
+
 /// A degree in length in words: "a number", "a length", "a length squared", ...
 fn dimension(degree: f64) -> String {
     match degree {
@@ -895,38 +1051,129 @@ fn check_counts(loops: &[VectorSum], unknowns: &[Symbol], span: Span, errors: &m
 }
 
 /// Rule: the input drives the loops and the loops determine the unknowns, so each of them
-/// must appear in at least one loop.
+/// must appear in at least one loop, with a factor that is not zero: where every loop that
+/// writes it cancels it (`theta2 - theta2`) or multiplies it by zero (`0 * theta2`), the
+/// velocities would all come out zero, or nothing would determine the unknown.
 fn check_every_symbol_in_a_loop(
     scope: &Scope,
     in_loops: &BTreeSet<SymbolRef>,
+    written: &BTreeSet<SymbolRef>,
     inputs: &[Symbol],
     unknowns: &[Symbol],
     errors: &mut Errors,
 ) {
     // A duplicate declaration was reported already and stands for no symbol of its own.
     let missing = |symbol: SymbolRef| scope.resolves_to(symbol) && !in_loops.contains(&symbol);
+    let cancelled = "the loops that write it cancel it or multiply it by zero";
     for (i, input) in inputs.iter().enumerate() {
-        if missing(SymbolRef::Input(i)) {
-            errors.error_at(
-                &input.name,
-                format!(
-                    "input `{}` appears in no loop, so it drives nothing",
-                    input.name
-                ),
-            );
+        let symbol = SymbolRef::Input(i);
+        if missing(symbol) {
+            let name = &input.name;
+            let message = if written.contains(&symbol) {
+                format!("input `{name}` drives nothing: {cancelled}")
+            } else {
+                format!("input `{name}` appears in no loop, so it drives nothing")
+            };
+            errors.error_at(name, message);
         }
     }
     for (i, unknown) in unknowns.iter().enumerate() {
-        if missing(SymbolRef::Unknown(i)) {
-            errors.error_at(
-                &unknown.name,
-                format!(
-                    "unknown `{}` appears in no loop, so no equation determines it",
-                    unknown.name
-                ),
-            );
+        let symbol = SymbolRef::Unknown(i);
+        if missing(symbol) {
+            let name = &unknown.name;
+            let message = if written.contains(&symbol) {
+                format!("no equation determines unknown `{name}`: {cancelled}")
+            } else {
+                format!("unknown `{name}` appears in no loop, so no equation determines it")
+            };
+            errors.error_at(name, message);
         }
     }
+}
+
+/// Rule: a loop is an equation. One whose vectors cancel for every value of the names
+/// (`l1 @ 0 - l1 @ 0`) closes whatever the unknowns are and determines none of them; it is
+/// reported at the loop, and the count of unknowns is not judged while one is there.
+/// Returns whether one was found.
+///
+/// The loop is evaluated at a few points drawn at random (by a fixed sequence, so that the
+/// verdict is the same on every build): a sum that is not identically zero is almost surely
+/// not zero at any of them.
+fn check_no_loop_is_identically_zero(
+    loops: &[VectorSum],
+    resolved: &[bool],
+    params: &[Symbol],
+    errors: &mut Errors,
+) -> bool {
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut random = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut found = false;
+    // A loop with an expression in error (resolved as zero) was reported already.
+    let clean = loops
+        .iter()
+        .enumerate()
+        .filter(|(index, _)| resolved[*index]);
+    for (index, sum) in clean {
+        let mut zero_at = 0;
+        for _ in 0..12 {
+            if zero_at == 3 {
+                break;
+            }
+            // Lengths near 1, angles anywhere; the values of other symbols are drawn as
+            // they are needed, each once.
+            let params: Vec<f64> = params
+                .iter()
+                .map(|p| match p.kind {
+                    Kind::Length => 1.0 + random(),
+                    Kind::Angle => std::f64::consts::TAU * random(),
+                })
+                .collect();
+            let mut others = BTreeMap::new();
+            let mut value_of = |symbol: SymbolRef| match symbol {
+                SymbolRef::Param(i) => params[i],
+                other => *others
+                    .entry(other)
+                    .or_insert_with(|| 1.0 + std::f64::consts::TAU * random()),
+            };
+            let (mut x, mut y, mut size) = (0.0, 0.0, 0.0);
+            for term in &sum.terms {
+                let magnitude = term.magnitude.value(&mut value_of);
+                let angle = term.angle.value(&mut value_of);
+                let sign = if term.negated { -1.0 } else { 1.0 };
+                x += sign * magnitude * angle.cos();
+                y += sign * magnitude * angle.sin();
+                size += magnitude.abs();
+            }
+            if !(x.is_finite() && y.is_finite() && size.is_finite()) {
+                // A formula undefined at these dimensions tells nothing.
+                continue;
+            }
+            // The rounding of a sum that cancels exactly, with room to spare.
+            let rounding = 64.0 * f64::EPSILON * size * sum.terms.len() as f64;
+            if x.abs() > rounding || y.abs() > rounding {
+                break;
+            }
+            zero_at += 1;
+        }
+        if zero_at == 3 {
+            found = true;
+            errors.push(sum.error(
+                None,
+                format!(
+                    "loop {} is identically zero: its vectors cancel whatever the dimensions, \
+                     input and unknowns, so it closes everywhere and determines nothing; \
+                     remove it",
+                    index + 1
+                ),
+            ));
+        }
+    }
+    found
 }
 
 const OUTPUTS: [&str; 5] = [
@@ -1014,10 +1261,11 @@ impl fmt::Display for ast::VectorSum {
 fn constant_value(scalar: &Scalar) -> f64 {
     match scalar {
         Scalar::Number(value, _) => *value,
-        Scalar::Degrees(value, _) => value.to_radians(),
+        Scalar::Degrees(value, _) => radians(*value),
         Scalar::Name(name) if name == "pi" => std::f64::consts::PI,
         Scalar::Name(_) => unreachable!("a function of a declared name is a formula"),
         Scalar::Neg(_, inner) => -constant_value(inner),
+        Scalar::Paren(inner) => constant_value(inner),
         Scalar::Binary(op, _, left, right) => {
             let (l, r) = (constant_value(left), constant_value(right));
             match op {
@@ -1046,9 +1294,18 @@ impl fmt::Display for Scalar {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Scalar::Name(name) => write!(f, "{name}"),
-            Scalar::Number(value, _) => write!(f, "{value}"),
-            Scalar::Degrees(value, _) => write!(f, "{value} deg"),
+            Scalar::Number(value, _) => f.write_str(&number(*value)),
+            Scalar::Degrees(value, _) => write!(f, "{} deg", number(*value)),
             Scalar::Neg(_, inner) => write!(f, "-{inner}"),
+            // A sum shows its own parentheses (below), as it always has: the generated docs
+            // quote loops so (`((theta4 + gamma) + delta)`), and the expansion snapshots of
+            // the shipped mechanisms pin those docs.
+            Scalar::Paren(inner)
+                if matches!(**inner, Scalar::Binary(BinaryOp::Add | BinaryOp::Sub, ..)) =>
+            {
+                write!(f, "{inner}")
+            }
+            Scalar::Paren(inner) => write!(f, "({inner})"),
             Scalar::Call(function, arguments, _) => {
                 let arguments: Vec<String> = arguments.iter().map(|a| a.to_string()).collect();
                 write!(f, "{function}({})", arguments.join(", "))
@@ -1060,11 +1317,10 @@ impl fmt::Display for Scalar {
                     BinaryOp::Mul => "*",
                     BinaryOp::Div => "/",
                 };
-                let right_needs_parens =
-                    matches!(**right, Scalar::Binary(BinaryOp::Mul | BinaryOp::Div, ..));
+                // A product's operands are atoms or products to its left, as the parser reads
+                // them; one in parentheses shows them (`Scalar::Paren`).
                 match op {
                     "+" | "-" => write!(f, "({left} {op} {right})"),
-                    _ if right_needs_parens => write!(f, "{left} {op} ({right})"),
                     _ => write!(f, "{left} {op} {right}"),
                 }
             }
@@ -1111,4 +1367,28 @@ fn example_loop(
     }
     terms.push(format!("- {} @ 0", length.next().unwrap_or_default()));
     format!("loop: {}", terms.join(" "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{number, radians};
+
+    #[test]
+    fn degrees_are_reduced_to_a_turn_exactly_before_radians() {
+        assert_eq!(radians(1e308), radians(296.0));
+        assert_eq!(radians(-1e308), radians(-296.0));
+        assert_eq!(radians(720.5), radians(0.5));
+        // Within a turn, the same bits as converting directly.
+        for degrees in [0.0, 30.0, -90.0, 180.0, 359.999] {
+            assert_eq!(radians(degrees), f64::to_radians(degrees));
+        }
+    }
+
+    #[test]
+    fn numbers_too_long_to_read_show_in_scientific_notation() {
+        assert_eq!(number(0.5), "0.5");
+        assert_eq!(number(180.0), "180");
+        assert_eq!(number(1e300), "1e300");
+        assert_eq!(number(1e-320), "1e-320");
+    }
 }

@@ -4,7 +4,7 @@
 //! `_dot` for its rate and `_ddot` for its acceleration. Each scene becomes one generated
 //! kernel that computes exactly those outputs and nothing a caller did not ask for.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use syn::ext::IdentExt;
 use syn::{Attribute, Ident};
@@ -50,6 +50,93 @@ impl Scene {
             .map(|item| item.order)
             .max()
             .unwrap_or(Order::Value)
+    }
+}
+
+/// What a declared name names, for the rule that the names a scene lists are unique.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Declared {
+    Param,
+    Input,
+    Unknown,
+    Point,
+}
+
+impl Declared {
+    fn noun(self) -> &'static str {
+        match self {
+            Declared::Param => "parameter",
+            Declared::Input => "input",
+            Declared::Unknown => "unknown",
+            Declared::Point => "point",
+        }
+    }
+
+    /// The names a scene reads as this declaration's: an unknown's or a point's value, rate
+    /// and acceleration (`x`, `x_dot`, `x_ddot`, see [`item`]); a parameter's or an input's
+    /// own name, which a scene cannot list but which must not name an output either.
+    fn scene_names(self, name: &str) -> Vec<(String, Order)> {
+        match self {
+            Declared::Param | Declared::Input => vec![(name.to_string(), Order::Value)],
+            Declared::Unknown | Declared::Point => vec![
+                (name.to_string(), Order::Value),
+                (format!("{name}_dot"), Order::Rate),
+                (format!("{name}_ddot"), Order::Acceleration),
+            ],
+        }
+    }
+}
+
+/// Rule: every name a scene can list means one thing. A scene reads `x`, `x_dot` and
+/// `x_ddot` as an unknown's or a point's value, rate and acceleration, so a point `theta4`
+/// beside the unknown `theta4`, a point `theta3_dot` beside the unknown `theta3`, or points
+/// `p` and `p_dot` would make a scene silently return one of the two; and an output named
+/// like a parameter or an input would read as that. Each clash is reported at the later
+/// declaration, naming the earlier one. The same name declared twice as parameters, input
+/// or unknowns, or as two points, is reported where those are resolved, and not again here;
+/// parameters and inputs are not outputs, so their names may meet (a parameter `theta_dot`
+/// beside the input `theta`).
+///
+/// `declared` lists every declared name in the order written.
+pub fn check_unambiguous(declared: &[(Declared, Ident)], errors: &mut Errors) {
+    // Each name a scene could read, with the first declaration that gives it.
+    let mut owners: BTreeMap<String, (usize, Order)> = BTreeMap::new();
+    for (index, &(what, ref name)) in declared.iter().enumerate() {
+        let text = name.unraw().to_string();
+        let mut reported = false;
+        for (scene_name, order) in what.scene_names(&text) {
+            let Some(&(earlier, earlier_order)) = owners.get(&scene_name) else {
+                owners.insert(scene_name, (index, order));
+                continue;
+            };
+            let (earlier_what, earlier_name) = &declared[earlier];
+            let declared_twice = earlier_name.unraw() == text
+                && (what == Declared::Point) == (*earlier_what == Declared::Point);
+            if reported || declared_twice {
+                continue;
+            }
+            reported = true;
+            let role = |order: Order, noun: String| match order {
+                Order::Value => noun,
+                Order::Rate => format!("the rate of {noun}"),
+                Order::Acceleration => format!("the acceleration of {noun}"),
+            };
+            let noun = what.noun();
+            let earlier_noun = earlier_what.noun();
+            errors.error_at(
+                name,
+                format!(
+                    "{noun} `{name}` clashes with the {earlier_noun} `{earlier_name}` declared \
+                     before it: in a scene, `{scene_name}` would name both {} and {}; rename \
+                     one of them",
+                    role(order, format!("this {noun}")),
+                    role(
+                        earlier_order,
+                        format!("the {earlier_noun} `{earlier_name}`")
+                    ),
+                ),
+            );
+        }
     }
 }
 
@@ -177,4 +264,41 @@ fn item(field: &Ident, names: &Names) -> Result<(Quantity, Order), String> {
         list(names.unknowns),
         list(names.points),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Declared, check_unambiguous};
+    use crate::errors::Errors;
+
+    fn clashes(declared: &[(Declared, &str)]) -> bool {
+        let declared: Vec<_> = declared
+            .iter()
+            .map(|&(what, name)| (what, syn::Ident::new(name, proc_macro2::Span::call_site())))
+            .collect();
+        let mut errors = Errors::default();
+        check_unambiguous(&declared, &mut errors);
+        !errors.is_empty()
+    }
+
+    #[test]
+    fn a_scene_name_that_could_mean_two_things_is_a_clash() {
+        use Declared::*;
+        assert!(clashes(&[(Unknown, "theta3"), (Point, "theta3_dot")]));
+        assert!(clashes(&[(Point, "p_ddot"), (Point, "p")]));
+        assert!(clashes(&[(Unknown, "theta4"), (Point, "theta4")]));
+        assert!(clashes(&[(Param, "l1"), (Point, "l1")]));
+        assert!(clashes(&[(Input, "q_dot"), (Unknown, "q")]));
+        // Not outputs, or outputs whose names never meet.
+        assert!(!clashes(&[(Param, "theta_dot"), (Input, "theta")]));
+        assert!(!clashes(&[
+            (Unknown, "x"),
+            (Unknown, "x_d"),
+            (Point, "x_dd")
+        ]));
+        assert!(!clashes(&[(Param, "l1"), (Point, "l1_dot")]));
+        // Declared twice: reported where the names are resolved, not here.
+        assert!(!clashes(&[(Param, "a"), (Unknown, "a")]));
+        assert!(!clashes(&[(Point, "p"), (Point, "p")]));
+    }
 }

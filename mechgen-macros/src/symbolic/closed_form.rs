@@ -248,7 +248,7 @@ pub fn plan_from(model: &Model, graph: &mut Graph, solved: &mut [bool]) -> Vec<S
 }
 
 /// The unknowns a loop still depends on, in declaration order.
-fn open_unknowns(sum: &VectorSum, solved: &[bool]) -> Vec<usize> {
+pub fn open_unknowns(sum: &VectorSum, solved: &[bool]) -> Vec<usize> {
     let mut open: Vec<usize> = sum
         .terms
         .iter()
