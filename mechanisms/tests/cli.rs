@@ -161,7 +161,9 @@ fn a_sweep_too_long_is_refused_naming_max_samples_before_it_starts() {
 
 #[test]
 fn analyse_prints_only_values_the_library_vouched_for() {
-    // A zero-length slide at 360°: its direction, and every rate, is undetermined.
+    // A slide of zero length to rounding, a hair past 0°: its direction, and every rate, is
+    // undetermined. (At 360°, exactly 0° once the whole turn is taken off, the slide is of
+    // zero length exactly and the position itself singular, as at 0°.)
     let report = stdout_of(&[
         "analyse",
         "inverted-slider-crank",
@@ -170,7 +172,7 @@ fn analyse_prints_only_values_the_library_vouched_for() {
         "0",
         "0",
         "--at",
-        "360",
+        "1e-13",
     ]);
     assert!(report.contains("undetermined"), "{report}");
     assert!(!report.contains("12.5"), "{report}");
@@ -1416,4 +1418,116 @@ fn robot_refuses_bad_arguments() {
     );
     fails_with(&["robot", "1", "-2", "2", "1", "1"], "must be positive");
     fails_with_code(&["robot", "1", "2", "3"], 2, "5 values required");
+}
+
+/// The lines of `report` without those naming `given`, which echo an angle as it was typed.
+fn without_echoes(report: &str, given: &str) -> Vec<String> {
+    report
+        .lines()
+        .filter(|line| !line.contains(given))
+        .map(str::to_string)
+        .collect()
+}
+
+/// An angle of any size means the direction it does on paper: whole turns come off in
+/// degrees, exactly, before it becomes radians (1e20° is 280°), so a synthesis' error is
+/// its error at the angle given, never zero from an angle the rounding moved.
+#[test]
+fn angles_of_any_size_lose_whole_turns_exactly() {
+    let function = |rocker: &str| {
+        stdout_of(&[
+            "synthesise",
+            "function",
+            "--crank",
+            "0,45,90",
+            "--rocker",
+            rocker,
+        ])
+    };
+    let near = function("280,260,250");
+    let far = function("1e20,260,250");
+    assert!(far.contains("| 0 | 1e20 | 280.0000 |"), "{far}");
+    assert_eq!(
+        without_echoes(&far, "1e20"),
+        without_echoes(&near, "| 0 | 280 |")
+    );
+    // The audit's case: the wanted angle is no longer echoed back as met.
+    let output = program()
+        .args(["synthesise", "function", "--crank", "0,45,90"])
+        .args(["--rocker", "1e20,67,87"])
+        .output()
+        .unwrap();
+    let report = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        !report.contains("100000000000000000000"),
+        "{report}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    // Each angle argument: the input, a dimension that is an angle, a coupler point's angle,
+    // the cranks, the timing.
+    let analyse =
+        |at: &str| stdout_of(&["analyse", "four-bar", "180", "80", "200", "150", "--at", at]);
+    assert_eq!(
+        without_echoes(&analyse("1e20"), "θ2 = 1e20°"),
+        without_echoes(&analyse("280"), "θ2 = 280°")
+    );
+    let inverted =
+        |angle: &str| stdout_of(&["analyse", "inverted-slider-crank", "150", "60", "20", angle]);
+    assert_eq!(inverted("1e20"), inverted("280"));
+    let tolerance = |point: &str| {
+        stdout_of(&[
+            "tolerance",
+            "four-bar",
+            "180",
+            "80",
+            "200",
+            "150",
+            "--coupler-point",
+            point,
+            "--step",
+            "90",
+            "--samples",
+            "100",
+        ])
+    };
+    assert_eq!(
+        without_echoes(&tolerance("100,1e20"), "at 1e20°"),
+        without_echoes(&tolerance("100,280"), "at 280°")
+    );
+    assert_eq!(
+        stdout_of(&["robot", "--cranks", "1e20,-1e20"]),
+        stdout_of(&["robot", "--cranks", "280,-280"])
+    );
+    let (x, y) = circle_targets(1.0);
+    let path = |timing: &str| {
+        stdout_of(&[
+            "synthesise",
+            "path",
+            "--x",
+            &x,
+            "--y",
+            &y,
+            "--timing",
+            timing,
+        ])
+    };
+    assert_eq!(
+        path("0,60,120,180,240,300"),
+        // Each the same angle, less whole turns (360000000000300 = 10¹²·360 + 300).
+        path("360,420,1.2e3,540,600,360000000000300")
+    );
+}
+
+/// Six points of a circle of radius 50 about (100, 100), times `scale`, as `--x` and `--y`.
+fn circle_targets(scale: f64) -> (String, String) {
+    let (x, y): (Vec<String>, Vec<String>) = (0..6)
+        .map(|k| {
+            let t = f64::from(k) * std::f64::consts::FRAC_PI_3;
+            (
+                format!("{:e}", (100.0 + 50.0 * t.cos()) * scale),
+                format!("{:e}", (100.0 + 50.0 * t.sin()) * scale),
+            )
+        })
+        .unzip();
+    (x.join(","), y.join(","))
 }

@@ -5,6 +5,7 @@
 //! `cargo run --release -p mechanisms -- --help` lists the commands.
 
 mod analyse;
+mod angle;
 mod output;
 mod robot;
 mod seeds;

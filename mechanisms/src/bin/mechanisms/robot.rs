@@ -8,6 +8,7 @@ use clap::Parser;
 use mechanisms::{FiveBar, FiveBarUnknowns};
 use mechgen::{Branch, Error, Vec2};
 
+use crate::angle;
 use crate::output::{fixed, say};
 
 #[derive(Parser)]
@@ -76,7 +77,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         Some(point) => inverse(&robot, pair("point", point)?),
         None => forward(
             &robot,
-            pair("cranks", &args.cranks)?.map(f64::to_radians),
+            pair("cranks", &args.cranks)?.map(angle::radians),
             pair("rates", &args.rates)?,
             pair("accels", &args.accels)?,
         ),

@@ -10,6 +10,7 @@ use clap::{Args as ClapArgs, Subcommand};
 use mechanisms::synthesis::{self, Options, Synthesis};
 use mechgen::{Branch, Vec2};
 
+use crate::angle;
 use crate::output::{fixed, say, tidy};
 use crate::svg::{self, Chart};
 use crate::sweep::BranchName;
@@ -166,8 +167,8 @@ fn function(args: &FunctionArgs) -> Result<(), String> {
             args.rocker.len()
         ));
     }
-    let phi: Vec<f64> = args.crank.iter().map(|d| d.to_radians()).collect();
-    let psi: Vec<f64> = args.rocker.iter().map(|d| d.to_radians()).collect();
+    let phi: Vec<f64> = args.crank.iter().map(|&d| angle::radians(d)).collect();
+    let psi: Vec<f64> = args.rocker.iter().map(|&d| angle::radians(d)).collect();
     let (found, options) = better(args.common.each_options()?, |options| {
         synthesis::function_generation(args.ground, &phi, &psi, options)
     })?;
@@ -192,16 +193,17 @@ fn function(args: &FunctionArgs) -> Result<(), String> {
     say!("| θ2 (°) | wanted θ4 (°) | θ4 (°) | error (°) |");
     say!("|---:|---:|---:|---:|");
     let linkage = found.linkage;
-    for (&phi, &psi) in phi.iter().zip(&psi) {
+    for (k, (&phi, &psi)) in phi.iter().zip(&psi).enumerate() {
         let theta4 = linkage
             .assemble(phi, options.branch)
             .map(|q| q.theta4)
             .map_err(|e| e.to_string())?;
         let error = wrapped(theta4 - psi);
+        // The angles as given; θ4 in the wanted angle's turn, less whole turns.
         say!(
             "| {} | {} | {} | {} |",
-            tidy(phi.to_degrees()),
-            tidy(psi.to_degrees()),
+            tidy(args.crank[k]),
+            tidy(args.rocker[k]),
             fixed((psi + error).to_degrees(), 4),
             format!("{:.3e}", error.to_degrees())
         );
@@ -253,7 +255,7 @@ fn path(args: &PathArgs) -> Result<(), String> {
     let timing: Option<Vec<f64>> = args
         .timing
         .as_ref()
-        .map(|t| t.iter().map(|d| d.to_radians()).collect());
+        .map(|t| t.iter().map(|&d| angle::radians(d)).collect());
     let (found, options) = better(args.common.each_options()?, |options| {
         synthesis::path_generation(&targets, timing.as_deref(), options)
     })?;

@@ -11,6 +11,7 @@ use mechanisms::{FourBar, FourBarTolerances};
 use mechgen::{Branch, Error};
 
 use crate::Mechanism;
+use crate::angle;
 use crate::output::{fixed, say, tidy};
 use crate::svg::{self, Chart};
 use crate::sweep::BranchName;
@@ -71,13 +72,13 @@ pub fn run(args: &Args) -> Result<(), String> {
     let &[ground, crank, coupler, rocker] = args.dimensions.as_slice() else {
         unreachable!("checked: four dimensions");
     };
-    let (distance, angle) = match args.coupler_point.as_deref() {
+    let (distance, angle_degrees) = match args.coupler_point.as_deref() {
         None => (0.0, 0.0),
-        Some(&[distance, angle]) => (distance, angle.to_radians()),
+        Some(&[distance, angle]) => (distance, angle),
         Some(_) => return Err("--coupler-point takes a distance and an angle, as 100,30".into()),
     };
     let linkage = FourBar::new(ground, crank, coupler, rocker)
-        .and_then(|l| l.with_coupler_point(distance, angle))
+        .and_then(|l| l.with_coupler_point(distance, angle::radians(angle_degrees)))
         .map_err(|e| e.to_string())?;
     let lengths = match args.tolerances.as_deref() {
         None => [args.tolerance; 4],
@@ -124,7 +125,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         tidy(coupler),
         tidy(rocker),
         tidy(distance),
-        tidy(angle.to_degrees()),
+        tidy(angle_degrees),
         match args.branch {
             BranchName::Open => "open",
             BranchName::Crossed => "crossed",

@@ -19,6 +19,7 @@ use mechgen::{Branch, Error, NewtonOptions, Vec2};
 
 use crate::Mechanism;
 use crate::analyse::four_bar_range;
+use crate::angle;
 use crate::output::{self, filled, say, tidy};
 use crate::six_bars::{self, Reach, StephensonDimensions};
 use crate::svg::{self, Chart};
