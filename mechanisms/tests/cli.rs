@@ -1531,3 +1531,37 @@ fn circle_targets(scale: f64) -> (String, String) {
         .unzip();
     (x.join(","), y.join(","))
 }
+
+/// Messages say what is wrong with the argument, with figures a person reads.
+#[test]
+fn messages_name_the_argument_with_short_figures() {
+    fails_with(
+        &[
+            "synthesise",
+            "path",
+            "--x",
+            "0,1,2,3,4",
+            "--y",
+            "5,8,4,3,1",
+            "--timing",
+            "0,30,60,90",
+        ],
+        "--timing gives 4 crank angles for 5 targets: one crank angle per target",
+    );
+    for step in ["1e-308", "5e-324"] {
+        fails_with(
+            &[
+                "sweep", "four-bar", "180", "80", "200", "150", "--step", step,
+            ],
+            &format!(
+                "--step {step}° is too small: it makes more samples than can be counted, more \
+                 than --max-samples 10000000: here the step must be at least 0.0000361°"
+            ),
+        );
+    }
+    fails_with_code(
+        &["robot", "--point", "50,250", "--cranks", "120,60"],
+        2,
+        "the argument '--point <POINT>' cannot be used with '--cranks <CRANKS>'",
+    );
+}

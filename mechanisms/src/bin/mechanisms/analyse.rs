@@ -307,7 +307,7 @@ fn nothing<U>(solved: &[&Solved<U>], cannot: impl Fn() -> String) -> Result<(), 
     {
         return Err(cannot());
     }
-    Err(errors.first().map_or_else(&cannot, |e| e.to_string()))
+    Err(errors.first().map_or_else(&cannot, |e| output::error(e)))
 }
 
 /// Where a four-bar's crank can go, in words.
@@ -602,11 +602,13 @@ fn jansen(args: &Args) -> Result<(), String> {
     let theta = angle::radians(args.at);
     let m = leg
         .motion(theta, JansenLeg::<f64>::DRAWN, args.rate, args.accel)
-        .map_err(|e| e.to_string())?;
-    let p = leg.points(theta, &m.position).map_err(|e| e.to_string())?;
+        .map_err(|e| output::error(&e))?;
+    let p = leg
+        .points(theta, &m.position)
+        .map_err(|e| output::error(&e))?;
     let v = leg
         .point_velocities(theta, &m.position, args.rate, &m.velocity)
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| output::error(&e))?;
     let a = leg
         .point_accelerations(
             theta,
@@ -616,7 +618,7 @@ fn jansen(args: &Args) -> Result<(), String> {
             args.accel,
             &m.acceleration,
         )
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| output::error(&e))?;
     say!(
         "Jansen's leg (a 38, b 41.5, c 39.3, d 40.1, e 55.8, f 39.4, g 36.7, h 65.7, i 49, j 50, k 61.9, l 7.8, m 15 mm), as drawn"
     );

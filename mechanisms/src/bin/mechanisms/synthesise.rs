@@ -11,7 +11,7 @@ use mechanisms::synthesis::{self, Options, Synthesis};
 use mechgen::{Branch, Vec2};
 
 use crate::angle;
-use crate::output::{fixed, say, tidy};
+use crate::output::{self, fixed, say, tidy};
 use crate::svg::{self, Chart};
 use crate::sweep::BranchName;
 
@@ -197,7 +197,7 @@ fn function(args: &FunctionArgs) -> Result<(), String> {
         let theta4 = linkage
             .assemble(phi, options.branch)
             .map(|q| q.theta4)
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| output::error(&e))?;
         let error = wrapped(theta4 - psi);
         // The angles as given; θ4 in the wanted angle's turn, less whole turns.
         say!(
@@ -245,6 +245,15 @@ fn path(args: &PathArgs) -> Result<(), String> {
             args.x.len(),
             args.y.len()
         ));
+    }
+    if let Some(timing) = &args.timing {
+        if timing.len() != args.x.len() {
+            return Err(format!(
+                "--timing gives {} crank angles for {} targets: one crank angle per target",
+                timing.len(),
+                args.x.len()
+            ));
+        }
     }
     let targets: Vec<Vec2<f64>> = args
         .x

@@ -11,8 +11,9 @@ use mechanisms::{FourBar, FourBarTolerances};
 use mechgen::{Branch, Error};
 
 use crate::Mechanism;
+use crate::analyse::refused;
 use crate::angle;
-use crate::output::{fixed, say, tidy};
+use crate::output::{self, fixed, say, tidy};
 use crate::svg::{self, Chart};
 use crate::sweep::BranchName;
 
@@ -79,7 +80,7 @@ pub fn run(args: &Args) -> Result<(), String> {
     };
     let linkage = FourBar::new(ground, crank, coupler, rocker)
         .and_then(|l| l.with_coupler_point(distance, angle::radians(angle_degrees)))
-        .map_err(|e| e.to_string())?;
+        .map_err(refused)?;
     let lengths = match args.tolerances.as_deref() {
         None => [args.tolerance; 4],
         Some(&[a, b, c, d]) => [a, b, c, d],
@@ -186,7 +187,7 @@ pub fn run(args: &Args) -> Result<(), String> {
                 );
                 rows.push((degrees, values));
             }
-            Err(error) => skipped.push(format!("{}° ({error})", tidy(degrees))),
+            Err(error) => skipped.push(format!("{}° ({})", tidy(degrees), output::error(&error))),
         }
     }
     say!("");
@@ -198,9 +199,9 @@ pub fn run(args: &Args) -> Result<(), String> {
     };
     say!(
         "Largest first-order worst case of θ4: ±{}° at θ2 = {}°; of the coupler point: {} mm.",
-        fixed(worst.1[0], 4),
+        output::figure(worst.1[0]),
         tidy(worst.0),
-        fixed(rows.iter().map(|r| r.1[4]).fold(0.0, f64::max), 4)
+        output::figure(rows.iter().map(|r| r.1[4]).fold(0.0, f64::max))
     );
     if let Some(path) = &args.svg {
         let chart = |title: &str, unit: &str, columns: [(usize, &str); 4]| Chart {

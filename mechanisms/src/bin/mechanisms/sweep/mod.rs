@@ -18,7 +18,7 @@ use mechgen::sweep::{Stop, Sweep as Walk};
 use mechgen::{Branch, Error, NewtonOptions, Vec2};
 
 use crate::Mechanism;
-use crate::analyse::four_bar_range;
+use crate::analyse::{four_bar_range, refused};
 use crate::angle;
 use crate::output::{self, filled, say, tidy};
 use crate::six_bars::{self, Reach, StephensonDimensions};
@@ -170,6 +170,27 @@ fn check(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
+/// The smallest step, as written to three significant digits, whose samples over `pieces`
+/// number at most `most`; `None` if no step is that coarse (`most` of 0).
+fn least_step(pieces: &[Piece], most: u64) -> Option<String> {
+    let samples = |step: f64| pieces.iter().map(|p| p.grid(step).1).sum::<f64>();
+    let span: f64 = pieces.iter().map(|p| p.to - p.from).sum();
+    let mut step = span / most as f64;
+    // Written to three digits, a step can round below the one that fits: go up by a tenth of
+    // a percent, less than the three digits' resolution, until the written one fits.
+    for _ in 0..100 {
+        let written = output::significant(step, 3);
+        if written
+            .parse()
+            .is_ok_and(|w: f64| samples(w) <= most as f64)
+        {
+            return Some(written);
+        }
+        step *= 1.001;
+    }
+    None
+}
+
 /// `value` if finite, else an error naming the flag and its unit.
 pub fn finite(flag: &str, value: f64, unit: &str) -> Result<(), String> {
     if value.is_finite() {
@@ -201,11 +222,18 @@ pub fn run(args: &Args) -> Result<(), String> {
     let grids: Vec<(f64, f64)> = sweep.pieces.iter().map(|p| p.grid(args.step)).collect();
     let total: f64 = grids.iter().map(|g| g.1).sum();
     if total > args.max_samples as f64 {
+        let samples = if total.is_finite() {
+            format!("{} samples", tidy(total.round()))
+        } else {
+            "more samples than can be counted".into()
+        };
+        let least = least_step(&sweep.pieces, args.max_samples).map_or_else(String::new, |least| {
+            format!(": here the step must be at least {least}°")
+        });
         return Err(format!(
-            "a step of {}° makes {} samples, more than --max-samples {}: take a larger \
-             --step, or raise --max-samples if you mean it",
+            "--step {}° is too small: it makes {samples}, more than --max-samples {}{least} \
+             (or raise --max-samples if you mean it)",
             tidy(args.step),
-            tidy(total.round()),
             args.max_samples
         ));
     }
