@@ -1420,6 +1420,14 @@ fn robot_refuses_bad_arguments() {
     fails_with_code(&["robot", "1", "2", "3"], 2, "5 values required");
 }
 
+/// Runs the program, expecting success, and returns its standard output and error.
+fn outputs_of(args: &[&str]) -> (String, String) {
+    let output = program().args(args).output().unwrap();
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(output.status.success(), "{args:?}: {stderr}");
+    (String::from_utf8(output.stdout).unwrap(), stderr)
+}
+
 /// The lines of `report` without those naming `given`, which echo an angle as it was typed.
 fn without_echoes(report: &str, given: &str) -> Vec<String> {
     report
@@ -1530,6 +1538,118 @@ fn circle_targets(scale: f64) -> (String, String) {
         })
         .unzip();
     (x.join(","), y.join(","))
+}
+
+/// A negative number written with an exponent or a leading dot is a number wherever one is
+/// taken, positional dimensions included: never a flag clap does not know.
+#[test]
+fn negative_numbers_in_any_notation_are_values() {
+    let report = stdout_of(&[
+        "analyse",
+        "slider-crank",
+        "50",
+        "150",
+        "-2e-3",
+        "--at",
+        "-.5",
+    ]);
+    assert!(report.contains("offset -0.002 mm"), "{report}");
+    assert!(report.contains("θ2 = -0.5°"), "{report}");
+    let report = stdout_of(&[
+        "analyse",
+        "watt-six-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "100",
+        "45.8366",
+        "220",
+        "160",
+        "300",
+        "150",
+        "--at",
+        "-6e1",
+    ]);
+    assert!(report.contains("θ2 = -60°"), "{report}");
+    let scratch = Scratch::new("negative");
+    let (table, _) = outputs_of(&[
+        "sweep",
+        "slider-crank",
+        "50",
+        "150",
+        "-.5",
+        "--coupler-point",
+        "10,-1.5e1",
+        "--csv",
+        "-",
+        "--out-dir",
+        scratch.path(),
+    ]);
+    assert!(table.starts_with("input_deg,segment,"), "{table:.200}");
+    fails_with(
+        &[
+            "tolerance",
+            "four-bar",
+            "180",
+            "80",
+            "200",
+            "150",
+            "--tolerance",
+            "-2e-3",
+        ],
+        "a tolerance must be finite and not negative",
+    );
+    fails_with(
+        &["tolerance", "four-bar", "180", "-.5", "200", "150"],
+        "crank = -0.5 must be positive",
+    );
+    fails_with(
+        &[
+            "synthesise",
+            "function",
+            "--ground",
+            "-.5",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+        ],
+        "the ground length must be positive",
+    );
+    fails_with(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+            "--max-ratio",
+            "-1e1",
+        ],
+        "--max-ratio must be a finite number, at least 1",
+    );
+    fails_with(
+        &["robot", "100", "200", "200", "100", "-.5"],
+        "l5 = -0.5 must be",
+    );
+    let report = stdout_of(&["robot", "--point", "-.5e2,2.5e2"]);
+    assert!(report.contains("point (-50.0000, 250.0000) mm"), "{report}");
+    fails_with_code(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+            "--restarts",
+            "-1e1",
+        ],
+        2,
+        "invalid value '-10' for '--restarts <RESTARTS>'",
+    );
 }
 
 /// Messages say what is wrong with the argument, with figures a person reads.

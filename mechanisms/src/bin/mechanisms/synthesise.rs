@@ -45,7 +45,7 @@ pub struct FunctionArgs {
     )]
     pub rocker: Vec<f64>,
     /// The ground link's length, mm: it sets the scale.
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
     pub ground: f64,
     #[command(flatten)]
     pub common: Common,
@@ -82,20 +82,20 @@ pub struct Common {
     #[arg(long, value_enum)]
     pub branch: Option<BranchName>,
     /// The largest ratio of the longest link to the shortest.
-    #[arg(long, default_value_t = 50.0)]
+    #[arg(long, default_value_t = 50.0, allow_hyphen_values = true)]
     pub max_ratio: f64,
     /// Require a crank that turns fully.
     #[arg(long)]
     pub crank_turns: bool,
     /// Require the transmission angle within these bounds, degrees, as `40,140` (at every
     /// target; all the turn with --crank-turns).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub transmission: Option<Vec<f64>>,
     /// Random starts, run in parallel on every core.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
     pub restarts: usize,
     /// The random starts' seed: the same seed, the same linkage.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     pub seed: u64,
     /// Where to write the chart; `-` for standard output.
     #[arg(long)]

@@ -26,31 +26,31 @@ pub struct Args {
     #[arg(allow_negative_numbers = true)]
     pub dimensions: Vec<f64>,
     /// The ± tolerance of every length, mm.
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = 0.1, allow_hyphen_values = true)]
     pub tolerance: f64,
     /// The ± tolerances of ground, crank, coupler and rocker, mm, joined by commas: each
     /// length its own, in place of --tolerance (the coupler point's distance keeps
     /// --tolerance).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub tolerances: Option<Vec<f64>>,
     /// A coupler point to follow: distance from the crank pin (mm), angle from the coupler
     /// (°), as `100,30` [default: the crank pin].
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub coupler_point: Option<Vec<f64>>,
     /// The ± tolerance of the coupler point's angle, degrees.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub angle_tolerance: f64,
     /// The assembly branch.
     #[arg(long, value_enum, default_value = "open")]
     pub branch: BranchName,
     /// The crank angle's step, degrees.
-    #[arg(long, default_value_t = 10.0)]
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub step: f64,
     /// Monte Carlo linkages per crank angle (normal errors, each tolerance 3σ).
-    #[arg(long, default_value_t = 2000)]
+    #[arg(long, default_value_t = 2000, allow_hyphen_values = true)]
     pub samples: usize,
     /// The Monte Carlo generator's seed.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     pub seed: u64,
     /// Where to write the chart; `-` for standard output, nothing for no chart.
     #[arg(long)]

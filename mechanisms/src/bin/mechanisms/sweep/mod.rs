@@ -59,7 +59,7 @@ pub struct Args {
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub step: f64,
     /// The most samples a sweep may take: a smaller step is refused before it starts.
-    #[arg(long, default_value_t = 10_000_000)]
+    #[arg(long, default_value_t = 10_000_000, allow_hyphen_values = true)]
     pub max_samples: u64,
     /// The input's rate, rad/s.
     #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
