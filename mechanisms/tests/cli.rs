@@ -1428,6 +1428,16 @@ fn outputs_of(args: &[&str]) -> (String, String) {
     (String::from_utf8(output.stdout).unwrap(), stderr)
 }
 
+/// Runs the program, expecting a failure with exit code 1 and `message`, and nothing on
+/// standard output: a refusal comes before any of the report.
+fn refused_before_any_output(args: &[&str], message: &str) {
+    let output = program().args(args).output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{args:?}: {stderr}");
+    assert!(stderr.contains(message), "{args:?}: {stderr}");
+    assert_eq!(String::from_utf8_lossy(&output.stdout), "", "{args:?}");
+}
+
 /// The lines of `report` without those naming `given`, which echo an angle as it was typed.
 fn without_echoes(report: &str, given: &str) -> Vec<String> {
     report
@@ -1538,6 +1548,91 @@ fn circle_targets(scale: f64) -> (String, String) {
         })
         .unzip();
     (x.join(","), y.join(","))
+}
+
+/// The rms error a synthesis reports.
+fn rms_error(report: &str) -> f64 {
+    let after = report
+        .split("rms error ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no rms error in:\n{report}"));
+    after.split(',').next().unwrap().parse().unwrap()
+}
+
+/// Path generation fits the same at any scale (its errors are not squared into overflow near
+/// 1e300 nor underflow near 1e-300): a fit that is none at one scale is none at every scale,
+/// never an infinite or a zero error with exit 0; and targets that all coincide are refused.
+#[test]
+fn path_synthesis_is_honest_at_any_scale() {
+    let timing = "0,30,60,90,120";
+    for (x, y) in [
+        ("0,1,2,3,4", "5,8,4,3,1"),
+        ("0,1e300,2e300,3e300,4e300", "5e300,8e300,4e300,3e300,1e300"),
+        (
+            "0,1e-300,2e-300,3e-300,4e-300",
+            "5e-300,8e-300,4e-300,3e-300,1e-300",
+        ),
+    ] {
+        refused_before_any_output(
+            &["synthesise", "path", "--x", x, "--y", y, "--timing", timing],
+            "no linkage meets the targets",
+        );
+    }
+    let (x, y) = circle_targets(1.0);
+    let unit = rms_error(&stdout_of(&[
+        "synthesise",
+        "path",
+        "--x",
+        &x,
+        "--y",
+        &y,
+        "--timing",
+        "0,60,120,180,240,300",
+    ]));
+    for scale in [1e298, 1e-302] {
+        let (x, y) = circle_targets(scale);
+        let report = stdout_of(&[
+            "synthesise",
+            "path",
+            "--x",
+            &x,
+            "--y",
+            &y,
+            "--timing",
+            "0,60,120,180,240,300",
+        ]);
+        assert!(
+            !report.contains("inf") && !report.contains("NaN"),
+            "{report}"
+        );
+        let rms = rms_error(&report);
+        assert!(
+            rms > 0.0 && rms / scale < 1e-12 + 10.0 * unit,
+            "{scale}: {report}"
+        );
+        assert!(
+            report.contains(&format!("{:.4e}", 100.0 * scale)),
+            "{report}"
+        );
+    }
+    let zeros = "0,0,0,0,0,0,0,0,0";
+    refused_before_any_output(
+        &["synthesise", "path", "--x", zeros, "--y", zeros],
+        "--x and --y give 9 targets all at (0, 0) mm",
+    );
+    refused_before_any_output(
+        &[
+            "synthesise",
+            "path",
+            "--x",
+            "5,5,5,5,5",
+            "--y",
+            "1,1,1,1,1",
+            "--timing",
+            "0,10,20,30,40",
+        ],
+        "all at (5, 1) mm",
+    );
 }
 
 /// A negative number written with an exponent or a leading dot is a number wherever one is

@@ -7,6 +7,7 @@ use std::fs;
 use std::path::PathBuf;
 
 use clap::{Args as ClapArgs, Subcommand};
+use mechanisms::FourBar;
 use mechanisms::synthesis::{self, Options, Synthesis};
 use mechgen::{Branch, Vec2};
 
@@ -261,20 +262,29 @@ fn path(args: &PathArgs) -> Result<(), String> {
         .zip(&args.y)
         .map(|(&x, &y)| Vec2 { x, y })
         .collect();
+    if targets
+        .iter()
+        .any(|p| !(p.x.is_finite() && p.y.is_finite()))
+    {
+        return Err("--x and --y must be finite numbers of mm".into());
+    }
+    let frame = Frame::of(&targets)?;
+    let unit: Vec<Vec2<f64>> = targets.iter().map(|&p| frame.inside(p)).collect();
     let timing: Option<Vec<f64>> = args
         .timing
         .as_ref()
         .map(|t| t.iter().map(|&d| angle::radians(d)).collect());
     let (found, options) = better(args.common.each_options()?, |options| {
-        synthesis::path_generation(&targets, timing.as_deref(), options)
+        synthesis::path_generation(&unit, timing.as_deref(), options)
+            .and_then(|found| frame.put_back(found))
     })?;
     report(&found, &options);
     let (pivot, angle) = found.placement;
     say!(
         "placed with its crank pivot at ({}, {}) mm and its ground line at {}°",
-        fixed(pivot.x, 4),
-        fixed(pivot.y, 4),
-        fixed(angle.to_degrees().rem_euclid(360.0), 4)
+        output::figure(pivot.x),
+        output::figure(pivot.y),
+        output::degrees(angle, 4)
     );
     let linkage = found.linkage;
     let placed = |theta2: f64| -> Option<Vec2<f64>> {
@@ -306,8 +316,97 @@ fn path(args: &PathArgs) -> Result<(), String> {
     Ok(())
 }
 
+/// The targets' frame for path generation: their centroid and a power of two near their
+/// spread. Levenberg–Marquardt squares the errors, which overflow for targets 1e300 mm apart
+/// and underflow for targets 1e-300 mm apart, so the fit is made on the targets moved to
+/// their centroid and scaled to a spread near 1 (exactly, by the power of two), and the
+/// linkage found is scaled back.
+struct Frame {
+    centre: Vec2<f64>,
+    scale: f64,
+}
+
+impl Frame {
+    /// The frame of `targets` (finite), or why they have none: they all coincide (a path
+    /// through one point is any linkage's), or lie too far apart for a float.
+    fn of(targets: &[Vec2<f64>]) -> Result<Self, String> {
+        let n = targets.len() as f64;
+        let centre = targets
+            .iter()
+            .fold(Vec2::default(), |c: Vec2<f64>, p| Vec2 {
+                x: c.x + p.x / n,
+                y: c.y + p.y / n,
+            });
+        let spread = targets
+            .iter()
+            .map(|p| (p.x - centre.x).hypot(p.y - centre.y))
+            .fold(0.0f64, f64::max);
+        if spread == 0.0 {
+            return Err(format!(
+                "--x and --y give {} targets all at ({}, {}) mm: a coupler curve through one \
+                 point is any linkage's; give distinct targets",
+                targets.len(),
+                tidy(centre.x),
+                tidy(centre.y)
+            ));
+        }
+        if !spread.is_finite() {
+            return Err(
+                "--x and --y give targets too far apart to measure in a float (their \
+                        distances overflow)"
+                    .into(),
+            );
+        }
+        // Within the exponents a normal float has, so that the power of two is exact.
+        let exponent = spread.log2().round().clamp(-1000.0, 1000.0) as i32;
+        Ok(Frame {
+            centre,
+            scale: 2f64.powi(exponent),
+        })
+    }
+
+    /// A target in the frame.
+    fn inside(&self, p: Vec2<f64>) -> Vec2<f64> {
+        Vec2 {
+            x: (p.x - self.centre.x) / self.scale,
+            y: (p.y - self.centre.y) / self.scale,
+        }
+    }
+
+    /// A synthesis made in the frame, put back among the targets: lengths and errors scaled
+    /// (exactly), the crank pivot moved too; an error where the linkage scaled back is no
+    /// linkage (a length overflowed).
+    fn put_back(&self, found: Synthesis) -> Result<Synthesis, synthesis::SynthesisError> {
+        let s = self.scale;
+        let [l1, l2, l3, l4] = found.linkage.lengths().map(|l| l * s);
+        let (distance, delta) = found.linkage.coupler_point();
+        let linkage = FourBar::new(l1, l2, l3, l4)
+            .and_then(|l| l.with_coupler_point(distance * s, delta))
+            .map_err(|_| {
+                synthesis::SynthesisError::BadTargets(
+                    "the linkage found is too large to represent at the targets' scale",
+                )
+            })?;
+        let (pivot, angle) = found.placement;
+        Ok(Synthesis {
+            linkage,
+            placement: (
+                Vec2 {
+                    x: self.centre.x + pivot.x * s,
+                    y: self.centre.y + pivot.y * s,
+                },
+                angle,
+            ),
+            rms_error: found.rms_error * s,
+            largest_error: found.largest_error * s,
+            ..found
+        })
+    }
+}
+
 /// The best synthesis over the branches tried (the smallest rms error, ties to the first),
-/// with the options it was found with; the last error if none found one.
+/// with the options it was found with; the last error if none found one. A fit whose error
+/// is not finite is no fit: it counts as an error.
 fn better(
     each: Vec<Options>,
     synthesise: impl Fn(&Options) -> Result<Synthesis, synthesis::SynthesisError>,
@@ -316,6 +415,13 @@ fn better(
     let mut last_error = String::new();
     for options in each {
         match synthesise(&options) {
+            Ok(found) if !(found.rms_error.is_finite() && found.largest_error.is_finite()) => {
+                last_error = format!(
+                    "the best fit's error at the targets is not finite (rms {}, largest {}): \
+                     no linkage was found",
+                    found.rms_error, found.largest_error
+                );
+            }
             Ok(found)
                 if best
                     .as_ref()
@@ -344,11 +450,11 @@ fn report(found: &Synthesis, options: &Options) {
     let (a, delta) = found.linkage.coupler_point();
     say!(
         "Four-bar ground {} crank {} coupler {} rocker {} mm, coupler point {} mm at {}°",
-        fixed(l1, 4),
-        fixed(l2, 4),
-        fixed(l3, 4),
-        fixed(l4, 4),
-        fixed(a, 4),
+        output::figure(l1),
+        output::figure(l2),
+        output::figure(l3),
+        output::figure(l4),
+        output::figure(a),
         fixed(delta.to_degrees(), 4)
     );
     say!(
