@@ -1635,6 +1635,102 @@ fn path_synthesis_is_honest_at_any_scale() {
     );
 }
 
+/// A tolerance analysis' step is a positive number of degrees up to a turn, checked before
+/// anything is printed, as the sweep checks its own.
+#[test]
+fn tolerance_refuses_a_step_beyond_a_turn_before_printing() {
+    for step in [
+        "400", "1e308", "360.0001", "0", "-1", "0.0035", "inf", "nan",
+    ] {
+        refused_before_any_output(
+            &[
+                "tolerance",
+                "four-bar",
+                "180",
+                "80",
+                "200",
+                "150",
+                "--step",
+                step,
+            ],
+            "--step must be a positive number of degrees from 0.0036 to 360",
+        );
+    }
+    let report = stdout_of(&[
+        "tolerance",
+        "four-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "--step",
+        "360",
+        "--samples",
+        "10",
+    ]);
+    let rows: Vec<&str> = report
+        .lines()
+        .filter(|l| l.starts_with("| 0.0 |"))
+        .collect();
+    assert_eq!(rows.len(), 1, "{report}");
+    assert!(report.contains("at θ2 = 0°"), "{report}");
+}
+
+/// Tolerances must be small against what they apply to (a tenth of it), and a figure that
+/// overflows is an error naming it, never `inf` in the report.
+#[test]
+fn tolerance_refuses_large_tolerances_and_overflowed_figures() {
+    let example = ["tolerance", "four-bar", "180", "80", "200", "150"];
+    let run = |extra: &[&str], message: &str| {
+        let args: Vec<&str> = example.iter().chain(extra).copied().collect();
+        refused_before_any_output(&args, message);
+    };
+    run(
+        &["--tolerance", "1e308"],
+        "--tolerance ±1e308 mm is not small against the ground (180 mm): each ± tolerance \
+         must be under a tenth of the length it applies to",
+    );
+    run(
+        &["--tolerance", "8"],
+        "--tolerance ±8 mm is not small against the crank (80 mm)",
+    );
+    run(
+        &["--tolerances", "0.1,0.1,25,0.1"],
+        "--tolerances ±25 mm is not small against the coupler (200 mm)",
+    );
+    // The coupler point's distance may be zero: its tolerance is held to the shortest link.
+    run(
+        &["--tolerances", "0.1,0.1,0.1,0.1", "--tolerance", "9"],
+        "--tolerance ±9 mm is not small against the shortest link (80 mm)",
+    );
+    run(
+        &["--angle-tolerance", "6"],
+        "--angle-tolerance ±6° is not small: it must be under a tenth of a radian (5.73°)",
+    );
+    run(
+        &[
+            "--coupler-point",
+            "1e308,0",
+            "--step",
+            "90",
+            "--samples",
+            "10",
+        ],
+        "the coupler point's Monte Carlo rms at θ2 = 0° overflowed (it is not finite)",
+    );
+    // Just under the rule: a report, every figure finite.
+    let args: Vec<&str> = example
+        .iter()
+        .chain(&["--tolerance", "7.9", "--step", "90", "--samples", "100"])
+        .copied()
+        .collect();
+    let report = stdout_of(&args);
+    assert!(
+        !report.contains("inf") && !report.contains("NaN"),
+        "{report}"
+    );
+}
+
 /// A negative number written with an exponent or a leading dot is a number wherever one is
 /// taken, positional dimensions included: never a flag clap does not know.
 #[test]
@@ -1779,4 +1875,33 @@ fn messages_name_the_argument_with_short_figures() {
         2,
         "the argument '--point <POINT>' cannot be used with '--cranks <CRANKS>'",
     );
+}
+
+/// A tolerance analysis that can analyse none of its crank angles says why at each, with the
+/// library's figures to four significant digits, and prints no report.
+#[test]
+fn tolerance_says_why_no_crank_angle_could_be_analysed() {
+    // A four-bar whose crank turns between toggles at ±90°, where the loop's Jacobian is
+    // singular to rounding, and cannot reach 180°.
+    let output = program()
+        .args(["tolerance", "four-bar", "3", "4", "2", "3", "--step", "90"])
+        .args(["--tolerance", "0.01"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("determinant -8.882e-16, relative determinant 1.48e-16"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("cannot be assembled at input 180°"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("0.00000000000000"), "{stderr}");
+    assert!(
+        stderr.contains("the linkage assembles at none of the crank angles analysed"),
+        "{stderr}"
+    );
+    assert_eq!(String::from_utf8_lossy(&output.stdout), "");
 }
