@@ -1731,6 +1731,67 @@ fn tolerance_refuses_large_tolerances_and_overflowed_figures() {
     );
 }
 
+/// Long runs: the limits are stated in `--help` and held, and a run past a second keeps
+/// standard output for its report and shows no progress where standard error is no terminal.
+#[test]
+fn long_runs_state_their_limits_and_keep_their_output_clean() {
+    let help = stdout_of(&["synthesise", "path", "--help"]);
+    assert!(help.contains("at most 1000"), "{help}");
+    let help = stdout_of(&["tolerance", "--help"]);
+    assert!(
+        help.contains("from 0.0036") && help.contains("at most 10⁷"),
+        "{help}"
+    );
+    refused_before_any_output(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+            "--restarts",
+            "1001",
+        ],
+        "--restarts takes at most 1000",
+    );
+    // Some seconds of work: 3600 crank angles.
+    let (report, stderr) = outputs_of(&[
+        "tolerance",
+        "four-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "--step",
+        "0.1",
+    ]);
+    assert_eq!(stderr, "");
+    assert_eq!(
+        report
+            .lines()
+            .filter(|l| l.starts_with("| ") && !l.starts_with("| θ2"))
+            .count(),
+        3600
+    );
+    let (x, y) = circle_targets(1.0);
+    let (_, stderr) = outputs_of(&[
+        "synthesise",
+        "path",
+        "--x",
+        &x,
+        "--y",
+        &y,
+        "--timing",
+        "0,60,120,180,240,300",
+        "--restarts",
+        "1000",
+        "--branch",
+        "open",
+    ]);
+    assert_eq!(stderr, "");
+}
+
 /// A negative number written with an exponent or a leading dot is a number wherever one is
 /// taken, positional dimensions included: never a flag clap does not know.
 #[test]

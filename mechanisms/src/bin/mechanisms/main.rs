@@ -7,6 +7,7 @@
 mod analyse;
 mod angle;
 mod output;
+mod progress;
 mod robot;
 mod seeds;
 mod six_bars;

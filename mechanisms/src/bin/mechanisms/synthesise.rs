@@ -13,6 +13,7 @@ use mechgen::{Branch, Vec2};
 
 use crate::angle;
 use crate::output::{self, fixed, say, tidy};
+use crate::progress;
 use crate::svg::{self, Chart};
 use crate::sweep::BranchName;
 
@@ -92,7 +93,9 @@ pub struct Common {
     /// target; all the turn with --crank-turns).
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub transmission: Option<Vec<f64>>,
-    /// Random starts, run in parallel on every core.
+    /// Random starts on each branch tried, run in parallel on every core: at most 1000 (path
+    /// generation without --timing takes tens of seconds for that many). A run past a second
+    /// shows a spinner on standard error, on a terminal.
     #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
     pub restarts: usize,
     /// The random starts' seed: the same seed, the same linkage.
@@ -103,8 +106,9 @@ pub struct Common {
     pub svg: Option<PathBuf>,
 }
 
-/// The most starts a run takes, so that a huge argument is refused at once.
-const MOST_RESTARTS: usize = 100_000;
+/// The most starts a run takes on each branch, so that a run ends within a minute on two
+/// cores even for path generation without timing (its slowest: some 15 ms a start).
+const MOST_RESTARTS: usize = 1000;
 
 impl Common {
     /// The options for each branch tried: the one asked for, or both.
@@ -170,8 +174,11 @@ fn function(args: &FunctionArgs) -> Result<(), String> {
     }
     let phi: Vec<f64> = args.crank.iter().map(|&d| angle::radians(d)).collect();
     let psi: Vec<f64> = args.rocker.iter().map(|&d| angle::radians(d)).collect();
-    let (found, options) = better(args.common.each_options()?, |options| {
-        synthesis::function_generation(args.ground, &phi, &psi, options)
+    let each = args.common.each_options()?;
+    let (found, options) = searching(&each, || {
+        better(each.clone(), |options| {
+            synthesis::function_generation(args.ground, &phi, &psi, options)
+        })
     })?;
     report(&found, &options);
     if phi.len() == 3 {
@@ -274,9 +281,12 @@ fn path(args: &PathArgs) -> Result<(), String> {
         .timing
         .as_ref()
         .map(|t| t.iter().map(|&d| angle::radians(d)).collect());
-    let (found, options) = better(args.common.each_options()?, |options| {
-        synthesis::path_generation(&unit, timing.as_deref(), options)
-            .and_then(|found| frame.put_back(found))
+    let each = args.common.each_options()?;
+    let (found, options) = searching(&each, || {
+        better(each.clone(), |options| {
+            synthesis::path_generation(&unit, timing.as_deref(), options)
+                .and_then(|found| frame.put_back(found))
+        })
     })?;
     report(&found, &options);
     let (pivot, angle) = found.placement;
@@ -402,6 +412,21 @@ impl Frame {
             ..found
         })
     }
+}
+
+/// `search`'s result, with a spinner on a terminal past a second: the restarts run inside
+/// the library, which cannot report them one by one.
+fn searching<T>(each: &[Options], search: impl FnOnce() -> T) -> T {
+    let starts = each.first().map_or(0, |o| o.restarts);
+    let what = format!(
+        "synthesising: {starts} random starts on {}",
+        if each.len() == 1 {
+            "one branch"
+        } else {
+            "each branch"
+        }
+    );
+    progress::while_running(&what, search)
 }
 
 /// The best synthesis over the branches tried (the smallest rms error, ties to the first),

@@ -5,6 +5,7 @@
 
 use std::fs;
 use std::path::PathBuf;
+use std::time::Instant;
 
 use clap::Parser;
 use mechanisms::{FourBar, FourBarTolerances};
@@ -14,6 +15,7 @@ use crate::Mechanism;
 use crate::analyse::{four_bar_range, refused};
 use crate::angle;
 use crate::output::{self, fixed, say, tidy};
+use crate::progress;
 use crate::svg::{self, Chart};
 use crate::sweep::BranchName;
 
@@ -49,6 +51,7 @@ pub struct Args {
     #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub step: f64,
     /// Monte Carlo linkages per crank angle (normal errors, each tolerance 3σ), at most 10⁷.
+    /// A run past a second shows its progress on standard error, on a terminal.
     #[arg(long, default_value_t = 2000, allow_hyphen_values = true)]
     pub samples: usize,
     /// The Monte Carlo generator's seed.
@@ -185,9 +188,12 @@ pub fn run(args: &Args) -> Result<(), String> {
     // Every row before any is printed, so that a figure that overflowed is an error before
     // the report starts, never a row of it.
     let steps = (360.0 / args.step).floor() as usize;
+    let bar = progress::bar(steps as u64);
+    let started = Instant::now();
     let mut rows = Vec::new();
     let mut skipped = Vec::new();
     for k in 0..steps {
+        progress::advance(&bar, started, k as u64);
         let degrees = k as f64 * args.step;
         let theta2 = degrees.to_radians();
         let row = (|| -> Result<[f64; 8], Error<f64>> {
@@ -209,6 +215,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         match row {
             Ok(values) => {
                 if let Some(column) = values.iter().position(|v| !v.is_finite()) {
+                    bar.finish_and_clear();
                     return Err(format!(
                         "{} at θ2 = {}° overflowed (it is not finite): the dimensions or \
                          tolerances are too large for the analysis to square them",
@@ -221,6 +228,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             Err(error) => skipped.push(format!("{}° ({})", tidy(degrees), output::error(&error))),
         }
     }
+    bar.finish_and_clear();
     let Some(worst) = rows.iter().max_by(|a, b| a.1[0].total_cmp(&b.1[0])) else {
         return Err(format!(
             "the linkage assembles at none of the crank angles analysed ({}): {}",

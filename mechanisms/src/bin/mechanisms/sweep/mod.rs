@@ -4,12 +4,11 @@
 
 use std::fmt::Write as _;
 use std::fs::File;
-use std::io::{self, BufWriter, IsTerminal, Write};
+use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use clap::{Parser, ValueEnum};
-use indicatif::{ProgressBar, ProgressDrawTarget};
 use mechanisms::{
     FourBar, InvertedSliderCrank, JansenLeg, SliderCrank, StephensonSixBar,
     StephensonSixBarUnknowns,
@@ -21,6 +20,7 @@ use crate::Mechanism;
 use crate::analyse::{four_bar_range, refused};
 use crate::angle;
 use crate::output::{self, filled, say, tidy};
+use crate::progress;
 use crate::six_bars::{self, Reach, StephensonDimensions};
 use crate::svg::{self, Chart};
 
@@ -253,7 +253,7 @@ pub fn run(args: &Args) -> Result<(), String> {
     writer.write_record(&header).map_err(csv_failed)?;
 
     let started = Instant::now();
-    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
+    let bar = progress::bar(total);
     let mut drawings = Drawings::new(sweep.columns.len(), total);
     let mut lines = Vec::new();
     let mut computed = 0;
@@ -269,7 +269,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         let mut change_points = Vec::new();
         for k in 0..count {
             if index % 4096 == 0 {
-                progress(&bar, started, index);
+                progress::advance(&bar, started, index);
             }
             let input = first + k as f64 * args.step;
             if k > 0 {
@@ -369,12 +369,4 @@ pub fn run(args: &Args) -> Result<(), String> {
         report(&line);
     }
     Ok(())
-}
-
-/// Shows the progress bar once a sweep has taken a second, on a terminal only.
-fn progress(bar: &ProgressBar, started: Instant, done: u64) {
-    if bar.is_hidden() && started.elapsed() > Duration::from_secs(1) && io::stderr().is_terminal() {
-        bar.set_draw_target(ProgressDrawTarget::stderr());
-    }
-    bar.set_position(done);
 }
