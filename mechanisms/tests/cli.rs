@@ -161,7 +161,9 @@ fn a_sweep_too_long_is_refused_naming_max_samples_before_it_starts() {
 
 #[test]
 fn analyse_prints_only_values_the_library_vouched_for() {
-    // A zero-length slide at 360°: its direction, and every rate, is undetermined.
+    // A slide of zero length to rounding, a hair past 0°: its direction, and every rate, is
+    // undetermined. (At 360°, exactly 0° once the whole turn is taken off, the slide is of
+    // zero length exactly and the position itself singular, as at 0°.)
     let report = stdout_of(&[
         "analyse",
         "inverted-slider-crank",
@@ -170,7 +172,7 @@ fn analyse_prints_only_values_the_library_vouched_for() {
         "0",
         "0",
         "--at",
-        "360",
+        "1e-13",
     ]);
     assert!(report.contains("undetermined"), "{report}");
     assert!(!report.contains("12.5"), "{report}");
@@ -1416,4 +1418,551 @@ fn robot_refuses_bad_arguments() {
     );
     fails_with(&["robot", "1", "-2", "2", "1", "1"], "must be positive");
     fails_with_code(&["robot", "1", "2", "3"], 2, "5 values required");
+}
+
+/// Runs the program, expecting success, and returns its standard output and error.
+fn outputs_of(args: &[&str]) -> (String, String) {
+    let output = program().args(args).output().unwrap();
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(output.status.success(), "{args:?}: {stderr}");
+    (String::from_utf8(output.stdout).unwrap(), stderr)
+}
+
+/// Runs the program, expecting a failure with exit code 1 and `message`, and nothing on
+/// standard output: a refusal comes before any of the report.
+fn refused_before_any_output(args: &[&str], message: &str) {
+    let output = program().args(args).output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{args:?}: {stderr}");
+    assert!(stderr.contains(message), "{args:?}: {stderr}");
+    assert_eq!(String::from_utf8_lossy(&output.stdout), "", "{args:?}");
+}
+
+/// The lines of `report` without those naming `given`, which echo an angle as it was typed.
+fn without_echoes(report: &str, given: &str) -> Vec<String> {
+    report
+        .lines()
+        .filter(|line| !line.contains(given))
+        .map(str::to_string)
+        .collect()
+}
+
+/// An angle of any size means the direction it does on paper: whole turns come off in
+/// degrees, exactly, before it becomes radians (1e20° is 280°), so a synthesis' error is
+/// its error at the angle given, never zero from an angle the rounding moved.
+#[test]
+fn angles_of_any_size_lose_whole_turns_exactly() {
+    let function = |rocker: &str| {
+        stdout_of(&[
+            "synthesise",
+            "function",
+            "--crank",
+            "0,45,90",
+            "--rocker",
+            rocker,
+        ])
+    };
+    let near = function("280,260,250");
+    let far = function("1e20,260,250");
+    assert!(far.contains("| 0 | 1e20 | 280.0000 |"), "{far}");
+    assert_eq!(
+        without_echoes(&far, "1e20"),
+        without_echoes(&near, "| 0 | 280 |")
+    );
+    // The audit's case: the wanted angle is no longer echoed back as met.
+    let output = program()
+        .args(["synthesise", "function", "--crank", "0,45,90"])
+        .args(["--rocker", "1e20,67,87"])
+        .output()
+        .unwrap();
+    let report = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        !report.contains("100000000000000000000"),
+        "{report}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    // Each angle argument: the input, a dimension that is an angle, a coupler point's angle,
+    // the cranks, the timing.
+    let analyse =
+        |at: &str| stdout_of(&["analyse", "four-bar", "180", "80", "200", "150", "--at", at]);
+    assert_eq!(
+        without_echoes(&analyse("1e20"), "θ2 = 1e20°"),
+        without_echoes(&analyse("280"), "θ2 = 280°")
+    );
+    let inverted =
+        |angle: &str| stdout_of(&["analyse", "inverted-slider-crank", "150", "60", "20", angle]);
+    assert_eq!(inverted("1e20"), inverted("280"));
+    let tolerance = |point: &str| {
+        stdout_of(&[
+            "tolerance",
+            "four-bar",
+            "180",
+            "80",
+            "200",
+            "150",
+            "--coupler-point",
+            point,
+            "--step",
+            "90",
+            "--samples",
+            "100",
+        ])
+    };
+    assert_eq!(
+        without_echoes(&tolerance("100,1e20"), "at 1e20°"),
+        without_echoes(&tolerance("100,280"), "at 280°")
+    );
+    assert_eq!(
+        stdout_of(&["robot", "--cranks", "1e20,-1e20"]),
+        stdout_of(&["robot", "--cranks", "280,-280"])
+    );
+    let (x, y) = circle_targets(1.0);
+    let path = |timing: &str| {
+        stdout_of(&[
+            "synthesise",
+            "path",
+            "--x",
+            &x,
+            "--y",
+            &y,
+            "--timing",
+            timing,
+        ])
+    };
+    assert_eq!(
+        path("0,60,120,180,240,300"),
+        // Each the same angle, less whole turns (360000000000300 = 10¹²·360 + 300).
+        path("360,420,1.2e3,540,600,360000000000300")
+    );
+}
+
+/// Six points of a circle of radius 50 about (100, 100), times `scale`, as `--x` and `--y`.
+fn circle_targets(scale: f64) -> (String, String) {
+    let (x, y): (Vec<String>, Vec<String>) = (0..6)
+        .map(|k| {
+            let t = f64::from(k) * std::f64::consts::FRAC_PI_3;
+            (
+                format!("{:e}", (100.0 + 50.0 * t.cos()) * scale),
+                format!("{:e}", (100.0 + 50.0 * t.sin()) * scale),
+            )
+        })
+        .unzip();
+    (x.join(","), y.join(","))
+}
+
+/// The rms error a synthesis reports.
+fn rms_error(report: &str) -> f64 {
+    let after = report
+        .split("rms error ")
+        .nth(1)
+        .unwrap_or_else(|| panic!("no rms error in:\n{report}"));
+    after.split(',').next().unwrap().parse().unwrap()
+}
+
+/// Path generation fits the same at any scale (its errors are not squared into overflow near
+/// 1e300 nor underflow near 1e-300): a fit that is none at one scale is none at every scale,
+/// never an infinite or a zero error with exit 0; and targets that all coincide are refused.
+#[test]
+fn path_synthesis_is_honest_at_any_scale() {
+    let timing = "0,30,60,90,120";
+    for (x, y) in [
+        ("0,1,2,3,4", "5,8,4,3,1"),
+        ("0,1e300,2e300,3e300,4e300", "5e300,8e300,4e300,3e300,1e300"),
+        (
+            "0,1e-300,2e-300,3e-300,4e-300",
+            "5e-300,8e-300,4e-300,3e-300,1e-300",
+        ),
+    ] {
+        refused_before_any_output(
+            &["synthesise", "path", "--x", x, "--y", y, "--timing", timing],
+            "no linkage meets the targets",
+        );
+    }
+    let (x, y) = circle_targets(1.0);
+    let unit = rms_error(&stdout_of(&[
+        "synthesise",
+        "path",
+        "--x",
+        &x,
+        "--y",
+        &y,
+        "--timing",
+        "0,60,120,180,240,300",
+    ]));
+    for scale in [1e298, 1e-302] {
+        let (x, y) = circle_targets(scale);
+        let report = stdout_of(&[
+            "synthesise",
+            "path",
+            "--x",
+            &x,
+            "--y",
+            &y,
+            "--timing",
+            "0,60,120,180,240,300",
+        ]);
+        assert!(
+            !report.contains("inf") && !report.contains("NaN"),
+            "{report}"
+        );
+        let rms = rms_error(&report);
+        assert!(
+            rms > 0.0 && rms / scale < 1e-12 + 10.0 * unit,
+            "{scale}: {report}"
+        );
+        assert!(
+            report.contains(&format!("{:.4e}", 100.0 * scale)),
+            "{report}"
+        );
+    }
+    let zeros = "0,0,0,0,0,0,0,0,0";
+    refused_before_any_output(
+        &["synthesise", "path", "--x", zeros, "--y", zeros],
+        "--x and --y give 9 targets all at (0, 0) mm",
+    );
+    refused_before_any_output(
+        &[
+            "synthesise",
+            "path",
+            "--x",
+            "5,5,5,5,5",
+            "--y",
+            "1,1,1,1,1",
+            "--timing",
+            "0,10,20,30,40",
+        ],
+        "all at (5, 1) mm",
+    );
+}
+
+/// A tolerance analysis' step is a positive number of degrees up to a turn, checked before
+/// anything is printed, as the sweep checks its own.
+#[test]
+fn tolerance_refuses_a_step_beyond_a_turn_before_printing() {
+    for step in [
+        "400", "1e308", "360.0001", "0", "-1", "0.0035", "inf", "nan",
+    ] {
+        refused_before_any_output(
+            &[
+                "tolerance",
+                "four-bar",
+                "180",
+                "80",
+                "200",
+                "150",
+                "--step",
+                step,
+            ],
+            "--step must be a positive number of degrees from 0.0036 to 360",
+        );
+    }
+    let report = stdout_of(&[
+        "tolerance",
+        "four-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "--step",
+        "360",
+        "--samples",
+        "10",
+    ]);
+    let rows: Vec<&str> = report
+        .lines()
+        .filter(|l| l.starts_with("| 0.0 |"))
+        .collect();
+    assert_eq!(rows.len(), 1, "{report}");
+    assert!(report.contains("at θ2 = 0°"), "{report}");
+}
+
+/// Tolerances must be small against what they apply to (a tenth of it), and a figure that
+/// overflows is an error naming it, never `inf` in the report.
+#[test]
+fn tolerance_refuses_large_tolerances_and_overflowed_figures() {
+    let example = ["tolerance", "four-bar", "180", "80", "200", "150"];
+    let run = |extra: &[&str], message: &str| {
+        let args: Vec<&str> = example.iter().chain(extra).copied().collect();
+        refused_before_any_output(&args, message);
+    };
+    run(
+        &["--tolerance", "1e308"],
+        "--tolerance ±1e308 mm is not small against the ground (180 mm): each ± tolerance \
+         must be under a tenth of the length it applies to",
+    );
+    run(
+        &["--tolerance", "8"],
+        "--tolerance ±8 mm is not small against the crank (80 mm)",
+    );
+    run(
+        &["--tolerances", "0.1,0.1,25,0.1"],
+        "--tolerances ±25 mm is not small against the coupler (200 mm)",
+    );
+    // The coupler point's distance may be zero: its tolerance is held to the shortest link.
+    run(
+        &["--tolerances", "0.1,0.1,0.1,0.1", "--tolerance", "9"],
+        "--tolerance ±9 mm is not small against the shortest link (80 mm)",
+    );
+    run(
+        &["--angle-tolerance", "6"],
+        "--angle-tolerance ±6° is not small: it must be under a tenth of a radian (5.73°)",
+    );
+    run(
+        &[
+            "--coupler-point",
+            "1e308,0",
+            "--step",
+            "90",
+            "--samples",
+            "10",
+        ],
+        "the coupler point's Monte Carlo rms at θ2 = 0° overflowed (it is not finite)",
+    );
+    // Just under the rule: a report, every figure finite.
+    let args: Vec<&str> = example
+        .iter()
+        .chain(&["--tolerance", "7.9", "--step", "90", "--samples", "100"])
+        .copied()
+        .collect();
+    let report = stdout_of(&args);
+    assert!(
+        !report.contains("inf") && !report.contains("NaN"),
+        "{report}"
+    );
+}
+
+/// Long runs: the limits are stated in `--help` and held, and a run past a second keeps
+/// standard output for its report and shows no progress where standard error is no terminal.
+#[test]
+fn long_runs_state_their_limits_and_keep_their_output_clean() {
+    let help = stdout_of(&["synthesise", "path", "--help"]);
+    assert!(help.contains("at most 1000"), "{help}");
+    let help = stdout_of(&["tolerance", "--help"]);
+    assert!(
+        help.contains("from 0.0036") && help.contains("at most 10⁷"),
+        "{help}"
+    );
+    refused_before_any_output(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+            "--restarts",
+            "1001",
+        ],
+        "--restarts takes at most 1000",
+    );
+    // Some seconds of work: 3600 crank angles.
+    let (report, stderr) = outputs_of(&[
+        "tolerance",
+        "four-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "--step",
+        "0.1",
+    ]);
+    assert_eq!(stderr, "");
+    assert_eq!(
+        report
+            .lines()
+            .filter(|l| l.starts_with("| ") && !l.starts_with("| θ2"))
+            .count(),
+        3600
+    );
+    let (x, y) = circle_targets(1.0);
+    let (_, stderr) = outputs_of(&[
+        "synthesise",
+        "path",
+        "--x",
+        &x,
+        "--y",
+        &y,
+        "--timing",
+        "0,60,120,180,240,300",
+        "--restarts",
+        "1000",
+        "--branch",
+        "open",
+    ]);
+    assert_eq!(stderr, "");
+}
+
+/// A negative number written with an exponent or a leading dot is a number wherever one is
+/// taken, positional dimensions included: never a flag clap does not know.
+#[test]
+fn negative_numbers_in_any_notation_are_values() {
+    let report = stdout_of(&[
+        "analyse",
+        "slider-crank",
+        "50",
+        "150",
+        "-2e-3",
+        "--at",
+        "-.5",
+    ]);
+    assert!(report.contains("offset -0.002 mm"), "{report}");
+    assert!(report.contains("θ2 = -0.5°"), "{report}");
+    let report = stdout_of(&[
+        "analyse",
+        "watt-six-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "100",
+        "45.8366",
+        "220",
+        "160",
+        "300",
+        "150",
+        "--at",
+        "-6e1",
+    ]);
+    assert!(report.contains("θ2 = -60°"), "{report}");
+    let scratch = Scratch::new("negative");
+    let (table, _) = outputs_of(&[
+        "sweep",
+        "slider-crank",
+        "50",
+        "150",
+        "-.5",
+        "--coupler-point",
+        "10,-1.5e1",
+        "--csv",
+        "-",
+        "--out-dir",
+        scratch.path(),
+    ]);
+    assert!(table.starts_with("input_deg,segment,"), "{table:.200}");
+    fails_with(
+        &[
+            "tolerance",
+            "four-bar",
+            "180",
+            "80",
+            "200",
+            "150",
+            "--tolerance",
+            "-2e-3",
+        ],
+        "a tolerance must be finite and not negative",
+    );
+    fails_with(
+        &["tolerance", "four-bar", "180", "-.5", "200", "150"],
+        "crank = -0.5 must be positive",
+    );
+    fails_with(
+        &[
+            "synthesise",
+            "function",
+            "--ground",
+            "-.5",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+        ],
+        "the ground length must be positive",
+    );
+    fails_with(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+            "--max-ratio",
+            "-1e1",
+        ],
+        "--max-ratio must be a finite number, at least 1",
+    );
+    fails_with(
+        &["robot", "100", "200", "200", "100", "-.5"],
+        "l5 = -0.5 must be",
+    );
+    let report = stdout_of(&["robot", "--point", "-.5e2,2.5e2"]);
+    assert!(report.contains("point (-50.0000, 250.0000) mm"), "{report}");
+    fails_with_code(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+            "--restarts",
+            "-1e1",
+        ],
+        2,
+        "invalid value '-10' for '--restarts <RESTARTS>'",
+    );
+}
+
+/// Messages say what is wrong with the argument, with figures a person reads.
+#[test]
+fn messages_name_the_argument_with_short_figures() {
+    fails_with(
+        &[
+            "synthesise",
+            "path",
+            "--x",
+            "0,1,2,3,4",
+            "--y",
+            "5,8,4,3,1",
+            "--timing",
+            "0,30,60,90",
+        ],
+        "--timing gives 4 crank angles for 5 targets: one crank angle per target",
+    );
+    for step in ["1e-308", "5e-324"] {
+        fails_with(
+            &[
+                "sweep", "four-bar", "180", "80", "200", "150", "--step", step,
+            ],
+            &format!(
+                "--step {step}° is too small: it makes more samples than can be counted, more \
+                 than --max-samples 10000000: here the step must be at least 0.0000361°"
+            ),
+        );
+    }
+    fails_with_code(
+        &["robot", "--point", "50,250", "--cranks", "120,60"],
+        2,
+        "the argument '--point <POINT>' cannot be used with '--cranks <CRANKS>'",
+    );
+}
+
+/// A tolerance analysis that can analyse none of its crank angles says why at each, with the
+/// library's figures to four significant digits, and prints no report.
+#[test]
+fn tolerance_says_why_no_crank_angle_could_be_analysed() {
+    // A four-bar whose crank turns between toggles at ±90°, where the loop's Jacobian is
+    // singular to rounding, and cannot reach 180°.
+    let output = program()
+        .args(["tolerance", "four-bar", "3", "4", "2", "3", "--step", "90"])
+        .args(["--tolerance", "0.01"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("determinant -8.882e-16, relative determinant 1.48e-16"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("cannot be assembled at input 180°"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("0.00000000000000"), "{stderr}");
+    assert!(
+        stderr.contains("the linkage assembles at none of the crank angles analysed"),
+        "{stderr}"
+    );
+    assert_eq!(String::from_utf8_lossy(&output.stdout), "");
 }

@@ -589,8 +589,23 @@ fn crank_rocker(ground: f64, random: &mut SplitMix64) -> [f64; 3] {
     lengths
 }
 
+/// The root mean square of `errors`, each divided by the largest before it is squared: the
+/// squares of errors near 1e300 would overflow to infinity and those of errors near 1e-300
+/// underflow to a false zero. Zero for no errors, infinite for an infinite one, NaN for a NaN.
 fn rms(errors: &[f64]) -> f64 {
-    (errors.iter().map(|e| e * e).sum::<f64>() / errors.len().max(1) as f64).sqrt()
+    let largest = errors.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+    if largest == 0.0 || largest.is_infinite() {
+        return largest;
+    }
+    let mean_square = errors
+        .iter()
+        .map(|e| {
+            let scaled = e / largest;
+            scaled * scaled
+        })
+        .sum::<f64>()
+        / errors.len() as f64;
+    largest * mean_square.sqrt()
 }
 
 /// Whether the longest of `lengths` is within `max_ratio` of the shortest (not for a NaN):

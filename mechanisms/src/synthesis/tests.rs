@@ -5,13 +5,29 @@
 
 use super::{
     Options, SynthesisError, freudenstein, freudenstein_least_squares, function_generation,
-    path_generation,
+    path_generation, rms,
 };
 use crate::FourBar;
 use mechgen::grashof::Inversion;
 use mechgen::{Branch, Vec2};
 use std::string::ToString;
 use std::vec::Vec;
+
+/// The rms error is the same at every scale a float holds: its squares neither overflow near
+/// 1e300 (to an infinite error) nor underflow near 1e-300 (to a false zero).
+#[test]
+fn rms_error_neither_overflows_nor_underflows() {
+    assert_eq!(rms(&[3.0, -4.0]), 12.5f64.sqrt());
+    for scale in [1e300, 1e-300, 1e-310] {
+        let scaled = rms(&[3.0 * scale, -4.0 * scale]);
+        let relative = (scaled / (12.5f64.sqrt() * scale) - 1.0).abs();
+        assert!(relative < 1e-12, "{scale}: {scaled}");
+    }
+    assert_eq!(rms(&[]), 0.0);
+    assert_eq!(rms(&[0.0, -0.0]), 0.0);
+    assert_eq!(rms(&[1.0, f64::NEG_INFINITY]), f64::INFINITY);
+    assert!(rms(&[1.0, f64::NAN]).is_nan());
+}
 
 /// Example 1 with its coupler point 100 from A at 30°.
 fn example() -> FourBar<f64> {

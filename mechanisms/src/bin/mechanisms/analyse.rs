@@ -11,6 +11,7 @@ use mechgen::grashof::{Class, Inversion, Special};
 use mechgen::{Accuracy, Branch, Error, MechanicalAdvantage};
 
 use crate::Mechanism;
+use crate::angle;
 use crate::output::{self, filled, fixed, say, tidy};
 use crate::six_bars::{self, StephensonDimensions};
 use crate::sweep::finite;
@@ -137,7 +138,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         }
         Mechanism::InvertedSliderCrank => inverted(
             args,
-            InvertedSliderCrank::new(d[0], d[1], d[2], d[3].to_radians()).map_err(refused)?,
+            InvertedSliderCrank::new(d[0], d[1], d[2], angle::radians(d[3])).map_err(refused)?,
         ),
         Mechanism::Jansen => jansen(args),
         Mechanism::WattSixBar => watt(args, six_bars::watt(d)?),
@@ -306,7 +307,7 @@ fn nothing<U>(solved: &[&Solved<U>], cannot: impl Fn() -> String) -> Result<(), 
     {
         return Err(cannot());
     }
-    Err(errors.first().map_or_else(&cannot, |e| e.to_string()))
+    Err(errors.first().map_or_else(&cannot, |e| output::error(e)))
 }
 
 /// Where a four-bar's crank can go, in words.
@@ -360,7 +361,7 @@ fn cannot(what: &str, input_deg: f64, reach: String) -> String {
 
 fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
     let [l1, l2, l3, l4] = linkage.lengths();
-    let theta2 = args.at.to_radians();
+    let theta2 = angle::radians(args.at);
     let solve = |branch| {
         Solved::new(
             linkage.assemble(theta2, branch),
@@ -455,8 +456,8 @@ fn trace(args: &Args, linkage: &FourBar<f64>, theta2: f64) {
         "f2 (mm)"
     );
     let mut q = FourBarUnknowns {
-        theta3: guess3.to_radians(),
-        theta4: guess4.to_radians(),
+        theta3: angle::radians(guess3),
+        theta4: angle::radians(guess4),
     };
     for step in 0..=20 {
         let f = linkage.residual(theta2, &q);
@@ -487,7 +488,7 @@ fn trace(args: &Args, linkage: &FourBar<f64>, theta2: f64) {
 
 fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
     let [l2, l3, c] = linkage.dimensions();
-    let theta2 = args.at.to_radians();
+    let theta2 = angle::radians(args.at);
     let solve = |branch| {
         Solved::new(
             linkage.assemble(theta2, branch),
@@ -550,7 +551,7 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
 
 fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String> {
     let [l1, l2, c, gamma] = linkage.dimensions();
-    let theta2 = args.at.to_radians();
+    let theta2 = angle::radians(args.at);
     let solve = |branch| {
         Solved::new(
             linkage.assemble(theta2, branch),
@@ -598,14 +599,16 @@ fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String
 
 fn jansen(args: &Args) -> Result<(), String> {
     let leg = JansenLeg::<f64>::holy();
-    let theta = args.at.to_radians();
+    let theta = angle::radians(args.at);
     let m = leg
         .motion(theta, JansenLeg::<f64>::DRAWN, args.rate, args.accel)
-        .map_err(|e| e.to_string())?;
-    let p = leg.points(theta, &m.position).map_err(|e| e.to_string())?;
+        .map_err(|e| output::error(&e))?;
+    let p = leg
+        .points(theta, &m.position)
+        .map_err(|e| output::error(&e))?;
     let v = leg
         .point_velocities(theta, &m.position, args.rate, &m.velocity)
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| output::error(&e))?;
     let a = leg
         .point_accelerations(
             theta,
@@ -615,7 +618,7 @@ fn jansen(args: &Args) -> Result<(), String> {
             args.accel,
             &m.acceleration,
         )
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| output::error(&e))?;
     say!(
         "Jansen's leg (a 38, b 41.5, c 39.3, d 40.1, e 55.8, f 39.4, g 36.7, h 65.7, i 49, j 50, k 61.9, l 7.8, m 15 mm), as drawn"
     );
@@ -672,7 +675,7 @@ fn six_bar_rows<U: 'static>(array: fn(&U) -> [f64; 4]) -> Vec<OwnedRow<U>> {
 /// A Watt six-bar: each of the four branch pairs (one branch per loop), in closed form.
 fn watt(args: &Args, linkage: mechanisms::WattSixBar<f64>) -> Result<(), String> {
     let d = &args.dimensions;
-    let theta2 = args.at.to_radians();
+    let theta2 = angle::radians(args.at);
     let pairs = [
         [Branch::Open, Branch::Open],
         [Branch::Open, Branch::Crossed],
@@ -737,7 +740,7 @@ fn word(branch: Branch) -> &'static str {
 /// generated Newton, with its rates.
 fn stephenson(args: &Args, linkage: StephensonSixBar<f64>) -> Result<(), String> {
     let d = &args.dimensions;
-    let theta2 = args.at.to_radians();
+    let theta2 = angle::radians(args.at);
     let found = six_bars::stephenson_assemblies(&linkage, &StephensonDimensions::new(d), theta2);
     say!(
         "{}",
@@ -824,7 +827,7 @@ fn stephenson_trace(linkage: &StephensonSixBar<f64>, d: &[f64], theta2: f64, gue
     );
     // The four-bar trace's rule: converged when the residual is 1e-10 of the linkage's size.
     let size: f64 = d[..5].iter().chain(&d[6..8]).sum::<f64>() + d[8].hypot(d[9]);
-    let mut q = guess.map(f64::to_radians);
+    let mut q = guess.map(angle::radians);
     for step in 0..=30 {
         let position = StephensonSixBarUnknowns::from_array(q);
         let f = linkage.residual(theta2, &position);

@@ -5,7 +5,9 @@
 //! `cargo run --release -p mechanisms -- --help` lists the commands.
 
 mod analyse;
+mod angle;
 mod output;
+mod progress;
 mod robot;
 mod seeds;
 mod six_bars;
@@ -14,6 +16,7 @@ mod sweep;
 mod synthesise;
 mod tolerance;
 
+use std::ffi::OsString;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -131,8 +134,31 @@ impl Mechanism {
     }
 }
 
+/// The program's arguments as clap is to read them: each negative number written with an
+/// exponent or a leading dot (`-2e-3`, `-.5`) rewritten in plain decimals (`-0.002`, `-0.5`,
+/// the same `f64`), which clap takes for a number.
+///
+/// clap takes `-2e-3` for a flag wherever a value could instead be a flag: its test for a
+/// negative number (`allow_negative_numbers`) accepts digits, one dot after a digit and an
+/// exponent without a sign; and the other way, `allow_hyphen_values`, on a list of dimensions
+/// would swallow the flags after it (`--at`) as dimensions. An option that allows hyphen
+/// values takes either form as it is.
+fn arguments(given: impl Iterator<Item = OsString>) -> Vec<OsString> {
+    given
+        .map(|argument| {
+            let plain = argument
+                .to_str()
+                .filter(|text| text.starts_with('-'))
+                .and_then(|text| text.parse::<f64>().ok())
+                .filter(|value| value.is_finite());
+            // `Display` writes an f64 without an exponent, and reads back as the same f64.
+            plain.map_or(argument, |value| value.to_string().into())
+        })
+        .collect()
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = Cli::parse_from(arguments(std::env::args_os()));
     let result = match cli.command {
         None => analyse::run(&analyse::Args::example_1()),
         Some(Command::Analyse(args)) => analyse::run(&args),
@@ -148,5 +174,31 @@ fn main() -> ExitCode {
             eprintln!("error: {message}");
             ExitCode::FAILURE
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn negative_numbers_in_any_notation_reach_clap_in_plain_decimals() {
+        let read = |given: &[&str]| -> Vec<String> {
+            arguments(given.iter().map(OsString::from))
+                .into_iter()
+                .map(|a| a.into_string().unwrap())
+                .collect()
+        };
+        assert_eq!(
+            read(&["mechanisms", "-2e-3", "-.5", "-1E2", "-7", "2e-3"]),
+            ["mechanisms", "-0.002", "-0.5", "-100", "-7", "2e-3"]
+        );
+        // Flags, a dash for standard output, and what is not a finite number stay as they are.
+        assert_eq!(
+            read(&["--at", "-h", "-", "-inf", "-nan", "--csv", "-e5"]),
+            ["--at", "-h", "-", "-inf", "-nan", "--csv", "-e5"]
+        );
+        // The same f64, however small.
+        assert_eq!(read(&["-1e-300"])[0].parse::<f64>().unwrap(), -1e-300);
     }
 }

@@ -1,7 +1,10 @@
 //! Standard output for a program people pipe into `head`: a closed pipe ends the program
-//! quietly, and numbers print tidily.
+//! quietly, and numbers print tidily, in reports and in the library's errors alike.
 
+use std::fmt;
 use std::io::{self, Write};
+
+use mechgen::Error;
 
 /// `println!` for the program's reports: a reader that has gone away (a closed pipe) ends the
 /// program quietly with success, as `yes | head` does; any other failure to write is an error.
@@ -61,6 +64,81 @@ pub fn tidy(value: f64) -> String {
     }
 }
 
+/// `value` to `digits` significant digits, written as [`tidy`] writes it (`6.055e-6`, not
+/// `0.000006055454452393339`).
+pub fn significant(value: f64, digits: usize) -> String {
+    if !value.is_finite() {
+        return value.to_string();
+    }
+    let precision = digits.saturating_sub(1);
+    tidy(format!("{value:.precision$e}").parse().unwrap_or(value))
+}
+
+/// A result to 4 places, or to 4 decimals of an exponent form where 4 places would show
+/// nothing or too many digits (below 1e-3, from 1e9).
+pub fn figure(value: f64) -> String {
+    if value == 0.0 || (1e-3..1e9).contains(&value.abs()) {
+        fixed(value, 4)
+    } else {
+        format!("{value:.4e}")
+    }
+}
+
+/// A figure inside an error's text: to four significant digits, and an input (an angle: every
+/// input the program takes is one) in degrees, as the program takes it.
+enum Shown {
+    Short(f64),
+    Degrees(f64),
+}
+
+impl fmt::Display for Shown {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Shown::Short(value) => f.write_str(&significant(value, 4)),
+            Shown::Degrees(radians) => write!(f, "{}°", significant(radians.to_degrees(), 4)),
+        }
+    }
+}
+
+/// The library's error in its own words, with its figures to four significant digits (the
+/// runtime writes them in full, which reads as noise in a one-line message) and its input
+/// in degrees.
+pub fn error(error: &Error<f64>) -> String {
+    let short = match *error {
+        Error::NonFinite { quantity } => Error::NonFinite { quantity },
+        Error::CannotAssemble { input } => Error::CannotAssemble {
+            input: Shown::Degrees(input),
+        },
+        Error::Singular {
+            determinant,
+            relative_determinant,
+        } => Error::Singular {
+            determinant: Shown::Short(determinant),
+            relative_determinant: Shown::Short(relative_determinant),
+        },
+        Error::Inaccurate {
+            order,
+            estimate,
+            required,
+        } => Error::Inaccurate {
+            order,
+            estimate: Shown::Short(estimate),
+            required: Shown::Short(required),
+        },
+        Error::OtherBranch => Error::OtherBranch,
+        Error::NoConvergence {
+            iterations,
+            residual_norm,
+        } => Error::NoConvergence {
+            iterations,
+            residual_norm: Shown::Short(residual_norm),
+        },
+        // A kind added to the runtime since: its own words, figures and all.
+        _ => return error.to_string(),
+    };
+    short.to_string()
+}
+
 /// `value` to `decimals` places, never as `-0.0000`.
 pub fn fixed(value: f64, decimals: usize) -> String {
     let text = format!("{value:.decimals$}");
@@ -95,6 +173,32 @@ mod tests {
         assert_eq!(tidy(100.81), "100.81");
         assert_eq!(degrees(-1e-15, 4), "0.0000");
         assert_eq!(fixed(-1e-9, 4), "0.0000");
+        assert_eq!(significant(0.000006055454452393339, 4), "6.055e-6");
+        assert_eq!(significant(123.456789, 4), "123.5");
+        assert_eq!(figure(0.16556), "0.1656");
+        assert_eq!(figure(2.4529e305), "2.4529e305");
+        assert_eq!(figure(1.5e-7), "1.5000e-7");
+    }
+
+    #[test]
+    fn errors_keep_their_words_with_short_figures() {
+        let singular = Error::Singular {
+            determinant: 0.000006055454452393339,
+            relative_determinant: 1.0 / 3.0,
+        };
+        assert_eq!(
+            error(&singular),
+            "the loop Jacobian is singular (determinant 6.055e-6, relative determinant \
+             0.3333): the mechanism is at a toggle or change point"
+        );
+        assert_eq!(
+            error(&Error::CannotAssemble {
+                input: std::f64::consts::PI
+            }),
+            "the mechanism cannot be assembled at input 180°: it is outside the range of motion"
+        );
+        let unchanged = Error::<f64>::NonFinite { quantity: "input" };
+        assert_eq!(error(&unchanged), unchanged.to_string());
     }
 
     #[test]

@@ -8,7 +8,9 @@ use clap::Parser;
 use mechanisms::{FiveBar, FiveBarUnknowns};
 use mechgen::{Branch, Error, Vec2};
 
-use crate::output::{fixed, say};
+use crate::analyse::refused;
+use crate::angle;
+use crate::output::{self, fixed, say};
 
 #[derive(Parser)]
 pub struct Args {
@@ -43,8 +45,15 @@ pub struct Args {
         default_value = "0,0"
     )]
     pub accels: Vec<f64>,
-    /// Instead of the cranks' angles, a point (x,y in mm) to reach: the inverse kinematics.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, num_args = 1)]
+    /// Instead of the cranks' angles, a point (x,y in mm) to reach: the inverse kinematics
+    /// (so not with --cranks, --rates or --accels).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        num_args = 1,
+        conflicts_with_all = ["cranks", "rates", "accels"]
+    )]
     pub point: Option<Vec<f64>>,
 }
 
@@ -63,7 +72,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         [l1, l2, l3, l4, l5] => [l1, l2, l3, l4, l5],
         _ => return Err("robot takes five links".to_string()),
     };
-    let robot = FiveBar::new(l1, l2, l3, l4, l5).map_err(|error| error.to_string())?;
+    let robot = FiveBar::new(l1, l2, l3, l4, l5).map_err(refused)?;
     say!(
         "five-bar robot: cranks {} and {} mm, distal links {} and {} mm, motors {} mm apart",
         fixed(l1, 3),
@@ -76,7 +85,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         Some(point) => inverse(&robot, pair("point", point)?),
         None => forward(
             &robot,
-            pair("cranks", &args.cranks)?.map(f64::to_radians),
+            pair("cranks", &args.cranks)?.map(angle::radians),
             pair("rates", &args.rates)?,
             pair("accels", &args.accels)?,
         ),
@@ -127,15 +136,15 @@ fn posture(
     let (q, v, a) = (&motion.position, &motion.velocity, &motion.acceleration);
     let p = robot
         .points(t1, t4, q)
-        .map_err(|e| e.to_string())?
+        .map_err(|e| output::error(&e))?
         .end_effector;
     let p_dot = robot
         .point_velocities(t1, t4, q, w1, w4, v)
-        .map_err(|e| e.to_string())?
+        .map_err(|e| output::error(&e))?
         .end_effector;
     let p_ddot = robot
         .point_accelerations(t1, t4, q, w1, w4, v, a1, a4, a)
-        .map_err(|e| e.to_string())?
+        .map_err(|e| output::error(&e))?
         .end_effector;
     say!(
         "  distal links at θ2 = {}°, θ3 = {}°",
@@ -216,6 +225,6 @@ fn explained(error: Error<f64>) -> String {
             "a parallel singularity: the distal links line up, so the end effector's rates are unbounded"
                 .to_string()
         }
-        other => other.to_string(),
+        other => output::error(&other),
     }
 }

@@ -8,13 +8,14 @@ use mechanisms::{StephensonSixBar, StephensonSixBarUnknowns, WattSixBar};
 use mechgen::{Branch, NewtonOptions};
 
 use crate::analyse::refused;
+use crate::angle;
 
 /// A Watt six-bar from `ground crank coupler rocker extension angle(°) coupler rocker x y`.
 pub fn watt(d: &[f64]) -> Result<WattSixBar<f64>, String> {
     WattSixBar::new(
         [d[0], d[1], d[2], d[3]],
         d[4],
-        d[5].to_radians(),
+        angle::radians(d[5]),
         d[6],
         d[7],
         (d[8], d[9]),
@@ -29,7 +30,7 @@ pub fn stephenson(d: &[f64]) -> Result<StephensonSixBar<f64>, String> {
         d[1],
         d[2],
         [d[3], d[4]],
-        d[5].to_radians(),
+        angle::radians(d[5]),
         d[6],
         d[7],
         (d[8], d[9]),
@@ -131,7 +132,7 @@ impl StephensonDimensions {
             link: d[2],
             bc: d[3],
             cd: d[4],
-            angle: d[5].to_radians(),
+            angle: angle::radians(d[5]),
             rocker: d[6],
             output_rocker: d[7],
             pivot: (d[8], d[9]),

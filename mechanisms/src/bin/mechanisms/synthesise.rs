@@ -7,10 +7,13 @@ use std::fs;
 use std::path::PathBuf;
 
 use clap::{Args as ClapArgs, Subcommand};
+use mechanisms::FourBar;
 use mechanisms::synthesis::{self, Options, Synthesis};
 use mechgen::{Branch, Vec2};
 
-use crate::output::{fixed, say, tidy};
+use crate::angle;
+use crate::output::{self, fixed, say, tidy};
+use crate::progress;
 use crate::svg::{self, Chart};
 use crate::sweep::BranchName;
 
@@ -44,7 +47,7 @@ pub struct FunctionArgs {
     )]
     pub rocker: Vec<f64>,
     /// The ground link's length, mm: it sets the scale.
-    #[arg(long, default_value_t = 100.0)]
+    #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
     pub ground: f64,
     #[command(flatten)]
     pub common: Common,
@@ -81,28 +84,31 @@ pub struct Common {
     #[arg(long, value_enum)]
     pub branch: Option<BranchName>,
     /// The largest ratio of the longest link to the shortest.
-    #[arg(long, default_value_t = 50.0)]
+    #[arg(long, default_value_t = 50.0, allow_hyphen_values = true)]
     pub max_ratio: f64,
     /// Require a crank that turns fully.
     #[arg(long)]
     pub crank_turns: bool,
     /// Require the transmission angle within these bounds, degrees, as `40,140` (at every
     /// target; all the turn with --crank-turns).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub transmission: Option<Vec<f64>>,
-    /// Random starts, run in parallel on every core.
-    #[arg(long, default_value_t = 64)]
+    /// Random starts on each branch tried, run in parallel on every core: at most 1000 (path
+    /// generation without --timing takes tens of seconds for that many). A run past a second
+    /// shows a spinner on standard error, on a terminal.
+    #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
     pub restarts: usize,
     /// The random starts' seed: the same seed, the same linkage.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     pub seed: u64,
     /// Where to write the chart; `-` for standard output.
     #[arg(long)]
     pub svg: Option<PathBuf>,
 }
 
-/// The most starts a run takes, so that a huge argument is refused at once.
-const MOST_RESTARTS: usize = 100_000;
+/// The most starts a run takes on each branch, so that a run ends within a minute on two
+/// cores even for path generation without timing (its slowest: some 15 ms a start).
+const MOST_RESTARTS: usize = 1000;
 
 impl Common {
     /// The options for each branch tried: the one asked for, or both.
@@ -166,10 +172,13 @@ fn function(args: &FunctionArgs) -> Result<(), String> {
             args.rocker.len()
         ));
     }
-    let phi: Vec<f64> = args.crank.iter().map(|d| d.to_radians()).collect();
-    let psi: Vec<f64> = args.rocker.iter().map(|d| d.to_radians()).collect();
-    let (found, options) = better(args.common.each_options()?, |options| {
-        synthesis::function_generation(args.ground, &phi, &psi, options)
+    let phi: Vec<f64> = args.crank.iter().map(|&d| angle::radians(d)).collect();
+    let psi: Vec<f64> = args.rocker.iter().map(|&d| angle::radians(d)).collect();
+    let each = args.common.each_options()?;
+    let (found, options) = searching(&each, || {
+        better(each.clone(), |options| {
+            synthesis::function_generation(args.ground, &phi, &psi, options)
+        })
     })?;
     report(&found, &options);
     if phi.len() == 3 {
@@ -192,16 +201,17 @@ fn function(args: &FunctionArgs) -> Result<(), String> {
     say!("| θ2 (°) | wanted θ4 (°) | θ4 (°) | error (°) |");
     say!("|---:|---:|---:|---:|");
     let linkage = found.linkage;
-    for (&phi, &psi) in phi.iter().zip(&psi) {
+    for (k, (&phi, &psi)) in phi.iter().zip(&psi).enumerate() {
         let theta4 = linkage
             .assemble(phi, options.branch)
             .map(|q| q.theta4)
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| output::error(&e))?;
         let error = wrapped(theta4 - psi);
+        // The angles as given; θ4 in the wanted angle's turn, less whole turns.
         say!(
             "| {} | {} | {} | {} |",
-            tidy(phi.to_degrees()),
-            tidy(psi.to_degrees()),
+            tidy(args.crank[k]),
+            tidy(args.rocker[k]),
             fixed((psi + error).to_degrees(), 4),
             format!("{:.3e}", error.to_degrees())
         );
@@ -244,26 +254,47 @@ fn path(args: &PathArgs) -> Result<(), String> {
             args.y.len()
         ));
     }
+    if let Some(timing) = &args.timing {
+        if timing.len() != args.x.len() {
+            return Err(format!(
+                "--timing gives {} crank angles for {} targets: one crank angle per target",
+                timing.len(),
+                args.x.len()
+            ));
+        }
+    }
     let targets: Vec<Vec2<f64>> = args
         .x
         .iter()
         .zip(&args.y)
         .map(|(&x, &y)| Vec2 { x, y })
         .collect();
+    if targets
+        .iter()
+        .any(|p| !(p.x.is_finite() && p.y.is_finite()))
+    {
+        return Err("--x and --y must be finite numbers of mm".into());
+    }
+    let frame = Frame::of(&targets)?;
+    let unit: Vec<Vec2<f64>> = targets.iter().map(|&p| frame.inside(p)).collect();
     let timing: Option<Vec<f64>> = args
         .timing
         .as_ref()
-        .map(|t| t.iter().map(|d| d.to_radians()).collect());
-    let (found, options) = better(args.common.each_options()?, |options| {
-        synthesis::path_generation(&targets, timing.as_deref(), options)
+        .map(|t| t.iter().map(|&d| angle::radians(d)).collect());
+    let each = args.common.each_options()?;
+    let (found, options) = searching(&each, || {
+        better(each.clone(), |options| {
+            synthesis::path_generation(&unit, timing.as_deref(), options)
+                .and_then(|found| frame.put_back(found))
+        })
     })?;
     report(&found, &options);
     let (pivot, angle) = found.placement;
     say!(
         "placed with its crank pivot at ({}, {}) mm and its ground line at {}°",
-        fixed(pivot.x, 4),
-        fixed(pivot.y, 4),
-        fixed(angle.to_degrees().rem_euclid(360.0), 4)
+        output::figure(pivot.x),
+        output::figure(pivot.y),
+        output::degrees(angle, 4)
     );
     let linkage = found.linkage;
     let placed = |theta2: f64| -> Option<Vec2<f64>> {
@@ -295,8 +326,112 @@ fn path(args: &PathArgs) -> Result<(), String> {
     Ok(())
 }
 
+/// The targets' frame for path generation: their centroid and a power of two near their
+/// spread. Levenberg–Marquardt squares the errors, which overflow for targets 1e300 mm apart
+/// and underflow for targets 1e-300 mm apart, so the fit is made on the targets moved to
+/// their centroid and scaled to a spread near 1 (exactly, by the power of two), and the
+/// linkage found is scaled back.
+struct Frame {
+    centre: Vec2<f64>,
+    scale: f64,
+}
+
+impl Frame {
+    /// The frame of `targets` (finite), or why they have none: they all coincide (a path
+    /// through one point is any linkage's), or lie too far apart for a float.
+    fn of(targets: &[Vec2<f64>]) -> Result<Self, String> {
+        let n = targets.len() as f64;
+        let centre = targets
+            .iter()
+            .fold(Vec2::default(), |c: Vec2<f64>, p| Vec2 {
+                x: c.x + p.x / n,
+                y: c.y + p.y / n,
+            });
+        let spread = targets
+            .iter()
+            .map(|p| (p.x - centre.x).hypot(p.y - centre.y))
+            .fold(0.0f64, f64::max);
+        if spread == 0.0 {
+            return Err(format!(
+                "--x and --y give {} targets all at ({}, {}) mm: a coupler curve through one \
+                 point is any linkage's; give distinct targets",
+                targets.len(),
+                tidy(centre.x),
+                tidy(centre.y)
+            ));
+        }
+        if !spread.is_finite() {
+            return Err(
+                "--x and --y give targets too far apart to measure in a float (their \
+                        distances overflow)"
+                    .into(),
+            );
+        }
+        // Within the exponents a normal float has, so that the power of two is exact.
+        let exponent = spread.log2().round().clamp(-1000.0, 1000.0) as i32;
+        Ok(Frame {
+            centre,
+            scale: 2f64.powi(exponent),
+        })
+    }
+
+    /// A target in the frame.
+    fn inside(&self, p: Vec2<f64>) -> Vec2<f64> {
+        Vec2 {
+            x: (p.x - self.centre.x) / self.scale,
+            y: (p.y - self.centre.y) / self.scale,
+        }
+    }
+
+    /// A synthesis made in the frame, put back among the targets: lengths and errors scaled
+    /// (exactly), the crank pivot moved too; an error where the linkage scaled back is no
+    /// linkage (a length overflowed).
+    fn put_back(&self, found: Synthesis) -> Result<Synthesis, synthesis::SynthesisError> {
+        let s = self.scale;
+        let [l1, l2, l3, l4] = found.linkage.lengths().map(|l| l * s);
+        let (distance, delta) = found.linkage.coupler_point();
+        let linkage = FourBar::new(l1, l2, l3, l4)
+            .and_then(|l| l.with_coupler_point(distance * s, delta))
+            .map_err(|_| {
+                synthesis::SynthesisError::BadTargets(
+                    "the linkage found is too large to represent at the targets' scale",
+                )
+            })?;
+        let (pivot, angle) = found.placement;
+        Ok(Synthesis {
+            linkage,
+            placement: (
+                Vec2 {
+                    x: self.centre.x + pivot.x * s,
+                    y: self.centre.y + pivot.y * s,
+                },
+                angle,
+            ),
+            rms_error: found.rms_error * s,
+            largest_error: found.largest_error * s,
+            ..found
+        })
+    }
+}
+
+/// `search`'s result, with a spinner on a terminal past a second: the restarts run inside
+/// the library, which cannot report them one by one.
+fn searching<T>(each: &[Options], search: impl FnOnce() -> T) -> T {
+    let starts = each.first().map_or(0, |o| o.restarts);
+    let what = format!(
+        "synthesising: {starts} random starts on {}",
+        if each.len() == 1 {
+            "one branch"
+        } else {
+            "each branch"
+        }
+    );
+    progress::while_running(&what, search)
+}
+
 /// The best synthesis over the branches tried (the smallest rms error, ties to the first),
-/// with the options it was found with; the last error if none found one.
+/// with the options it was found with; the last error if none found one. A fit whose error
+/// is not finite is no fit: it counts as an error.
 fn better(
     each: Vec<Options>,
     synthesise: impl Fn(&Options) -> Result<Synthesis, synthesis::SynthesisError>,
@@ -305,6 +440,13 @@ fn better(
     let mut last_error = String::new();
     for options in each {
         match synthesise(&options) {
+            Ok(found) if !(found.rms_error.is_finite() && found.largest_error.is_finite()) => {
+                last_error = format!(
+                    "the best fit's error at the targets is not finite (rms {}, largest {}): \
+                     no linkage was found",
+                    found.rms_error, found.largest_error
+                );
+            }
             Ok(found)
                 if best
                     .as_ref()
@@ -333,11 +475,11 @@ fn report(found: &Synthesis, options: &Options) {
     let (a, delta) = found.linkage.coupler_point();
     say!(
         "Four-bar ground {} crank {} coupler {} rocker {} mm, coupler point {} mm at {}°",
-        fixed(l1, 4),
-        fixed(l2, 4),
-        fixed(l3, 4),
-        fixed(l4, 4),
-        fixed(a, 4),
+        output::figure(l1),
+        output::figure(l2),
+        output::figure(l3),
+        output::figure(l4),
+        output::figure(a),
         fixed(delta.to_degrees(), 4)
     );
     say!(

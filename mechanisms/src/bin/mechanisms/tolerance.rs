@@ -5,13 +5,17 @@
 
 use std::fs;
 use std::path::PathBuf;
+use std::time::Instant;
 
 use clap::Parser;
 use mechanisms::{FourBar, FourBarTolerances};
 use mechgen::{Branch, Error};
 
 use crate::Mechanism;
-use crate::output::{fixed, say, tidy};
+use crate::analyse::{four_bar_range, refused};
+use crate::angle;
+use crate::output::{self, fixed, say, tidy};
+use crate::progress;
 use crate::svg::{self, Chart};
 use crate::sweep::BranchName;
 
@@ -23,32 +27,35 @@ pub struct Args {
     /// Its dimensions in mm.
     #[arg(allow_negative_numbers = true)]
     pub dimensions: Vec<f64>,
-    /// The ± tolerance of every length, mm.
-    #[arg(long, default_value_t = 0.1)]
+    /// The ± tolerance of every length, mm: under a tenth of each length it applies to (the
+    /// coupler point's distance, which may be zero: a tenth of the shortest link).
+    #[arg(long, default_value_t = 0.1, allow_hyphen_values = true)]
     pub tolerance: f64,
     /// The ± tolerances of ground, crank, coupler and rocker, mm, joined by commas: each
     /// length its own, in place of --tolerance (the coupler point's distance keeps
-    /// --tolerance).
-    #[arg(long, value_delimiter = ',')]
+    /// --tolerance); each under a tenth of its length.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub tolerances: Option<Vec<f64>>,
     /// A coupler point to follow: distance from the crank pin (mm), angle from the coupler
     /// (°), as `100,30` [default: the crank pin].
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub coupler_point: Option<Vec<f64>>,
-    /// The ± tolerance of the coupler point's angle, degrees.
-    #[arg(long, default_value_t = 0.0)]
+    /// The ± tolerance of the coupler point's angle, degrees: under a tenth of a radian
+    /// (5.73°).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub angle_tolerance: f64,
     /// The assembly branch.
     #[arg(long, value_enum, default_value = "open")]
     pub branch: BranchName,
-    /// The crank angle's step, degrees.
-    #[arg(long, default_value_t = 10.0)]
+    /// The crank angle's step, degrees, from 0.0036 (10⁵ crank angles) to 360 (0° alone).
+    #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
     pub step: f64,
-    /// Monte Carlo linkages per crank angle (normal errors, each tolerance 3σ).
-    #[arg(long, default_value_t = 2000)]
+    /// Monte Carlo linkages per crank angle (normal errors, each tolerance 3σ), at most 10⁷.
+    /// A run past a second shows its progress on standard error, on a terminal.
+    #[arg(long, default_value_t = 2000, allow_hyphen_values = true)]
     pub samples: usize,
     /// The Monte Carlo generator's seed.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, allow_hyphen_values = true)]
     pub seed: u64,
     /// Where to write the chart; `-` for standard output, nothing for no chart.
     #[arg(long)]
@@ -59,6 +66,61 @@ pub struct Args {
 /// refused at once rather than run for hours.
 const MOST_STEPS: f64 = 100_000.0;
 const MOST_SAMPLES: usize = 10_000_000;
+
+/// How small a tolerance must be against what it applies to: first order holds for small
+/// errors, and the tolerance box's corners and the Monte Carlo linkages must still be
+/// linkages much like the nominal one (a length off by its whole length is no tolerance).
+const LARGEST_FRACTION: f64 = 0.1;
+
+/// The table's columns, as an error names one.
+const COLUMNS: [&str; 8] = [
+    "θ4's first-order worst case",
+    "θ4's worst corner",
+    "θ4's RSS/3",
+    "θ4's Monte Carlo rms",
+    "the coupler point's first-order worst case",
+    "the coupler point's worst corner",
+    "the coupler point's RSS/3",
+    "the coupler point's Monte Carlo rms",
+];
+
+/// Each tolerance checked against what it applies to (see [`LARGEST_FRACTION`]): the four
+/// links' against their lengths, the coupler point distance's against the shortest link (the
+/// distance itself may be zero), its angle's against a radian.
+fn check_small(args: &Args, links: [f64; 4], lengths: [f64; 4]) -> Result<(), String> {
+    let flag = if args.tolerances.is_some() {
+        "--tolerances"
+    } else {
+        "--tolerance"
+    };
+    let names = ["ground", "crank", "coupler", "rocker"];
+    let shortest = links.into_iter().fold(f64::INFINITY, f64::min);
+    let checks = names
+        .into_iter()
+        .zip(links)
+        .zip(lengths)
+        .map(|((name, link), tolerance)| (flag, tolerance, name, link))
+        .chain([("--tolerance", args.tolerance, "shortest link", shortest)]);
+    for (flag, tolerance, name, link) in checks {
+        if tolerance >= LARGEST_FRACTION * link {
+            return Err(format!(
+                "{flag} ±{} mm is not small against the {name} ({} mm): each ± tolerance \
+                 must be under a tenth of the length it applies to (the coupler point's \
+                 distance, under a tenth of the shortest link)",
+                tidy(tolerance),
+                tidy(link)
+            ));
+        }
+    }
+    if args.angle_tolerance.to_radians() >= LARGEST_FRACTION {
+        return Err(format!(
+            "--angle-tolerance ±{}° is not small: it must be under a tenth of a radian ({}°)",
+            tidy(args.angle_tolerance),
+            output::significant(LARGEST_FRACTION.to_degrees(), 3)
+        ));
+    }
+    Ok(())
+}
 
 pub fn run(args: &Args) -> Result<(), String> {
     if args.mechanism != Mechanism::FourBar {
@@ -71,14 +133,14 @@ pub fn run(args: &Args) -> Result<(), String> {
     let &[ground, crank, coupler, rocker] = args.dimensions.as_slice() else {
         unreachable!("checked: four dimensions");
     };
-    let (distance, angle) = match args.coupler_point.as_deref() {
+    let (distance, angle_degrees) = match args.coupler_point.as_deref() {
         None => (0.0, 0.0),
-        Some(&[distance, angle]) => (distance, angle.to_radians()),
+        Some(&[distance, angle]) => (distance, angle),
         Some(_) => return Err("--coupler-point takes a distance and an angle, as 100,30".into()),
     };
     let linkage = FourBar::new(ground, crank, coupler, rocker)
-        .and_then(|l| l.with_coupler_point(distance, angle))
-        .map_err(|e| e.to_string())?;
+        .and_then(|l| l.with_coupler_point(distance, angle::radians(angle_degrees)))
+        .map_err(refused)?;
     let lengths = match args.tolerances.as_deref() {
         None => [args.tolerance; 4],
         Some(&[a, b, c, d]) => [a, b, c, d],
@@ -103,10 +165,16 @@ pub fn run(args: &Args) -> Result<(), String> {
     if every.iter().any(|t| !t.is_finite() || *t < 0.0) {
         return Err("a tolerance must be finite and not negative".into());
     }
-    if !(args.step.is_finite() && args.step > 0.0 && 360.0 / args.step <= MOST_STEPS) {
+    check_small(args, [ground, crank, coupler, rocker], lengths)?;
+    if !(args.step.is_finite()
+        && args.step > 0.0
+        && args.step <= 360.0
+        && 360.0 / args.step <= MOST_STEPS)
+    {
         return Err(format!(
-            "--step must be a positive number of degrees, at least {}",
-            tidy(360.0 / MOST_STEPS)
+            "--step must be a positive number of degrees from {} to 360 (a turn), got {}",
+            tidy(360.0 / MOST_STEPS),
+            tidy(args.step)
         ));
     }
     if args.samples > MOST_SAMPLES {
@@ -117,6 +185,58 @@ pub fn run(args: &Args) -> Result<(), String> {
         BranchName::Crossed => Branch::Crossed,
     };
 
+    // Every row before any is printed, so that a figure that overflowed is an error before
+    // the report starts, never a row of it.
+    let steps = (360.0 / args.step).floor() as usize;
+    let bar = progress::bar(steps as u64);
+    let started = Instant::now();
+    let mut rows = Vec::new();
+    let mut skipped = Vec::new();
+    for k in 0..steps {
+        progress::advance(&bar, started, k as u64);
+        let degrees = k as f64 * args.step;
+        let theta2 = degrees.to_radians();
+        let row = (|| -> Result<[f64; 8], Error<f64>> {
+            let linear = linkage.tolerance(theta2, branch, &tolerances)?;
+            let corners = linkage.corners(theta2, branch, &tolerances)?;
+            let sampled =
+                linkage.monte_carlo(theta2, branch, &tolerances, args.samples, args.seed)?;
+            Ok([
+                linear.output.worst_case.to_degrees(),
+                corners.output_largest.to_degrees(),
+                (linear.output.root_sum_square / 3.0).to_degrees(),
+                sampled.output_rms.to_degrees(),
+                linear.coupler_point.worst_case,
+                corners.coupler_point_largest,
+                linear.coupler_point.root_sum_square / 3.0,
+                sampled.coupler_point_rms,
+            ])
+        })();
+        match row {
+            Ok(values) => {
+                if let Some(column) = values.iter().position(|v| !v.is_finite()) {
+                    bar.finish_and_clear();
+                    return Err(format!(
+                        "{} at θ2 = {}° overflowed (it is not finite): the dimensions or \
+                         tolerances are too large for the analysis to square them",
+                        COLUMNS[column],
+                        tidy(degrees)
+                    ));
+                }
+                rows.push((degrees, values));
+            }
+            Err(error) => skipped.push(format!("{}° ({})", tidy(degrees), output::error(&error))),
+        }
+    }
+    bar.finish_and_clear();
+    let Some(worst) = rows.iter().max_by(|a, b| a.1[0].total_cmp(&b.1[0])) else {
+        return Err(format!(
+            "the linkage assembles at none of the crank angles analysed ({}): {}",
+            four_bar_range(&linkage),
+            skipped.join(", ")
+        ));
+    };
+
     say!(
         "Four-bar {}/{}/{}/{} mm, coupler point {} mm at {}°, {} branch",
         tidy(ground),
@@ -124,7 +244,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         tidy(coupler),
         tidy(rocker),
         tidy(distance),
-        tidy(angle.to_degrees()),
+        tidy(angle_degrees),
         match args.branch {
             BranchName::Open => "open",
             BranchName::Crossed => "crossed",
@@ -154,52 +274,22 @@ pub fn run(args: &Args) -> Result<(), String> {
          (mm) | corners (mm) | P RSS/3 (mm) | Monte Carlo rms (mm) |"
     );
     say!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    let steps = (360.0 / args.step).floor() as usize;
-    let mut rows = Vec::new();
-    let mut skipped = Vec::new();
-    for k in 0..steps {
-        let degrees = k as f64 * args.step;
-        let theta2 = degrees.to_radians();
-        let row = (|| -> Result<[f64; 8], Error<f64>> {
-            let linear = linkage.tolerance(theta2, branch, &tolerances)?;
-            let corners = linkage.corners(theta2, branch, &tolerances)?;
-            let sampled =
-                linkage.monte_carlo(theta2, branch, &tolerances, args.samples, args.seed)?;
-            Ok([
-                linear.output.worst_case.to_degrees(),
-                corners.output_largest.to_degrees(),
-                (linear.output.root_sum_square / 3.0).to_degrees(),
-                sampled.output_rms.to_degrees(),
-                linear.coupler_point.worst_case,
-                corners.coupler_point_largest,
-                linear.coupler_point.root_sum_square / 3.0,
-                sampled.coupler_point_rms,
-            ])
-        })();
-        match row {
-            Ok(values) => {
-                say!(
-                    "| {} | {} |",
-                    fixed(degrees, 1),
-                    values.map(|v| format!("{v:.4e}")).join(" | ")
-                );
-                rows.push((degrees, values));
-            }
-            Err(error) => skipped.push(format!("{}° ({error})", tidy(degrees))),
-        }
+    for (degrees, values) in &rows {
+        say!(
+            "| {} | {} |",
+            fixed(*degrees, 1),
+            values.map(|v| format!("{v:.4e}")).join(" | ")
+        );
     }
     say!("");
     if !skipped.is_empty() {
         say!("Not analysed: {}.", skipped.join(", "));
     }
-    let Some(worst) = rows.iter().max_by(|a, b| a.1[0].total_cmp(&b.1[0])) else {
-        return Err("the linkage assembles at none of these crank angles".into());
-    };
     say!(
         "Largest first-order worst case of θ4: ±{}° at θ2 = {}°; of the coupler point: {} mm.",
-        fixed(worst.1[0], 4),
+        output::figure(worst.1[0]),
         tidy(worst.0),
-        fixed(rows.iter().map(|r| r.1[4]).fold(0.0, f64::max), 4)
+        output::figure(rows.iter().map(|r| r.1[4]).fold(0.0, f64::max))
     );
     if let Some(path) = &args.svg {
         let chart = |title: &str, unit: &str, columns: [(usize, &str); 4]| Chart {

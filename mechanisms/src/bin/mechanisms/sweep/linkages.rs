@@ -24,11 +24,11 @@ pub(super) fn branch(args: &Args) -> Branch {
 
 pub(super) fn four_bar(args: &Args) -> Result<Sweep<'_>, String> {
     let d = &args.dimensions;
-    let mut linkage = FourBar::new(d[0], d[1], d[2], d[3]).map_err(|e| e.to_string())?;
+    let mut linkage = FourBar::new(d[0], d[1], d[2], d[3]).map_err(refused)?;
     if let Some(p) = &args.coupler_point {
         linkage = linkage
-            .with_coupler_point(p[0], p[1].to_radians())
-            .map_err(|e| e.to_string())?;
+            .with_coupler_point(p[0], angle::radians(p[1]))
+            .map_err(refused)?;
     }
     let (rate, accel, on) = (args.rate, args.accel, branch(args));
     let ground = d[0];
@@ -94,11 +94,11 @@ pub(super) fn four_bar(args: &Args) -> Result<Sweep<'_>, String> {
 
 pub(super) fn slider_crank(args: &Args) -> Result<Sweep<'_>, String> {
     let d = &args.dimensions;
-    let mut linkage = SliderCrank::new(d[0], d[1], d[2]).map_err(|e| e.to_string())?;
+    let mut linkage = SliderCrank::new(d[0], d[1], d[2]).map_err(refused)?;
     if let Some(p) = &args.coupler_point {
         linkage = linkage
-            .with_coupler_point(p[0], p[1].to_radians())
-            .map_err(|e| e.to_string())?;
+            .with_coupler_point(p[0], angle::radians(p[1]))
+            .map_err(refused)?;
     }
     let (rate, accel, on) = (args.rate, args.accel, branch(args));
     Ok(Sweep {
@@ -164,7 +164,7 @@ pub(super) fn slider_crank(args: &Args) -> Result<Sweep<'_>, String> {
 pub(super) fn inverted(args: &Args) -> Result<Sweep<'_>, String> {
     let d = &args.dimensions;
     let linkage =
-        InvertedSliderCrank::new(d[0], d[1], d[2], d[3].to_radians()).map_err(|e| e.to_string())?;
+        InvertedSliderCrank::new(d[0], d[1], d[2], angle::radians(d[3])).map_err(refused)?;
     let (rate, accel, on) = (args.rate, args.accel, branch(args));
     let ground = d[0];
     Ok(Sweep {

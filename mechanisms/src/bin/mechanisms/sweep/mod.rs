@@ -4,12 +4,11 @@
 
 use std::fmt::Write as _;
 use std::fs::File;
-use std::io::{self, BufWriter, IsTerminal, Write};
+use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use clap::{Parser, ValueEnum};
-use indicatif::{ProgressBar, ProgressDrawTarget};
 use mechanisms::{
     FourBar, InvertedSliderCrank, JansenLeg, SliderCrank, StephensonSixBar,
     StephensonSixBarUnknowns,
@@ -18,8 +17,10 @@ use mechgen::sweep::{Stop, Sweep as Walk};
 use mechgen::{Branch, Error, NewtonOptions, Vec2};
 
 use crate::Mechanism;
-use crate::analyse::four_bar_range;
+use crate::analyse::{four_bar_range, refused};
+use crate::angle;
 use crate::output::{self, filled, say, tidy};
+use crate::progress;
 use crate::six_bars::{self, Reach, StephensonDimensions};
 use crate::svg::{self, Chart};
 
@@ -58,7 +59,7 @@ pub struct Args {
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub step: f64,
     /// The most samples a sweep may take: a smaller step is refused before it starts.
-    #[arg(long, default_value_t = 10_000_000)]
+    #[arg(long, default_value_t = 10_000_000, allow_hyphen_values = true)]
     pub max_samples: u64,
     /// The input's rate, rad/s.
     #[arg(long, default_value_t = 10.0, allow_hyphen_values = true)]
@@ -169,6 +170,27 @@ fn check(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
+/// The smallest step, as written to three significant digits, whose samples over `pieces`
+/// number at most `most`; `None` if no step is that coarse (`most` of 0).
+fn least_step(pieces: &[Piece], most: u64) -> Option<String> {
+    let samples = |step: f64| pieces.iter().map(|p| p.grid(step).1).sum::<f64>();
+    let span: f64 = pieces.iter().map(|p| p.to - p.from).sum();
+    let mut step = span / most as f64;
+    // Written to three digits, a step can round below the one that fits: go up by a tenth of
+    // a percent, less than the three digits' resolution, until the written one fits.
+    for _ in 0..100 {
+        let written = output::significant(step, 3);
+        if written
+            .parse()
+            .is_ok_and(|w: f64| samples(w) <= most as f64)
+        {
+            return Some(written);
+        }
+        step *= 1.001;
+    }
+    None
+}
+
 /// `value` if finite, else an error naming the flag and its unit.
 pub fn finite(flag: &str, value: f64, unit: &str) -> Result<(), String> {
     if value.is_finite() {
@@ -200,11 +222,18 @@ pub fn run(args: &Args) -> Result<(), String> {
     let grids: Vec<(f64, f64)> = sweep.pieces.iter().map(|p| p.grid(args.step)).collect();
     let total: f64 = grids.iter().map(|g| g.1).sum();
     if total > args.max_samples as f64 {
+        let samples = if total.is_finite() {
+            format!("{} samples", tidy(total.round()))
+        } else {
+            "more samples than can be counted".into()
+        };
+        let least = least_step(&sweep.pieces, args.max_samples).map_or_else(String::new, |least| {
+            format!(": here the step must be at least {least}°")
+        });
         return Err(format!(
-            "a step of {}° makes {} samples, more than --max-samples {}: take a larger \
-             --step, or raise --max-samples if you mean it",
+            "--step {}° is too small: it makes {samples}, more than --max-samples {}{least} \
+             (or raise --max-samples if you mean it)",
             tidy(args.step),
-            tidy(total.round()),
             args.max_samples
         ));
     }
@@ -224,7 +253,7 @@ pub fn run(args: &Args) -> Result<(), String> {
     writer.write_record(&header).map_err(csv_failed)?;
 
     let started = Instant::now();
-    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::hidden());
+    let bar = progress::bar(total);
     let mut drawings = Drawings::new(sweep.columns.len(), total);
     let mut lines = Vec::new();
     let mut computed = 0;
@@ -240,7 +269,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         let mut change_points = Vec::new();
         for k in 0..count {
             if index % 4096 == 0 {
-                progress(&bar, started, index);
+                progress::advance(&bar, started, index);
             }
             let input = first + k as f64 * args.step;
             if k > 0 {
@@ -340,12 +369,4 @@ pub fn run(args: &Args) -> Result<(), String> {
         report(&line);
     }
     Ok(())
-}
-
-/// Shows the progress bar once a sweep has taken a second, on a terminal only.
-fn progress(bar: &ProgressBar, started: Instant, done: u64) {
-    if bar.is_hidden() && started.elapsed() > Duration::from_secs(1) && io::stderr().is_terminal() {
-        bar.set_draw_target(ProgressDrawTarget::stderr());
-    }
-    bar.set_position(done);
 }

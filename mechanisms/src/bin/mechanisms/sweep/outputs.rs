@@ -33,7 +33,7 @@ impl Failures {
             }
             other => {
                 self.other += 1;
-                other.to_string()
+                output::error(other)
             }
         };
         if self.first.len() < 3 {
