@@ -205,8 +205,8 @@ mod tests {
     #[test]
     fn thresholds_are_where_the_estimates_reach_the_requirement() {
         let required = Accuracy::<f64>::required();
-        // ε·κ·(64 + 4κ) = r at κ = (−64 + √(64² + 16r/ε))/8.
-        let kappa = (-64.0 + (64.0f64 * 64.0 + 16.0 * required.velocity / E).sqrt()) / 8.0;
+        // ε·κ·(64 + 12κ) = r at κ = (−64 + √(64² + 48r/ε))/24.
+        let kappa = (-64.0 + (64.0f64 * 64.0 + 48.0 * required.velocity / E).sqrt()) / 24.0;
         let threshold = rate_threshold(Order::Velocity, &required, 1.0);
         assert!(
             (threshold * kappa - 1.0).abs() < 1e-9,
@@ -367,7 +367,7 @@ mod tests {
             }
         }
         // Shorter: the estimate at the aspect it gives. A column of 1e-6 (aspect 1.6e7, s 1e6)
-        // with a well conditioned block: its velocity's estimate is ε·(64 + 4)·1e6, within;
+        // with a well conditioned block: its velocity's estimate is ε·(64 + 12)·1e6, within;
         // its acceleration's ε·(256 + 1)·1e12, not.
         let short = 1e-12;
         assert_eq!(

@@ -2709,7 +2709,7 @@ pub mod judge {
             let (estimate, required) = match order {
                 mechgen::Order::Position => (POSITION_FACTOR * e * kappa, e.sqrt()),
                 mechgen::Order::Velocity => (
-                    e * kappa * (64.0 + 4.0 * kappa) * shrunk + newton_velocity,
+                    e * kappa * (64.0 + 12.0 * kappa) * shrunk + newton_velocity,
                     e.cbrt(),
                 ),
                 mechgen::Order::Acceleration => (
