@@ -474,7 +474,7 @@ fn estimates_follow_the_documented_formulas() {
     let e = f64::EPSILON;
     let estimate = Accuracy::<f64>::estimate(2.0, 4.0);
     assert_eq!(estimate.position, 64.0 * e);
-    assert_eq!(estimate.velocity, e * 2.0 * (64.0 + 8.0));
+    assert_eq!(estimate.velocity, e * 2.0 * (64.0 + 24.0));
     assert_eq!(estimate.acceleration, e * 2.0 * (256.0 + 4.0));
     // A slide shrunk to 1/64 of the size: the rates' estimates grow by 4 and 16.
     let shrunk = Accuracy::<f64>::estimate(2.0, 64.0);
