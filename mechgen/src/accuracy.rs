@@ -7,7 +7,7 @@
 //! | order | estimate | relative to |
 //! |---|---|---|
 //! | position | `32·ε·κ` | the mechanism's size |
-//! | velocity | `ε·(64·κ + 4·κ²)·s` | the rates' size |
+//! | velocity | `ε·(64·κ + 12·κ²)·s` | the rates' size |
 //! | acceleration | `ε·(256·κ + κ³)·s²` | the accelerations' size |
 //!
 //! each unknown weighted by its Jacobian column. A position's error is the input's and the
@@ -17,7 +17,10 @@
 //! themselves (sums of many products), which dominate away from singular positions. The
 //! rates' factors are fitted, with a margin of two or more, to the worst errors against the
 //! 60-digit references (`docs/ACCURACY.md`) and the multiple-precision oracle of the edge
-//! tests. The position's is derived: Newton accepts a residual up to `16·ε` of the loops'
+//! tests, which check every returned `Motion` against the accuracy it states: the
+//! velocity's `κ²` factor was 4 until those checks found a closed form's velocity 1e-6 rad
+//! inside a four-bar's limit 1.4 times that (one case in 200,000), and is 12 since. The
+//! position's is derived: Newton accepts a residual up to `16·ε` of the loops'
 //! magnitudes, and the inverse of the column-scaled Jacobian has entries up to κ, so the
 //! errors of two unknowns can add (an edge run found positions up to 1.3 times `16·ε·κ`
 //! off; none in the run of `docs/EDGES.md` exceeds `32·ε·κ`). That derivation makes a
@@ -117,8 +120,53 @@ impl<T: Real> Accuracy<T> {
         let shrunk = (aspect / c(ORDINARY_ASPECT)).max(T::one());
         Accuracy {
             position,
-            velocity: e * kappa * (c(64.0) + c(4.0) * kappa) * shrunk,
+            velocity: e * kappa * (c(64.0) + c(12.0) * kappa) * shrunk,
             acceleration: e * kappa * (c(256.0) + kappa * kappa) * shrunk * shrunk,
+        }
+    }
+
+    /// The estimate for rates solved at a position known only to within `position` (its
+    /// estimated error, relative to the size as [`Accuracy::estimate`]'s position), rather
+    /// than one a closed form computed, which [`Accuracy::estimate`] is for: a Newton
+    /// position, which stops at a residual up to its floor (or its tolerance), or a position
+    /// the caller gives. The position is then the larger of `position` and the closed form's
+    /// `32·ε·κ`, and each rate carries what its error does to the Jacobian the rates are solved
+    /// with: an angle off by `δθ` turns its column by `δθ`, up to `ρ·δ` for a weighted error
+    /// `δ` (ρ the aspect, at least 1), which the solve amplifies by κ; the accelerations'
+    /// right-hand side carries the velocities' error, so once more by κ:
+    ///
+    /// - velocity: the closed form's, plus `κ·ρ·δ/2`;
+    /// - acceleration: the closed form's, plus `κ²·ρ·δ/2`.
+    ///
+    /// At a Newton position on its floor (`δ = 32·ε·κ`) these are `16·ε·κ²·ρ` and
+    /// `16·ε·κ³·ρ`, within the bounds the edge tests hold Newton's rates to against the
+    /// multiple-precision oracle (`16·ε·κ²·ρ` and `16·ε·κ³·ρ²`), and checked against it there.
+    ///
+    /// ```
+    /// use mechgen::Accuracy;
+    /// let closed = Accuracy::<f64>::estimate(10.0, 2.0);
+    /// let near = Accuracy::<f64>::estimate_at(10.0, 2.0, 0.0);
+    /// assert_eq!(near.position, closed.position);
+    /// assert_eq!(near.velocity, closed.velocity + 10.0 * 2.0 * closed.position / 2.0);
+    /// // A position known to 1e-9 only (a loose tolerance): rates far less accurate.
+    /// assert!(Accuracy::<f64>::estimate_at(10.0, 2.0, 1e-9).velocity > 1e-8);
+    /// ```
+    #[inline]
+    pub fn estimate_at(condition: T, aspect: T, position: T) -> Self {
+        let closed = Self::estimate(condition, aspect);
+        let kappa = condition.max(T::one());
+        // The larger, and NaN (an unknown error) where `position` is.
+        let delta = if position <= closed.position {
+            closed.position
+        } else {
+            position
+        };
+        let rho = aspect.max(T::one());
+        let half = T::constant(0.5);
+        Accuracy {
+            position: delta,
+            velocity: closed.velocity + kappa * rho * delta * half,
+            acceleration: closed.acceleration + kappa * kappa * rho * delta * half,
         }
     }
 
@@ -157,27 +205,39 @@ impl<T: Real> Accuracy<T> {
 /// The estimate for rates solved with `jacobian` (whose condition estimate is `condition`)
 /// at a position of a mechanism whose declared lengths sum to `size`, `angles[j]` telling
 /// whether unknown `j` is an angle; an error if the velocity's or (with `highest` the
-/// acceleration) the acceleration's exceeds `required`.
+/// acceleration) the acceleration's exceeds `required`. `position` says where the position
+/// came from: `None`, a closed form ([`Accuracy::estimate`]); `Some(δ)`, a position known to
+/// within `δ` or the closed form's `32·ε·κ`, whichever is larger ([`Accuracy::estimate_at`]):
+/// Newton's (from its residual), or a position the caller gives (`Some(0)`: any position
+/// within the contract).
 #[inline(always)]
 pub fn rates_accuracy<T: Real, const N: usize>(
     condition: T,
     jacobian: &[[T; N]; N],
     size: T,
     angles: [bool; N],
+    position: Option<T>,
     highest: Order,
     required: &Accuracy<T>,
 ) -> Result<Accuracy<T>, Error<T>> {
-    // An ordinary aspect gives the estimate of an aspect of 1, which is then within or not:
-    // the common case, without the aspect's scaling, square root and division.
-    if ordinary(jacobian, size, angles) {
-        let estimate = Accuracy::estimate(condition, T::one());
-        if estimate.velocity <= required.velocity
+    let within = |estimate: &Accuracy<T>| {
+        estimate.velocity <= required.velocity
             && (highest < Order::Acceleration || estimate.acceleration <= required.acceleration)
-        {
+    };
+    // An ordinary aspect: the common case, without the aspect's scaling. A closed form's
+    // estimate is then that of an aspect of 1, without a square root and division either.
+    if let Some(aspect) = ordinary(jacobian, size, angles, position.is_some()) {
+        let estimate = match position {
+            None => Accuracy::estimate(condition, T::one()),
+            Some(position) => Accuracy::estimate_at(condition, aspect, position),
+        };
+        if within(&estimate) {
             return Ok(estimate);
         }
     }
-    rates_accuracy_aside(condition, *jacobian, size, angles, highest, required)
+    rates_accuracy_aside(
+        condition, *jacobian, size, angles, position, highest, required,
+    )
 }
 
 /// [`rates_accuracy`] in full, out of line, from a copy of the Jacobian (so that the caller
@@ -189,33 +249,45 @@ fn rates_accuracy_aside<T: Real, const N: usize>(
     jacobian: [[T; N]; N],
     size: T,
     angles: [bool; N],
+    position: Option<T>,
     highest: Order,
     required: &Accuracy<T>,
 ) -> Result<Accuracy<T>, Error<T>> {
-    let estimate = Accuracy::estimate(condition, aspect(&jacobian, size, angles));
+    let aspect = aspect(&jacobian, size, angles);
+    let estimate = match position {
+        None => Accuracy::estimate(condition, aspect),
+        Some(position) => Accuracy::estimate_at(condition, aspect, position),
+    };
     estimate.within(&rates_only(required), highest)?;
     Ok(estimate)
 }
 
-/// Whether [`aspect`] is certainly at most [`ORDINARY_ASPECT`], where [`Accuracy::estimate`]
-/// is that of an aspect of 1 (`shrunk` is 1): every angle's column at least `size/15.9` long,
-/// tested on squares without scaling where the size's square is normal (else `false`, and
-/// [`aspect`] decides). Then a column's square that overflows is long enough, and one that
-/// is NaN or too small fails; a subnormal one passes only when at least `size²/252.81`,
-/// where it keeps over 40 bits, more than the margin of 15.9 against 16 needs. With no angle
-/// unknown the aspect is 1.
+/// `Some(aspect)` where [`aspect`] is certainly at most [`ORDINARY_ASPECT`], where
+/// [`Accuracy::estimate`] is that of an aspect of 1 (`shrunk` is 1): every angle's column at
+/// least `size/15.9` long, tested on squares without scaling where the size's square is
+/// normal (else `None`, and [`aspect`] decides). Then a column's square that overflows is
+/// long enough, and one that is NaN or too small fails; a subnormal one passes only when at
+/// least `size²/252.81`, where it keeps over 40 bits, more than the margin of 15.9 against 16
+/// needs. With no angle unknown the aspect is 1. The aspect itself (`size` over the shortest
+/// angle's column, from the same squares) only `with_aspect`, else 1: a closed form's
+/// estimate does not read it below the ordinary aspect.
 #[inline(always)]
-fn ordinary<T: Real, const N: usize>(jacobian: &[[T; N]; N], size: T, angles: [bool; N]) -> bool {
+fn ordinary<T: Real, const N: usize>(
+    jacobian: &[[T; N]; N],
+    size: T,
+    angles: [bool; N],
+    with_aspect: bool,
+) -> Option<T> {
     let size_squared = size * size;
     // Normal and finite (false for NaN).
     let normal = size_squared >= T::min_positive_value() && size_squared <= T::max_value();
     if !normal {
-        return false;
+        return None;
     }
     // The first row's squares to start with, not zeros: the same sums as a factorisation's
     // column norms, which the compiler can then share.
     let Some((first, rest)) = jacobian.split_first() else {
-        return true;
+        return Some(T::one());
     };
     let mut squares = first.map(|v| v * v);
     for row in rest {
@@ -225,10 +297,27 @@ fn ordinary<T: Real, const N: usize>(jacobian: &[[T; N]; N], size: T, angles: [b
     }
     // 15.9² = 252.81: a margin over the rounding of `aspect`'s arithmetic.
     let bound = T::constant(252.81);
-    squares
+    let ordinary = squares
         .iter()
         .zip(angles)
-        .all(|(square, angle)| !angle || size_squared <= bound * *square)
+        .all(|(square, angle)| !angle || size_squared <= bound * *square);
+    if !ordinary {
+        return None;
+    }
+    if !with_aspect {
+        return Some(T::one());
+    }
+    // Every angle's square is normal here (at least size²/252.81), so is its root.
+    let shortest = squares
+        .iter()
+        .zip(angles)
+        .filter(|(_, angle)| *angle)
+        .fold(T::infinity(), |m, (square, _)| m.min(*square));
+    Some(if shortest.is_infinite() {
+        T::one()
+    } else {
+        size / shortest.sqrt()
+    })
 }
 
 /// `ρ`: `size` over the shortest column of an angle unknown (1 without one), with `size` and
@@ -268,18 +357,6 @@ fn rates_only<T: Real>(required: &Accuracy<T>) -> Accuracy<T> {
     }
 }
 
-/// As [`rates_accuracy`], from a condition estimate already known (the reduced Newton's,
-/// of the full Jacobian), with an aspect of 1.
-pub fn rates_accuracy_at<T: Real>(
-    condition: T,
-    highest: Order,
-    required: &Accuracy<T>,
-) -> Result<Accuracy<T>, Error<T>> {
-    let estimate = Accuracy::estimate(condition, T::one());
-    estimate.within(&rates_only(required), highest)?;
-    Ok(estimate)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -290,7 +367,7 @@ mod tests {
     fn estimates_grow_with_the_condition_and_the_aspect() {
         let at_10 = Accuracy::estimate(10.0, 1.0);
         assert_eq!(at_10.position, 32.0 * E * 10.0);
-        assert_eq!(at_10.velocity, E * 10.0 * (64.0 + 40.0));
+        assert_eq!(at_10.velocity, E * 10.0 * (64.0 + 120.0));
         assert_eq!(at_10.acceleration, E * 10.0 * (256.0 + 100.0));
         // An aspect of 32, twice the ordinary: the velocity's twice, the acceleration's four
         // times; 16 and below, no change.
@@ -394,20 +471,20 @@ mod tests {
         let big = jacobian.map(|row| row.map(|v| v * 1e300));
         assert!((aspect(&big, 1e301, [true, false]) - 2.0).abs() < 1e-15);
         // Ordinary: every angle's column at least size/15.9.
-        assert!(ordinary(&jacobian, 10.0, [true, true]));
-        assert!(ordinary(&jacobian, 15.9, [true, true]));
-        assert!(!ordinary(&jacobian, 16.0, [true, true]));
-        assert!(ordinary(&jacobian, 16.0, [true, false]));
+        assert!(ordinary(&jacobian, 10.0, [true, true], false).is_some());
+        assert!(ordinary(&jacobian, 15.9, [true, true], false).is_some());
+        assert!(ordinary(&jacobian, 16.0, [true, true], false).is_none());
+        assert!(ordinary(&jacobian, 16.0, [true, false], false).is_some());
         // The first column, 5 long, up to a size of 15.9·5.
-        assert!(ordinary(&jacobian, 79.0, [true, false]));
-        assert!(!ordinary(&jacobian, 80.0, [true, false]));
-        assert!(ordinary(&jacobian, 1e3, [false, false]));
-        assert!(!ordinary(&jacobian, 1e300, [false, false]));
-        assert!(!ordinary(&jacobian, f64::NAN, [false, false]));
-        assert!(!ordinary(&jacobian, 1e-300, [false, false]));
+        assert!(ordinary(&jacobian, 79.0, [true, false], false).is_some());
+        assert!(ordinary(&jacobian, 80.0, [true, false], false).is_none());
+        assert!(ordinary(&jacobian, 1e3, [false, false], false).is_some());
+        assert!(ordinary(&jacobian, 1e300, [false, false], false).is_none());
+        assert!(ordinary(&jacobian, f64::NAN, [false, false], false).is_none());
+        assert!(ordinary(&jacobian, 1e-300, [false, false], false).is_none());
         let three = [[3.0, 0.0, 0.0], [4.0, 1.0, 0.0], [0.0, 0.0, 0.5]];
-        assert!(!ordinary(&three, 10.0, [false, false, true]));
-        assert!(ordinary(&three, 7.9, [false, false, true]));
+        assert!(ordinary(&three, 10.0, [false, false, true], false).is_none());
+        assert!(ordinary(&three, 7.9, [false, false, true], false).is_some());
     }
 
     #[test]
@@ -421,6 +498,7 @@ mod tests {
                 &jacobian,
                 10.0,
                 [true, true],
+                None,
                 Order::Acceleration,
                 &required
             ),
@@ -433,6 +511,7 @@ mod tests {
                 &jacobian,
                 64.0,
                 [true, true],
+                None,
                 Order::Acceleration,
                 &required
             ),
@@ -450,6 +529,7 @@ mod tests {
                 &jacobian,
                 10.0,
                 [true, true],
+                None,
                 Order::Velocity,
                 &required
             ),
@@ -461,6 +541,7 @@ mod tests {
                 &jacobian,
                 10.0,
                 [true, true],
+                None,
                 Order::Acceleration,
                 &required
             ),
@@ -478,6 +559,7 @@ mod tests {
                 &jacobian,
                 10.0,
                 [true, true],
+                None,
                 Order::Velocity,
                 &required
             ),
@@ -487,30 +569,110 @@ mod tests {
                 required: required.velocity
             })
         );
-        assert_eq!(
-            rates_accuracy_at(kappa, Order::Velocity, &required),
-            Ok(estimate)
-        );
-        assert!(rates_accuracy_at(kappa, Order::Acceleration, &required).is_err());
         // The position is not judged here, however far off.
         let strict = Accuracy {
             position: 0.0,
             ..required
         };
         assert_eq!(
-            rates_accuracy_at(10.0, Order::Acceleration, &strict),
-            Ok(Accuracy::estimate(10.0, 1.0))
-        );
-        assert_eq!(
             rates_accuracy(
                 10.0,
                 &jacobian,
                 64.0,
                 [true, true],
+                None,
                 Order::Acceleration,
                 &strict
             ),
             Ok(Accuracy::estimate(10.0, 64.0))
         );
+    }
+
+    #[test]
+    fn rates_at_a_position_not_a_closed_form_carry_its_error() {
+        let e = f64::EPSILON;
+        // At a Newton position on its floor (32·ε·κ): 16·ε·κ²·ρ and 16·ε·κ³·ρ² more.
+        let (kappa, aspect) = (100.0, 4.0);
+        let closed = Accuracy::<f64>::estimate(kappa, aspect);
+        let floor = Accuracy::<f64>::estimate_at(kappa, aspect, 0.0);
+        assert_eq!(floor.position, closed.position);
+        assert_eq!(
+            floor.velocity,
+            closed.velocity + kappa * aspect * (32.0 * e * kappa) * 0.5
+        );
+        assert_eq!(
+            floor.acceleration,
+            closed.acceleration + kappa * kappa * aspect * (32.0 * e * kappa) * 0.5
+        );
+        assert!(
+            (floor.velocity - closed.velocity) / (16.0 * e * kappa * kappa * aspect) - 1.0 < 1e-12
+        );
+        // A position off by more than the floor (a loose tolerance) is that far off, and so
+        // are its rates, in proportion.
+        let loose = Accuracy::<f64>::estimate_at(kappa, aspect, 1e-6);
+        assert_eq!(loose.position, 1e-6);
+        assert_eq!(
+            loose.velocity,
+            closed.velocity + kappa * aspect * 1e-6 * 0.5
+        );
+        // An aspect below 1 counts as 1; an unknown error is unknown.
+        assert_eq!(
+            Accuracy::<f64>::estimate_at(kappa, 0.5, 0.0),
+            Accuracy::<f64>::estimate_at(kappa, 1.0, 0.0)
+        );
+        assert!(
+            Accuracy::<f64>::estimate_at(kappa, aspect, f64::NAN)
+                .velocity
+                .is_nan()
+        );
+        // rates_accuracy passes it on, at the aspect of the Jacobian's columns (here 10 over
+        // the shortest angle's column, 1), on the ordinary path and off it alike.
+        let jacobian = [[3.0, 0.0], [4.0, 1.0]];
+        let required = Accuracy::<f64>::required();
+        for (size, position) in [(10.0, 0.0), (10.0, 1e-12), (64.0, 0.0)] {
+            let aspect = size / 1.0;
+            assert_eq!(
+                rates_accuracy(
+                    10.0,
+                    &jacobian,
+                    size,
+                    [true, true],
+                    Some(position),
+                    Order::Acceleration,
+                    &required
+                ),
+                Ok(Accuracy::estimate_at(10.0, aspect, position))
+            );
+        }
+        // Accelerations refused where the closed form's position would pass (κ 2000: ε·κ³ is
+        // 1.8e-6 of the 1.2e-4 required, 16·ε·κ³·ρ at ρ 10 is 2.8e-4).
+        let kappa = 2e3;
+        assert!(
+            rates_accuracy(
+                kappa,
+                &jacobian,
+                10.0,
+                [true, true],
+                None,
+                Order::Acceleration,
+                &required
+            )
+            .is_ok()
+        );
+        assert!(matches!(
+            rates_accuracy(
+                kappa,
+                &jacobian,
+                10.0,
+                [true, true],
+                Some(0.0),
+                Order::Acceleration,
+                &required
+            ),
+            Err(Error::Inaccurate {
+                order: Order::Acceleration,
+                ..
+            })
+        ));
     }
 }

@@ -294,6 +294,18 @@ pub mod lanes {
         }
     }
 
+    /// `value` where a turning angle's column (its square `turning_column`) is at least as
+    /// long as [`crate::rate_limits::RateLimits::least_turning_column`] (`least`), else NaN
+    /// for the checked kernel to judge at the aspect the column gives (NaN for a NaN column).
+    #[inline(always)]
+    pub fn within_ordinary_aspect<T: Real>(value: T, turning_column: T, least: T) -> T {
+        if turning_column >= least {
+            value
+        } else {
+            T::nan()
+        }
+    }
+
     /// [`super::inverse_determinant`], with NaN for "singular". The norms' inverse is
     /// positive, so `|det|·inverse_norms` is `|det·inverse_norms|` bit for bit, and a
     /// determinant passed negated costs no negation here.

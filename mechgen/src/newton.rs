@@ -121,6 +121,31 @@ pub struct Converged<T, const N: usize, P> {
     pub jacobian: Factored<T, N>,
 }
 
+impl<T: Real, const N: usize, P> Converged<T, N, P> {
+    /// The position's estimated error, relative to the size as
+    /// [`Accuracy::estimate`](crate::Accuracy::estimate)'s position: `2·κ·max(16·ε, r/Σ|r|)`
+    /// for the weighted residual `r` it stopped at. The inverse of the column-scaled
+    /// Jacobian has entries up to κ and the errors of two unknowns can add, so a residual `r`
+    /// leaves the position up to `2·κ·r` off; on the floor (`16·ε·Σ|r|`, which also covers
+    /// the rounding of evaluating the residual) that is the contract's `32·ε·κ`, and above it
+    /// (a tolerance looser than the floor) the residual itself.
+    pub fn position_accuracy(&self) -> T {
+        self.position_accuracy_at(self.solved.condition)
+    }
+
+    /// [`Converged::position_accuracy`] with the condition `condition` instead of the
+    /// iteration's: the full Jacobian's, where Newton iterates on fewer unknowns than the
+    /// position has (the rest in closed form, to rounding, inside each evaluation).
+    pub fn position_accuracy_at(&self, condition: T) -> T {
+        let kappa = condition.max(T::one());
+        let floor = T::constant(16.0) * T::epsilon();
+        let relative = weighted_norm(&self.at.residual, &self.at.weights) / self.at.scale;
+        // The larger, and the residual where it is not a number (an undefined size).
+        let relative = if relative <= floor { floor } else { relative };
+        T::constant(2.0) * kappa * relative
+    }
+}
+
 /// How far above the rounding floor `16 ε Σ|r|` a residual that no step lowers still counts as
 /// converged: the floor is an estimate, and a coupled evaluation (closed forms inside the
 /// iteration) rounds at intermediate magnitudes somewhat above its vectors'.

@@ -7,8 +7,11 @@
 //! count the aspect, the mechanism's size over its shortest angle column: a link far shorter
 //! than the linkage it hangs from has a direction located only to the rounding of the whole
 //! linkage, however well conditioned its own block is. A scene computes the aspect once per
-//! mechanism, from the columns whose length is fixed by the dimensions (an angle whose vector
-//! is a slide moves its column's length, and its block is judged by its condition alone).
+//! mechanism, from the columns whose length is fixed by the dimensions. An angle whose vector
+//! is a slide moves its column's length with the position (an inverted slider-crank's rocker
+//! column is the distance from its pivot to the crank pin), so its block is judged at the
+//! aspect it has there: within the ordinary aspect, by the thresholds computed once (which an
+//! aspect up to it does not move); beyond, by the estimate at that aspect.
 
 use crate::{Accuracy, Error, Order, Real};
 
@@ -20,14 +23,20 @@ pub struct RateLimits<T> {
     pub thresholds: [T; 2],
     /// The thresholds squared, for kernels that test `det² > threshold²·norms²`.
     pub squared_thresholds: [T; 2],
+    /// The least squared length of a turning angle's column (one whose length moves) at
+    /// which the thresholds hold: the size's square over 15.9² (the ordinary aspect, with
+    /// `accuracy.rs`'s margin for rounding).
+    pub least_turning_column: T,
     aspect: T,
+    size: T,
     required: Accuracy<T>,
 }
 
 impl<T: Real> RateLimits<T> {
-    /// The limits for rates required to be within `required`, in a mechanism of aspect
-    /// `aspect`.
-    pub fn new(required: &Accuracy<T>, aspect: T) -> Self {
+    /// The limits for rates required to be within `required`, in a mechanism whose loops'
+    /// declared lengths sum to `size` and whose columns of fixed length give it the aspect
+    /// `aspect` (see [`aspect`]).
+    pub fn new(required: &Accuracy<T>, size: T, aspect: T) -> Self {
         let thresholds = [
             rate_threshold(Order::Velocity, required, aspect),
             rate_threshold(Order::Acceleration, required, aspect),
@@ -35,14 +44,66 @@ impl<T: Real> RateLimits<T> {
         RateLimits {
             thresholds,
             squared_thresholds: thresholds.map(|threshold| threshold * threshold),
+            least_turning_column: size * size / T::constant(252.81),
             aspect,
+            size,
             required: *required,
         }
     }
 
     /// These limits with the requirement `required` instead.
     pub fn with_accuracy(&self, required: &Accuracy<T>) -> Self {
-        RateLimits::new(required, self.aspect)
+        RateLimits::new(required, self.size, self.aspect)
+    }
+
+    /// [`RateLimits::inverse_determinant`] for a block with an angle whose column's length
+    /// moves, `turning_column` its square at this position: within the ordinary aspect the
+    /// same; beyond it (a slide passing near its pivot), judged by the estimate at the
+    /// aspect the column gives, so a direction the rounding of the whole linkage leaves
+    /// undetermined has no rates.
+    #[inline]
+    pub fn inverse_determinant_turning(
+        &self,
+        det: T,
+        inverse_norms: T,
+        order: Order,
+        turning_column: T,
+    ) -> Result<T, Error<T>> {
+        if turning_column >= self.least_turning_column {
+            return self.inverse_determinant(det, inverse_norms, order);
+        }
+        self.judged_at_column(det, inverse_norms, order, turning_column)
+    }
+
+    /// The rest of [`RateLimits::inverse_determinant_turning`], out of line.
+    #[cold]
+    fn judged_at_column(
+        &self,
+        det: T,
+        inverse_norms: T,
+        order: Order,
+        turning_column: T,
+    ) -> Result<T, Error<T>> {
+        let relative = det * inverse_norms;
+        if relative.is_nan() || relative.abs() <= crate::singular_threshold::<T>() {
+            return Err(Error::Singular {
+                determinant: det,
+                relative_determinant: relative.abs(),
+            });
+        }
+        // The larger of the mechanism's and this column's, NaN (no rates) for a NaN column.
+        let here = self.size / turning_column.sqrt();
+        let aspect = if here <= self.aspect {
+            self.aspect
+        } else {
+            here
+        };
+        let required = Accuracy {
+            position: T::infinity(),
+            ..self.required
+        };
+        Accuracy::estimate(relative.abs().recip(), aspect).within(&required, order)?;
+        Ok(det.recip())
     }
 
     /// `1/det` of a rate block whose columns' norms multiply to `1/inverse_norms`, for rates
@@ -144,8 +205,8 @@ mod tests {
     #[test]
     fn thresholds_are_where_the_estimates_reach_the_requirement() {
         let required = Accuracy::<f64>::required();
-        // ε·κ·(64 + 4κ) = r at κ = (−64 + √(64² + 16r/ε))/8.
-        let kappa = (-64.0 + (64.0f64 * 64.0 + 16.0 * required.velocity / E).sqrt()) / 8.0;
+        // ε·κ·(64 + 12κ) = r at κ = (−64 + √(64² + 48r/ε))/24.
+        let kappa = (-64.0 + (64.0f64 * 64.0 + 48.0 * required.velocity / E).sqrt()) / 24.0;
         let threshold = rate_threshold(Order::Velocity, &required, 1.0);
         assert!(
             (threshold * kappa - 1.0).abs() < 1e-9,
@@ -211,7 +272,7 @@ mod tests {
     #[test]
     fn rate_determinants_are_singular_then_inaccurate_then_solved() {
         let required = Accuracy::<f64>::required();
-        let limits = RateLimits::new(&required, 1.0);
+        let limits = RateLimits::new(&required, 1.0, 1.0);
         let threshold = limits.thresholds[0];
         assert_eq!(
             limits.inverse_determinant(-0.5, 0.25, Order::Velocity),
@@ -271,7 +332,7 @@ mod tests {
         );
         // A mechanism whose aspect leaves no rate accurate: every block refused as
         // inaccurate, with an infinite estimate, however well conditioned.
-        let thin = RateLimits::new(&required, 1e9);
+        let thin = RateLimits::new(&required, 1.0, 1e9);
         assert_eq!(
             thin.inverse_determinant(1.0, 1.0, Order::Velocity),
             Err(Error::Inaccurate {
@@ -288,5 +349,61 @@ mod tests {
         };
         assert_eq!(thin.with_accuracy(&loose).thresholds, [f64::INFINITY; 2]);
         assert_eq!(limits.with_accuracy(&loose).thresholds, [sqrt_epsilon; 2]);
+    }
+
+    #[test]
+    fn a_turning_column_is_judged_at_its_own_aspect() {
+        let required = Accuracy::<f64>::required();
+        // Size 16: a turning column down to 16/15.9 long keeps the mechanism's thresholds.
+        let limits = RateLimits::new(&required, 16.0, 2.0);
+        assert_eq!(limits.least_turning_column, 256.0 / 252.81);
+        let ordinary = 256.0 / 252.81;
+        for order in [Order::Velocity, Order::Acceleration] {
+            for det in [0.5, 1e-3, 1e-9] {
+                assert_eq!(
+                    limits.inverse_determinant_turning(det, 1.0, order, ordinary),
+                    limits.inverse_determinant(det, 1.0, order)
+                );
+            }
+        }
+        // Shorter: the estimate at the aspect it gives. A column of 1e-6 (aspect 1.6e7, s 1e6)
+        // with a well conditioned block: its velocity's estimate is ε·(64 + 12)·1e6, within;
+        // its acceleration's ε·(256 + 1)·1e12, not.
+        let short = 1e-12;
+        assert_eq!(
+            limits.inverse_determinant_turning(0.5, 2.0, Order::Velocity, short),
+            Ok(2.0)
+        );
+        let estimate = Accuracy::estimate(1.0, 16.0 / 1e-6);
+        assert_eq!(
+            limits.inverse_determinant_turning(0.5, 2.0, Order::Acceleration, short),
+            Err(Error::Inaccurate {
+                order: Order::Acceleration,
+                estimate: estimate.acceleration,
+                required: required.acceleration,
+            })
+        );
+        // Shorter than √ε of the size: no rates.
+        assert!(matches!(
+            limits.inverse_determinant_turning(0.5, 2.0, Order::Velocity, 1e-20),
+            Err(Error::Inaccurate {
+                estimate,
+                ..
+            }) if estimate.is_infinite()
+        ));
+        // A NaN column is no column; a singular block is singular first.
+        assert!(matches!(
+            limits.inverse_determinant_turning(0.5, 2.0, Order::Velocity, f64::NAN),
+            Err(Error::Inaccurate { .. })
+        ));
+        assert!(matches!(
+            limits.inverse_determinant_turning(1e-9, 1.0, Order::Velocity, short),
+            Err(Error::Singular { .. })
+        ));
+        // The size is kept with a new requirement.
+        assert_eq!(
+            limits.with_accuracy(&required).least_turning_column,
+            limits.least_turning_column
+        );
     }
 }

@@ -2205,13 +2205,37 @@ pub mod judge {
         fn build(dims: &[T], coupler: Option<(T, T)>) -> Option<Self>;
         /// `None` where there is no closed form.
         fn assemble(&self, input: T, b: &[Branch]) -> Option<Got<Vec<f64>>>;
-        fn motion(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Got<[Vec<f64>; 3]>>;
+        /// The position, rates and accelerations, and the accuracy the `Motion` states.
+        fn motion(
+            &self,
+            input: T,
+            b: &[Branch],
+            w: T,
+            a: T,
+        ) -> Option<Got<([Vec<f64>; 3], Stated)>>;
         /// The position, `Solved::condition` and `Solved::residual_norm`.
         fn position(&self, input: T, guess: &[T]) -> Got<(Vec<f64>, f64, f64)>;
-        fn motion_near(&self, input: T, guess: &[T], w: T, a: T) -> Got<([Vec<f64>; 3], f64)>;
+        /// The position, rates and accelerations, `Solved::condition`, and the accuracy the
+        /// `Motion` states.
+        fn motion_near(
+            &self,
+            input: T,
+            guess: &[T],
+            w: T,
+            a: T,
+        ) -> Got<([Vec<f64>; 3], f64, Stated)>;
         fn condition(&self, input: T, q: &[T]) -> f64;
         /// Every scene, by name, with its outputs; `None` where there are no scenes.
         fn scenes(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Scenes>;
+    }
+
+    /// What a `Motion` states of its own accuracy (`mechgen::Accuracy`): the estimated
+    /// relative errors of its position, velocity and acceleration.
+    pub type Stated = [f64; 3];
+
+    fn stated<T: Real>(accuracy: &mechgen::Accuracy<T>) -> Stated {
+        [accuracy.position, accuracy.velocity, accuracy.acceleration]
+            .map(|a| a.to_f64().unwrap_or(f64::NAN))
     }
 
     fn point<T: Real>(name: &'static str, level: usize, v: mechgen::Vec2<T>) -> Quantity {
@@ -2252,7 +2276,13 @@ pub mod judge {
                     .map_err(widen)
             }
 
-            fn motion_near(&self, input: T, guess: &[T], w: T, a: T) -> Got<([Vec<f64>; 3], f64)> {
+            fn motion_near(
+                &self,
+                input: T,
+                guess: &[T],
+                w: T,
+                a: T,
+            ) -> Got<([Vec<f64>; 3], f64, Stated)> {
                 let guess = $unknowns::from_array(guess.try_into().expect("a guess per unknown"));
                 self.motion_near(input, &guess, &NewtonOptions::default(), w, a)
                     .map(|s| {
@@ -2264,6 +2294,7 @@ pub mod judge {
                                 f(&m.acceleration.to_array()),
                             ],
                             s.condition.to_f64().unwrap_or(f64::NAN),
+                            stated(&m.accuracy),
                         )
                     })
                     .map_err(widen)
@@ -2286,15 +2317,24 @@ pub mod judge {
                 )
             }
 
-            fn motion(&self, input: T, b: &[Branch], w: T, a: T) -> Option<Got<[Vec<f64>; 3]>> {
+            fn motion(
+                &self,
+                input: T,
+                b: &[Branch],
+                w: T,
+                a: T,
+            ) -> Option<Got<([Vec<f64>; 3], Stated)>> {
                 Some(
                     self.motion(input, $branches(b), w, a)
                         .map(|m| {
-                            [
-                                f(&m.position.to_array()),
-                                f(&m.velocity.to_array()),
-                                f(&m.acceleration.to_array()),
-                            ]
+                            (
+                                [
+                                    f(&m.position.to_array()),
+                                    f(&m.velocity.to_array()),
+                                    f(&m.acceleration.to_array()),
+                                ],
+                                stated(&m.accuracy),
+                            )
                         })
                         .map_err(widen),
                 )
@@ -2517,7 +2557,7 @@ pub mod judge {
             None
         }
 
-        fn motion(&self, _: T, _: &[Branch], _: T, _: T) -> Option<Got<[Vec<f64>; 3]>> {
+        fn motion(&self, _: T, _: &[Branch], _: T, _: T) -> Option<Got<([Vec<f64>; 3], Stated)>> {
             None
         }
 
@@ -2636,12 +2676,12 @@ pub mod judge {
             self.truth.as_ref().map_or(1.0, |t| t.aspect(self.size()))
         }
 
-        /// Whether mechgen's estimate (`mechgen::Accuracy::estimate`) of `order` at the true
-        /// position, with κ up to eight times the truth's (as it is at a position within its
-        /// error of the truth near a toggle) and the judge's aspect, exceeds
-        /// `mechgen::Accuracy::required`:
+        /// Whether mechgen's estimate (`mechgen::Accuracy::estimate`, or `estimate_at` for rates
+        /// at a `newton` position) of `order` at the true position, with κ up to eight times
+        /// the truth's (as it is at a position within its error of the truth near a toggle)
+        /// and the judge's aspect, exceeds `mechgen::Accuracy::required`:
         /// then `Inaccurate` is the documented answer.
-        fn inaccuracy_allowed(&self, order: mechgen::Order) -> bool {
+        fn inaccuracy_allowed(&self, order: mechgen::Order, newton: bool) -> bool {
             let Some(t) = &self.truth else {
                 return true;
             };
@@ -2654,11 +2694,26 @@ pub mod judge {
             if order != mechgen::Order::Position && self.rho() * e.sqrt() >= 1.0 {
                 return true;
             }
+            // Rates at a Newton position carry its error, 32·ε·κ on its floor, through the
+            // Jacobian (README, "Accuracy"): 16·ε·κ²·ρ more for a velocity, 16·ε·κ³·ρ for an
+            // acceleration.
+            let (newton_velocity, newton_acceleration) = if newton {
+                let rho = self.rho().max(1.0);
+                (
+                    FACTOR * e * kappa * kappa * rho,
+                    FACTOR * e * kappa.powi(3) * rho,
+                )
+            } else {
+                (0.0, 0.0)
+            };
             let (estimate, required) = match order {
                 mechgen::Order::Position => (POSITION_FACTOR * e * kappa, e.sqrt()),
-                mechgen::Order::Velocity => (e * kappa * (64.0 + 4.0 * kappa) * shrunk, e.cbrt()),
+                mechgen::Order::Velocity => (
+                    e * kappa * (64.0 + 12.0 * kappa) * shrunk + newton_velocity,
+                    e.cbrt(),
+                ),
                 mechgen::Order::Acceleration => (
-                    e * kappa * (256.0 + kappa * kappa) * shrunk * shrunk,
+                    e * kappa * (256.0 + kappa * kappa) * shrunk * shrunk + newton_acceleration,
                     e.sqrt().sqrt(),
                 ),
             };
@@ -2900,6 +2955,65 @@ pub mod judge {
             }
         }
 
+        /// Whether a `Motion`'s errors are within the accuracy it states (`Motion::accuracy`,
+        /// which the README calls a bound on the true error): its position's against the size
+        /// (Newton's against the larger of the size and each loop's magnitudes, as its
+        /// position's estimate is derived), its rates' and accelerations' against their sizes,
+        /// each unknown weighted by its column, as the contract measures them.
+        fn within_stated(&self, v: &mut Verdict, api: Api, got: &[Vec<f64>], stated: &Stated) {
+            let Some(truth) = &self.truth else {
+                return;
+            };
+            let (Some(tv), Some(ta)) = (&truth.velocity, &truth.acceleration) else {
+                return;
+            };
+            let newton = api == Api::MotionNear;
+            let size = self.size();
+            let position =
+                position_error(&self.model, truth, &got[0]) / self.newton_size(truth, newton);
+            let no_angles = vec![false; self.n()];
+            let velocity = weighted_error(
+                truth,
+                &no_angles,
+                &got[1],
+                tv,
+                rate_size(truth, tv, size, truth.omega.abs()),
+            );
+            let acceleration = weighted_error(
+                truth,
+                &no_angles,
+                &got[2],
+                ta,
+                rate_size(
+                    truth,
+                    ta,
+                    size,
+                    truth.omega * truth.omega + truth.alpha.abs(),
+                ),
+            );
+            for (what, error, bound) in [
+                ("position", position, stated[0]),
+                ("velocity", velocity, stated[1]),
+                ("acceleration", acceleration, stated[2]),
+            ] {
+                // Not within for a NaN error or bound.
+                let within = matches!(
+                    error.partial_cmp(&bound),
+                    Some(Ordering::Less | Ordering::Equal)
+                );
+                if !within {
+                    v.fail(
+                        api,
+                        "error beyond the accuracy the result states",
+                        format!(
+                            "{what} error {error:.2e} = {:.1} × the stated {bound:.2e}",
+                            error / bound
+                        ),
+                    );
+                }
+            }
+        }
+
         /// Whether a true rate or acceleration (times its column: a point's speed) is beyond
         /// a sixteenth of the float's largest number, where computing it may overflow and
         /// `NonFinite` is the honest answer.
@@ -2996,7 +3110,8 @@ pub mod judge {
                     }
                 }
                 Error::Inaccurate { order, .. } => {
-                    if !self.singular_allowed() && !self.inaccuracy_allowed(*order) {
+                    let newton = matches!(api, Api::Position | Api::MotionNear);
+                    if !self.singular_allowed() && !self.inaccuracy_allowed(*order, newton) {
                         let kappa = self.truth.as_ref().map_or(f64::NAN, |t| t.condition);
                         v.fail(
                             api,
@@ -3305,21 +3420,23 @@ pub mod judge {
             Api::Assemble | Api::Motion => {
                 let r = if api == Api::Assemble {
                     S::assemble(&m, input, &case.branches)
-                        .map(|r| r.map(|q| [q, Vec::new(), Vec::new()]))
+                        .map(|r| r.map(|q| ([q, Vec::new(), Vec::new()], None)))
                 } else {
                     S::motion(&m, input, &case.branches, w, a)
+                        .map(|r| r.map(|(rates, stated)| (rates, Some(stated))))
                 };
                 let Some(r) = r else {
                     verdict.outcome = "no closed form".into();
                     return verdict;
                 };
                 match r {
-                    Ok(rates) => {
+                    Ok((rates, stated)) => {
                         let q: Vec<T> = rates[0].iter().map(|x| T::constant(*x)).collect();
                         let kappa = S::condition(&m, input, &q);
                         e.position(&mut verdict, api, &rates[0], kappa, &case.branches);
-                        if api == Api::Motion {
+                        if let Some(stated) = stated {
                             e.rates(&mut verdict, api, &rates[1..], kappa);
+                            e.within_stated(&mut verdict, api, &rates, &stated);
                         }
                         Ok(())
                     }
@@ -3342,16 +3459,18 @@ pub mod judge {
                 let switched = e.truth.as_ref().is_some_and(|t| t.branches != wanted);
                 let r = if api == Api::Position {
                     S::position(&m, input, &guess_t)
-                        .map(|(q, k, _)| ([q, Vec::new(), Vec::new()], k))
+                        .map(|(q, k, _)| ([q, Vec::new(), Vec::new()], k, None))
                 } else {
                     S::motion_near(&m, input, &guess_t, w, a)
+                        .map(|(rates, k, stated)| (rates, k, Some(stated)))
                 };
                 let before = verdict.findings.len();
                 let result = match r {
-                    Ok((rates, kappa)) => {
+                    Ok((rates, kappa, stated)) => {
                         e.position(&mut verdict, api, &rates[0], kappa, &wanted);
-                        if api == Api::MotionNear {
+                        if let Some(stated) = stated {
                             e.rates(&mut verdict, api, &rates[1..], kappa);
+                            e.within_stated(&mut verdict, api, &rates, &stated);
                         }
                         Ok(())
                     }
@@ -3491,7 +3610,9 @@ pub mod judge {
                     mechgen::Order::Acceleration,
                 ]
                 .into_iter()
-                .any(|order| e.inaccuracy_allowed(order));
+                .any(|order| {
+                    e.inaccuracy_allowed(order, matches!(case.api, Api::Position | Api::MotionNear))
+                });
             // Rates of lengths (scaled or not) near the float's largest overflow: `NonFinite`
             // is then the answer (the truth is not representable), whatever the factor.
             // Near a toggle the rates grow with κ and the accelerations with κ³.
@@ -3587,7 +3708,9 @@ pub mod judge {
             Api::Assemble => S::assemble(&m, input, &case.branches)?
                 .ok()
                 .map(|q| spread([q, vec![], vec![]])),
-            Api::Motion => S::motion(&m, input, &case.branches, w, a)?.ok().map(spread),
+            Api::Motion => S::motion(&m, input, &case.branches, w, a)?
+                .ok()
+                .map(|(levels, _)| spread(levels)),
             // Newton's guesses are lengths scaled too; the raw comparison needs the same guess.
             _ => None,
         }

@@ -459,7 +459,7 @@ pub fn table() -> String {
          condition estimate (the Jacobian's column norms over its determinant) and ρ its \
          aspect (the size over the shortest column of an angle unknown). Each error is shown \
          beside mechgen's estimate of it (`mechgen::Accuracy::estimate` at the reference's κ \
-         and ρ: position 32·ε·κ, velocity ε·(64·κ + 4·κ²)·s, acceleration ε·(256·κ + κ³)·s² \
+         and ρ: position 32·ε·κ, velocity ε·(64·κ + 12·κ²)·s, acceleration ε·(256·κ + κ³)·s² \
          with s = max(1, ρ/16)), which \
          it must not exceed; where the estimate exceeds `mechgen::Accuracy::required` (ε^(1/3) \
          for velocities, ε^(1/4) for accelerations) the answer must be `Inaccurate` instead, \

@@ -64,10 +64,13 @@ proptest! {
         for branch in BRANCHES {
             let Ok(q) = linkage.assemble(theta2, branch) else { continue };
             residual_is_rounding(linkage.residual(theta2, &q), scale)?;
-            // Away from toggles, where the two branches are distinct solutions.
+            // Away from toggles, where the two branches are distinct solutions, by more than
+            // the guess's nudge of 1e-3 rad: nearer, the nudge can cross to the other branch,
+            // and Newton rightly says `OtherBranch` (l = [9.5, 2.0, 66.5, 74.6] at θ2 = −0.672,
+            // whose relative determinant is under 1e-2).
             let j = linkage.jacobian(theta2, &q);
             let relative = (j[0][0] * j[1][1] - j[0][1] * j[1][0]) / (l[2] * l[3]);
-            prop_assume!(relative.abs() > 1e-3);
+            prop_assume!(relative.abs() > 1e-2);
             prop_assert_eq!(linkage.branch_of(theta2, &q), branch);
             let guess = FourBarUnknowns::from_array(nudged(q.to_array()));
             let newton = linkage.position(theta2, &guess, &NewtonOptions::default()).unwrap();

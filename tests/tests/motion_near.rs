@@ -92,3 +92,92 @@ fn coupled_loops_motion_near_matches_position_and_motion_at() {
         guess = near.value.position;
     }
 }
+
+/// Newton's stated accuracy holds where it stops above the rounding floor (a tolerance
+/// looser than the floor, as the seeds' 1e-4 mm), its rates' estimates growing with the
+/// position's error: Example 1 at 60°, from guesses 1e-3 to 0.05 rad off, against the closed
+/// form (whose own error is far below these). With the default requirement the loosest of
+/// them are `Inaccurate`: their rates have fewer digits than required, as they state.
+#[test]
+fn a_loose_tolerance_states_the_accuracy_it_leaves() {
+    let linkage = common::example_1::<f64>();
+    let (t, w, a) = (60f64.to_radians(), 10.0, 2.0);
+    let exact = linkage.motion(t, Branch::Open, w, a).unwrap();
+    let size = 180.0 + 80.0 + 200.0 + 150.0;
+    let rates = |q: mechanisms::FourBarUnknowns<f64>| {
+        (q.theta3 * 200.0).abs().max((q.theta4 * 150.0).abs())
+    };
+    let error = |got: mechanisms::FourBarUnknowns<f64>, want: mechanisms::FourBarUnknowns<f64>| {
+        ((got.theta3 - want.theta3) * 200.0)
+            .abs()
+            .max(((got.theta4 - want.theta4) * 150.0).abs())
+    };
+    let mut loose_seen = false;
+    for tolerance in [0.0, 1e-9, 1e-6, 1e-4, 1e-2] {
+        for offset in [1e-3, 1e-2, 5e-2] {
+            let guess = mechanisms::FourBarUnknowns {
+                theta3: exact.position.theta3 + offset,
+                theta4: exact.position.theta4 - offset,
+            };
+            // Every rate returned, however few its digits, to compare with what it states.
+            let options = NewtonOptions::new(tolerance, 50).with_accuracy(mechgen::Accuracy {
+                position: 1.0,
+                velocity: 1.0,
+                acceleration: 1.0,
+            });
+            let near = linkage.motion_near(t, &guess, &options, w, a).unwrap();
+            let m = near.value;
+            let position = error(m.position, exact.position) / size;
+            let velocity =
+                error(m.velocity, exact.velocity) / (size * w).max(rates(exact.velocity));
+            let acceleration = error(m.acceleration, exact.acceleration)
+                / (size * (w * w + a)).max(rates(exact.acceleration));
+            let case = format!("tolerance {tolerance:e}, guess {offset:e} off");
+            assert!(
+                position <= m.accuracy.position,
+                "{case}: position {position:e} vs {:e}",
+                m.accuracy.position
+            );
+            assert!(
+                velocity <= m.accuracy.velocity,
+                "{case}: velocity {velocity:e} vs {:e}",
+                m.accuracy.velocity
+            );
+            assert!(
+                acceleration <= m.accuracy.acceleration,
+                "{case}: acceleration {acceleration:e} vs {:e}",
+                m.accuracy.acceleration
+            );
+            // The estimate follows the residual it stopped at, not the floor alone.
+            if near.residual_norm > 1e-9 {
+                loose_seen = true;
+                assert!(m.accuracy.position >= 2.0 * near.residual_norm / size);
+            }
+        }
+    }
+    assert!(loose_seen, "some solve stopped above the floor");
+}
+
+#[test]
+fn rates_too_far_off_for_the_requirement_are_refused() {
+    let linkage = common::example_1::<f64>();
+    let (t, w, a) = (60f64.to_radians(), 10.0, 2.0);
+    let exact = linkage.motion(t, Branch::Open, w, a).unwrap();
+    let guess = mechanisms::FourBarUnknowns {
+        theta3: exact.position.theta3 + 1e-2,
+        theta4: exact.position.theta4 - 1e-2,
+    };
+    // Stopped at a residual of 7e-3 mm: the position is 2e-5 of the size off at most, and its
+    // rates have about four digits, fewer than the five required.
+    let loose = NewtonOptions::new(1e-2, 50);
+    assert!(matches!(
+        linkage.motion_near(t, &guess, &loose, w, a),
+        Err(mechgen::Error::Inaccurate {
+            order: mechgen::Order::Velocity,
+            ..
+        })
+    ));
+    // The position alone is still returned, with its residual.
+    let position = linkage.position(t, &guess, &loose).unwrap();
+    assert!(position.residual_norm > 1e-3);
+}

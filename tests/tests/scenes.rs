@@ -556,3 +556,48 @@ mod declarations {
         }
     }
 }
+
+/// An inverted slider-crank whose slide passes through its pivot (offset 0, crank as long as
+/// the ground): as the crank nears 0 the rocker's column (the distance from the pivot to the
+/// crank pin, 200·sin(θ2/2)) shrinks toward nothing, and the rocker's direction with it is lost
+/// in the rounding of the whole linkage. The scene refuses the rates once their estimate at
+/// that aspect exceeds what is required (the acceleration's, ε·257·(ρ/16)², below θ2 ≈ 3e-6),
+/// as `motion` does, rather than return rates with no correct digit; before that the two agree,
+/// and with the truth (θ4 = π/2 + θ2/2 exactly, so ω4 = ω2/2 and α4 = α2/2).
+#[test]
+fn a_slide_through_its_pivot_has_no_rates_as_it_passes() {
+    let linkage = InvertedSliderCrank::new(100.0f64, 100.0, 0.0, 0.0).unwrap();
+    let scenes = linkage.scenes().unwrap();
+    let mut out = [scenes.state(1.0, Branch::Open, 1.0, 0.5).unwrap(); 1];
+    for t in [1e-12, 1e-9, 1e-6] {
+        let scene = scenes.state(t, Branch::Open, 1.0, 0.5);
+        let general = linkage.motion(t, Branch::Open, 1.0, 0.5);
+        assert!(
+            matches!(scene, Err(mechgen::Error::Inaccurate { .. })),
+            "θ2 = {t}: {scene:?}"
+        );
+        assert!(
+            matches!(general, Err(mechgen::Error::Inaccurate { .. })),
+            "θ2 = {t}: {general:?}"
+        );
+        assert!(
+            scenes
+                .state_batch(&[t], Branch::Open, 1.0, 0.5, &mut out)
+                .is_err()
+        );
+    }
+    for t in [1e-3f64, 0.5, 1.0, 2.0] {
+        let scene = scenes.state(t, Branch::Open, 1.0, 0.5).unwrap();
+        let general = linkage.motion(t, Branch::Open, 1.0, 0.5).unwrap();
+        assert!((scene.theta4_dot - 0.5).abs() < 1e-9, "θ2 = {t}: {scene:?}");
+        assert!(
+            (scene.theta4_ddot - 0.25).abs() < 1e-6,
+            "θ2 = {t}: {scene:?}"
+        );
+        assert!((scene.theta4_ddot - general.acceleration.theta4).abs() < 1e-6);
+        scenes
+            .state_batch(&[t], Branch::Open, 1.0, 0.5, &mut out)
+            .unwrap();
+        assert_eq!(out[0], scene);
+    }
+}

@@ -343,7 +343,12 @@ impl Generator<'_> {
             })
             .collect();
         let rest: Vec<Emitted> = outputs.collect();
-        let rate_solves = self.rate_solves(&rest, &statements[last], &statements[last + 1]);
+        let rate_solves = self.rate_solves(
+            &rest,
+            &statements[last],
+            &statements[last + 1],
+            &super::rates::PositionFrom::ClosedForm,
+        );
         let names = self.model.unknowns.iter().map(|u| &u.name);
         let branch_parameter = self.branch_parameter(steps);
         let (rates, accelerations) = (local("rates"), local("accelerations"));

@@ -14,7 +14,7 @@ mod evaluators;
 mod newton;
 mod normalise;
 mod points;
-mod rates;
+pub(crate) mod rates;
 mod reduced;
 mod scenes;
 mod sensitivities;

@@ -26,7 +26,10 @@ impl Generator<'_> {
             "The unknowns' rates at a solved `position`, for {the_input} moving at \
              `{input_dot_text}`:\nsolves {solves}.\n\n\
              Errors: a non-finite argument; a singular Jacobian (a toggle, where the rates \
-             are unbounded)."
+             are unbounded); rates less accurate than [`mechgen::Accuracy::required`] \
+             ([`mechgen::Error::Inaccurate`]), judged as at a closed form's position (from \
+             `assemble`). A position from Newton is known less well, and its rates with it: \
+             [`Self::motion_at`] and `motion_near` estimate them for it."
         );
         self.checked_function("velocity", &docs, 3, &unknowns, body)
     }
@@ -46,7 +49,9 @@ impl Generator<'_> {
             "The unknowns' accelerations at a solved `position` and `velocity`, for the \
              {rates}.\nThe right-hand side is the second time derivative of the loops{cross}, \
              so centripetal, Coriolis and sliding terms are all in it.\n\n\
-             Errors: a non-finite argument; a singular Jacobian."
+             Errors: a non-finite argument; a singular Jacobian; accelerations less accurate \
+             than [`mechgen::Accuracy::required`] ([`mechgen::Error::Inaccurate`]), judged as \
+             at a closed form's position, as [`Self::velocity`]."
         );
         self.checked_function("acceleration", &docs, 5, &unknowns, body)
     }
@@ -81,7 +86,12 @@ impl Generator<'_> {
             },
         ) = self.block_with(&entries, Bindings::Position, &[], &stage);
         statements.resize(2, Vec::new());
-        let rate_solves = self.rate_solves(&outputs, &statements[0], &statements[1]);
+        let rate_solves = self.rate_solves(
+            &outputs,
+            &statements[0],
+            &statements[1],
+            &PositionFrom::Caller,
+        );
         let (rates, accelerations) = (local("rates"), local("accelerations"));
         let accuracy = local("accuracy");
         let rates_check = self.input_rates_check();
@@ -89,7 +99,10 @@ impl Generator<'_> {
             "Velocity and acceleration at a solved `position` (from [`Self::position`], say) in \
              one pass, for {the_input} moving at `{input_dot_text}` and accelerating at \
              `{input_ddot_text}`: what [`Self::velocity`] and [`Self::acceleration`] give, sharing \
-             their work.\n\nErrors: as [`Self::velocity`] and [`Self::acceleration`]."
+             their work. The accuracy it returns holds for any position the solvers return, \
+             Newton's included (`mechgen::Accuracy::estimate_at`): near a toggle it is less than \
+             a closed form's rates have, and the rates are refused sooner.\n\nErrors: as \
+             [`Self::velocity`] and [`Self::acceleration`], judged by that accuracy."
         ));
         quote! {
             #docs
@@ -124,13 +137,18 @@ impl Generator<'_> {
         outputs: &[Emitted],
         before: &[TokenStream],
         after: &[TokenStream],
+        position: &PositionFrom,
     ) -> TokenStream {
         let n = self.model.unknowns.len();
         let (jacobian, rest) = outputs.split_at(n * n);
         let (velocity_rhs, acceleration_rhs) = rest.split_at(n);
         let (rates, accelerations) = (local("rates"), local("accelerations"));
-        let velocity_solve =
-            self.solves(jacobian, &[(velocity_rhs, rates.clone())], "Acceleration");
+        let velocity_solve = self.solves(
+            jacobian,
+            &[(velocity_rhs, rates.clone())],
+            "Acceleration",
+            position,
+        );
         // The acceleration reuses the factors: only its solve is emitted the second time.
         let acceleration_solve =
             self.reuse_solves(jacobian, &[(acceleration_rhs, accelerations.clone())]);
@@ -165,7 +183,12 @@ impl Generator<'_> {
         } else {
             "Acceleration"
         };
-        let solve = self.solves(jacobian, &[(rhs, solution.clone())], highest);
+        let solve = self.solves(
+            jacobian,
+            &[(rhs, solution.clone())],
+            highest,
+            &PositionFrom::ClosedForm,
+        );
         let accuracy = local("accuracy");
         quote! {
             #prologue
@@ -180,13 +203,15 @@ impl Generator<'_> {
     /// factorisation ([`Self::factorise`]) and the solves ([`Self::reuse_solves`]).
     ///
     /// Before solving, the rates' accuracy up to the order `highest` (`"Velocity"` or
-    /// `"Acceleration"`) is estimated from the Jacobian, and a rate that would have fewer
-    /// correct digits than required is [`mechgen::Error::Inaccurate`].
+    /// `"Acceleration"`) is estimated from the Jacobian and where the `position` came from,
+    /// and a rate that would have fewer correct digits than required is
+    /// [`mechgen::Error::Inaccurate`].
     pub(super) fn solves(
         &self,
         jacobian: &[Emitted],
         right_sides: &[(&[Emitted], Ident)],
         highest: &str,
+        position: &PositionFrom,
     ) -> TokenStream {
         let factors = self.factorise(jacobian);
         let matrix = local("jacobian_matrix");
@@ -202,21 +227,24 @@ impl Generator<'_> {
             condition,
             highest,
             quote!(&::mechgen::Accuracy::required()),
+            position,
         );
         let solves = self.reuse_solves(jacobian, right_sides);
         quote!(#factors #check #solves)
     }
 
-    /// `let accuracy = rates_accuracy(condition, jacobian, size, angles, highest, required)?;`
-    /// for the Jacobian `matrix` (an expression of type `&[[T; N]; N]`) of condition
-    /// `condition`, against `required` (of type `&Accuracy<T>`), the sum of the lengths the
-    /// loops declare as the size: the estimate a [`mechgen::Motion`] carries.
+    /// `let accuracy = rates_accuracy(condition, jacobian, size, angles, position, highest,
+    /// required)?;` for the Jacobian `matrix` (an expression of type `&[[T; N]; N]`) of
+    /// condition `condition` at a position from `position`, against `required` (of type
+    /// `&Accuracy<T>`), the sum of the lengths the loops declare as the size: the estimate a
+    /// [`mechgen::Motion`] carries.
     pub(super) fn rates_check(
         &self,
         matrix: TokenStream,
         condition: TokenStream,
         highest: &str,
         required: TokenStream,
+        position: &PositionFrom,
     ) -> TokenStream {
         self.rates_check_sized(
             matrix,
@@ -224,6 +252,7 @@ impl Generator<'_> {
             highest,
             required,
             self.accuracy_size(quote!(self)),
+            position,
         )
     }
 
@@ -235,7 +264,9 @@ impl Generator<'_> {
         highest: &str,
         required: TokenStream,
         size: TokenStream,
+        position: &PositionFrom,
     ) -> TokenStream {
+        let position = position.tokens();
         let angles = self
             .model
             .unknowns
@@ -249,6 +280,7 @@ impl Generator<'_> {
                 #matrix,
                 #size,
                 [#(#angles),*],
+                #position,
                 ::mechgen::Order::#highest,
                 #required,
             )?;
@@ -409,5 +441,30 @@ impl Generator<'_> {
             }
         });
         quote!(#(#solves)*)
+    }
+}
+
+/// Where the position the rates are solved at came from, which says how far off it may be
+/// (`mechgen::__private::rates_accuracy`'s `position`).
+pub(crate) enum PositionFrom {
+    /// A closed form, computed with the rates: `mechgen::Accuracy::estimate`'s own.
+    ClosedForm,
+    /// The caller, to `motion_at`, which states the accuracy it returns: any position
+    /// within the contract, the closed form's or Newton's, so Newton's `32·ε·κ`.
+    /// (`velocity`, `acceleration` and the sensitivities, which state none, judge a position
+    /// as a closed form's, as their documentation says.)
+    Caller,
+    /// Newton's solution: its error bound from the residual it stopped at, this expression.
+    Newton(TokenStream),
+}
+
+impl PositionFrom {
+    /// The `Option<T>` that `rates_accuracy` takes.
+    fn tokens(&self) -> TokenStream {
+        match self {
+            PositionFrom::ClosedForm => quote!(::core::option::Option::None),
+            PositionFrom::Caller => quote!(::core::option::Option::Some(T::zero())),
+            PositionFrom::Newton(error) => quote!(::core::option::Option::Some(#error)),
+        }
     }
 }

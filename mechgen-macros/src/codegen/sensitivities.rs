@@ -227,7 +227,12 @@ impl Generator<'_> {
             .filter(|(k, _)| moves(*k))
             .map(|(_, (chunk, name))| (chunk, name.clone()))
             .collect();
-        let solve = self.solves(&jacobian, &right_sides, "Velocity");
+        let solve = self.solves(
+            &jacobian,
+            &right_sides,
+            "Velocity",
+            &super::rates::PositionFrom::ClosedForm,
+        );
         let accuracy = local("accuracy");
         let count = proc_macro2::Literal::usize_unsuffixed(n);
         let checks = solutions.iter().enumerate().map(|(k, x)| {

@@ -74,11 +74,16 @@ pub enum AuxKind {
     /// Where the norms move (a column of a changing length), `squared_norms` is their
     /// product's square, for kernels that only decide: `det² > threshold²·norms²` says the
     /// same as the relative determinant without its square root and division.
+    ///
+    /// `turning` holds the squared lengths of the block's angle columns whose length moves
+    /// (an angle whose vector is a slide): a rate block is refused beyond the ordinary aspect
+    /// at the position, which the mechanism's thresholds do not see.
     InverseDeterminant {
         det: ExprId,
         inverse_norms: ExprId,
         squared_norms: Option<ExprId>,
         threshold: Threshold,
+        turning: [Option<ExprId>; 2],
     },
     /// A solved angle from its unit vector `(x, y)`, as `atan2(y, x)` would give it.
     Angle { y: ExprId, x: ExprId },
@@ -122,6 +127,9 @@ struct Builder<'g> {
     /// For each closed-form step, the product of its block's columns' squared norms, where
     /// that moves (see [`AuxKind::InverseDeterminant`]).
     squared_norms: Vec<Option<ExprId>>,
+    /// For each closed-form step, the squared norms of its block's angle columns whose length
+    /// moves (see [`AuxKind::InverseDeterminant`]).
+    turning: Vec<[Option<ExprId>; 2]>,
     /// For each closed-form step, its loop's Jacobian block's determinant as the closed form
     /// knows it (the triangle's height, the quadratic's root): the same value as Cramer's
     /// `j00·j11 − j01·j10`, without that difference's cancellation near a toggle.
@@ -223,8 +231,9 @@ impl Builder<'_> {
         self.replace.insert(var, value);
     }
 
-    /// Records `1/(‖c0‖·‖c1‖)` for the step's Jacobian block from its columns' squared norms.
-    fn block_columns(&mut self, squares: [ExprId; 2]) {
+    /// Records `1/(‖c0‖·‖c1‖)` for the step's Jacobian block from its columns' squared norms,
+    /// `angles` telling which columns are an angle's.
+    fn block_columns(&mut self, squares: [ExprId; 2], angles: [bool; 2]) {
         let [first, second] = squares.map(|square| self.graph.sqrt(square));
         let product = self.graph.mul(first, second);
         let inverse = self.graph.recip(product);
@@ -232,6 +241,9 @@ impl Builder<'_> {
         let squared = self.graph.mul(squares[0], squares[1]);
         let moving = !self.graph.is_fixed(squared);
         self.squared_norms.push(moving.then_some(squared));
+        let turning =
+            [0, 1].map(|k| (angles[k] && !self.graph.is_fixed(squares[k])).then_some(squares[k]));
+        self.turning.push(turning);
     }
 
     /// One loop in closed form; `branch` counts the branching loops so far.
@@ -260,7 +272,7 @@ impl Builder<'_> {
                 let (k, v1, v2) = (vector(0), vector(1), vector(2));
                 let det = self.cross(v1, v2);
                 let columns = [self.dot(v1, v1), self.dot(v2, v2)];
-                self.block_columns(columns);
+                self.block_columns(columns, [false, false]);
                 let inverse_norms = *self.inverse_norms.last().expect("just recorded");
                 // ∂/∂l1 = v1, ∂/∂l2 = v2: the block is the one solved here.
                 self.determinant(step, det);
@@ -269,6 +281,7 @@ impl Builder<'_> {
                     inverse_norms,
                     squared_norms: *self.squared_norms.last().expect("just recorded"),
                     threshold: Threshold::Position,
+                    turning: [None, None],
                 });
                 let (first, second) = (self.cross(v2, k), self.cross(k, v1));
                 let first = self.graph.mul(first, inverse);
@@ -289,7 +302,7 @@ impl Builder<'_> {
                 let inverse = self.aux(AuxKind::Inverse(chord_squared));
                 let (r1, r2) = (self.dot(w1, w1), self.dot(w2, w2));
                 // ∂/∂q1 = i·e^{iq1}·w1, ∂/∂q2 = i·e^{iq2}·w2.
-                self.block_columns([r1, r2]);
+                self.block_columns([r1, r2], [true, true]);
                 let half = self.graph.constant(0.5);
                 let difference = self.graph.sub(r1, r2);
                 let sum = self.graph.add(difference, chord_squared);
@@ -337,7 +350,7 @@ impl Builder<'_> {
                 let half_b = self.dot(w1, w0);
                 let k_squared = self.dot(k, k);
                 // ∂/∂l = e^{iq}·w1, ∂/∂q = i·e^{iq}·(l·w1 + w0), of norm |K|.
-                self.block_columns([quadratic, k_squared]);
+                self.block_columns([quadratic, k_squared], [false, true]);
                 // (w1·w0)² − |w1|²·(|w0|² − |K|²) = |w1|²·|K|² − (w1×w0)² (Lagrange's
                 // identity): no cancellation between large squares.
                 let plus = self.graph.mul(quadratic, k_squared);
@@ -364,7 +377,7 @@ impl Builder<'_> {
                 let quadratic = self.dot(v, v);
                 let radius_squared = self.dot(w0, w0);
                 // ∂/∂l = v, ∂/∂q = i·e^{iq}·w0.
-                self.block_columns([quadratic, radius_squared]);
+                self.block_columns([quadratic, radius_squared], [false, true]);
                 let half_b = self.dot(v, k);
                 // (v·K)² − |v|²·(|K|² − |w0|²) = |v|²·|w0|² − (v×K)² (Lagrange's identity).
                 let plus = self.graph.mul(quadratic, radius_squared);
@@ -429,6 +442,7 @@ impl Builder<'_> {
                 inverse_norms: self.inverse_norms[s],
                 squared_norms: self.squared_norms[s],
                 threshold: Threshold::Rates,
+                turning: self.turning[s],
             });
             let second = self.cross([j00, j10], [right[0], right[1]]);
             let second = self.graph.mul(second, inverse);
@@ -487,6 +501,7 @@ pub fn build(graph: &mut Graph, steps: &[Step], exprs: &SceneExprs, lengths: &[b
         replace: HashMap::new(),
         inverse_norms: Vec::new(),
         squared_norms: Vec::new(),
+        turning: Vec::new(),
         determinants: Vec::new(),
     };
     let mut values = vec![ExprId::from_index(0); n];

@@ -201,6 +201,18 @@ impl Generator<'_> {
                 quote!(#factored.relative()),
             )
         };
+        // The rates' estimate at Newton's position, its error from the residual it stopped at
+        // and the full Jacobian's condition.
+        let condition = quote!((T::one() / #relative.abs()));
+        let accuracy_check = self.rates_check(
+            quote!(&#jacobian),
+            condition.clone(),
+            "Acceleration",
+            quote!(&#options.accuracy),
+            &crate::codegen::rates::PositionFrom::Newton(
+                quote!(#converged.position_accuracy_at(#condition)),
+            ),
+        );
         let docs = doc(&format!(
             "Position by Newton-Raphson from `guess` (as [`Self::position`]: on the iterated \
              unknowns, the rest in closed form), then velocity and acceleration at the solution \
@@ -219,11 +231,7 @@ impl Generator<'_> {
                     return ::core::result::Result::Ok(#solved.map(|_| #motion));
                 }
                 #factor
-                let #accuracy = ::mechgen::__private::rates_accuracy_at(
-                    T::one() / #relative.abs(),
-                    ::mechgen::Order::Acceleration,
-                    &#options.accuracy,
-                )?;
+                #accuracy_check
                 let #rates = #velocity;
                 let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
                 #after_rates

@@ -10,13 +10,14 @@ use crate::codegen::Generator;
 use crate::model::{Kind, Linear, SymbolRef};
 
 impl Generator<'_> {
-    /// `mechgen::__private::aspect(size, [column², …])` over the mechanism `scaled`, from
-    /// the angle unknowns whose columns have a length the dimensions fix: in every loop, one
-    /// vector turns with the angle, and its magnitude is made of parameters. (The column of
-    /// an angle whose vector is a slide, or that turns two vectors of one loop, moves with
-    /// the position; its block is judged by its condition alone.) The same aspect as the
-    /// general functions', whose estimate weighs each column at the position.
-    pub(super) fn scene_aspect(&self, scaled: &Ident) -> TokenStream {
+    /// `(size, mechgen::__private::aspect(size, [column², …]))` over the mechanism `scaled`:
+    /// the sum of the lengths the loops declare, and the aspect from the angle unknowns whose
+    /// columns have a length the dimensions fix: in every loop, one vector turns with the
+    /// angle, and its magnitude is made of parameters. (The column of an angle whose vector
+    /// is a slide, or that turns two vectors of one loop, moves with the position; its block
+    /// is judged at the aspect it has there, from the size.) The same aspect as the general
+    /// functions', whose estimate weighs each column at the position.
+    pub(super) fn scene_aspect(&self, scaled: &Ident) -> (TokenStream, TokenStream) {
         let columns = self
             .model
             .unknowns
@@ -25,7 +26,10 @@ impl Generator<'_> {
             .filter(|(_, unknown)| unknown.kind == Kind::Angle)
             .filter_map(|(u, _)| self.fixed_column(u, scaled));
         let size = self.accuracy_size(quote!(#scaled));
-        quote!(::mechgen::__private::aspect(#size, [#(#columns),*]))
+        (
+            size.clone(),
+            quote!(::mechgen::__private::aspect(#size, [#(#columns),*])),
+        )
     }
 
     /// The squared length of angle unknown `u`'s Jacobian column, where the dimensions fix

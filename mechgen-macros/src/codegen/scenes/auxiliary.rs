@@ -74,7 +74,16 @@ impl Generator<'_> {
                 ..
             } if lanes => {
                 let [det, norms] = [&args[0], &args[1]];
-                if squared_norms.is_some() {
+                // A turning angle's column beyond the ordinary aspect: NaN, for the checked
+                // kernel to judge at the aspect it gives.
+                let turning = &args[2..];
+                let least = quote!(self.rate_limits.least_turning_column);
+                let guarded = |value: TokenStream| {
+                    turning.iter().fold(value, |value, column| {
+                        quote!(::mechgen::__private::lanes::within_ordinary_aspect(#value, #column, #least))
+                    })
+                };
+                let value = if squared_norms.is_some() {
                     // The threshold squared: (8ε)² is 64ε², exactly.
                     let squared = match threshold {
                         Threshold::Position => {
@@ -89,7 +98,8 @@ impl Generator<'_> {
                         Threshold::Rates => rates_threshold.clone(),
                     };
                     quote!(::mechgen::__private::lanes::inverse_determinant(#det, #norms, #threshold))
-                }
+                };
+                guarded(value)
             }
             AuxKind::BranchRoot { branch, .. } => {
                 let choice = branches.get_mut(*branch).map(std::mem::take);
@@ -116,20 +126,40 @@ impl Generator<'_> {
             }
             AuxKind::InverseDeterminant { threshold, .. } => {
                 let [det, inverse_norms] = [&args[0], &args[1]];
-                let call = match threshold {
-                    Threshold::Position => quote! {
-                        ::mechgen::__private::inverse_determinant(
-                            #det,
-                            #inverse_norms,
-                            T::constant(8.0) * T::epsilon(),
-                        )
-                    },
-                    Threshold::Rates => quote! {
-                        self.rate_limits.inverse_determinant(
+                // The shortest turning angle's column, NaN if either is.
+                let turning = match &args[2..] {
+                    [] => None,
+                    [column] => Some(quote!(#column)),
+                    [a, b] => Some(quote! {{
+                        let (a, b) = (#a, #b);
+                        if a.is_nan() || a <= b { a } else { b }
+                    }}),
+                    _ => unreachable!("a block has two columns"),
+                };
+                let call = match (threshold, turning) {
+                    (Threshold::Rates, Some(column)) => quote! {
+                        self.rate_limits.inverse_determinant_turning(
                             #det,
                             #inverse_norms,
                             ::mechgen::Order::#rates_order,
+                            #column,
                         )
+                    },
+                    (threshold, _) => match threshold {
+                        Threshold::Position => quote! {
+                            ::mechgen::__private::inverse_determinant(
+                                #det,
+                                #inverse_norms,
+                                T::constant(8.0) * T::epsilon(),
+                            )
+                        },
+                        Threshold::Rates => quote! {
+                            self.rate_limits.inverse_determinant(
+                                #det,
+                                #inverse_norms,
+                                ::mechgen::Order::#rates_order,
+                            )
+                        },
                     },
                 };
                 quote! {
@@ -189,11 +219,21 @@ pub(super) fn aux_arguments(kind: &AuxKind, mode: Mode) -> Vec<ExprId> {
         AuxKind::InverseDeterminant {
             det,
             squared_norms: Some(squared),
+            turning,
             ..
-        } if mode != Mode::Checked => vec![det, squared],
+        } if mode != Mode::Checked => [det, squared]
+            .into_iter()
+            .chain(turning.into_iter().flatten())
+            .collect(),
         AuxKind::InverseDeterminant {
-            det, inverse_norms, ..
-        } => vec![det, inverse_norms],
+            det,
+            inverse_norms,
+            turning,
+            ..
+        } => [det, inverse_norms]
+            .into_iter()
+            .chain(turning.into_iter().flatten())
+            .collect(),
         AuxKind::Angle { y, x } => vec![y, x],
     }
 }

@@ -129,7 +129,7 @@ impl Generator<'_> {
         let (scale, unscale) = (local("scale"), local("unscale"));
         let lengths = self.length_params();
         let scaled_fields = self.scaled_fields(&scale);
-        let aspect = self.scene_aspect(&scaled);
+        let (size, aspect) = self.scene_aspect(&scaled);
         let values = &block.outputs;
         let checks = self.model.params.iter().map(|param| {
             let field = &param.name;
@@ -167,6 +167,7 @@ impl Generator<'_> {
                     unscale: #unscale,
                     rate_limits: ::mechgen::__private::RateLimits::new(
                         &::mechgen::Accuracy::required(),
+                        #size,
                         #aspect,
                     ),
                     constants,
