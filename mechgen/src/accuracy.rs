@@ -161,12 +161,12 @@ impl<T: Real> Accuracy<T> {
         } else {
             position
         };
-        let rho = aspect.max(T::one());
-        let half = T::constant(0.5);
+        // κ·ρ·δ/2, which the acceleration's term takes once more by κ.
+        let carried = kappa * aspect.max(T::one()) * delta * T::constant(0.5);
         Accuracy {
             position: delta,
-            velocity: closed.velocity + kappa * rho * delta * half,
-            acceleration: closed.acceleration + kappa * kappa * rho * delta * half,
+            velocity: closed.velocity + carried,
+            acceleration: closed.acceleration + kappa * carried,
         }
     }
 
@@ -232,6 +232,40 @@ pub fn rates_accuracy<T: Real, const N: usize>(
             Some(position) => Accuracy::estimate_at(condition, aspect, position),
         };
         if within(&estimate) {
+            return Ok(estimate);
+        }
+    }
+    rates_accuracy_aside(
+        condition, *jacobian, size, angles, position, highest, required,
+    )
+}
+
+/// [`rates_accuracy`] for a mechanism whose angle unknowns' columns have lengths the dimensions
+/// fix (each angle turns one vector of fixed length in each loop it is in), so that its aspect
+/// is known without the Jacobian: `aspect`, from the squared lengths. Where those squares
+/// overflowed or underflowed (lengths beyond about 1e±154 in `f64`), so that `aspect` is not
+/// a number from 1 up, [`rates_accuracy`] decides from the Jacobian, out of line.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub fn rates_accuracy_at_aspect<T: Real, const N: usize>(
+    condition: T,
+    aspect: T,
+    jacobian: &[[T; N]; N],
+    size: T,
+    angles: [bool; N],
+    position: Option<T>,
+    highest: Order,
+    required: &Accuracy<T>,
+) -> Result<Accuracy<T>, Error<T>> {
+    // From 1 up and finite (false for NaN).
+    if aspect >= T::one() && aspect < T::infinity() {
+        let estimate = match position {
+            None => Accuracy::estimate(condition, aspect),
+            Some(position) => Accuracy::estimate_at(condition, aspect, position),
+        };
+        if estimate.velocity <= required.velocity
+            && (highest < Order::Acceleration || estimate.acceleration <= required.acceleration)
+        {
             return Ok(estimate);
         }
     }
@@ -671,6 +705,65 @@ mod tests {
             ),
             Err(Error::Inaccurate {
                 order: Order::Acceleration,
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn a_known_aspect_is_read_where_it_is_a_number_from_one_up() {
+        let jacobian = [[3.0, 0.0], [4.0, 1.0]];
+        let required = Accuracy::<f64>::required();
+        let angles = [true, true];
+        for position in [None, Some(0.0)] {
+            let at = |aspect: f64, size: f64| {
+                rates_accuracy_at_aspect(
+                    10.0,
+                    aspect,
+                    &jacobian,
+                    size,
+                    angles,
+                    position,
+                    Order::Acceleration,
+                    &required,
+                )
+            };
+            let want = |aspect: f64| match position {
+                None => Accuracy::estimate(10.0, aspect),
+                Some(p) => Accuracy::estimate_at(10.0, aspect, p),
+            };
+            // Read as given (here 4, though the Jacobian's columns would say 10).
+            assert_eq!(at(4.0, 10.0), Ok(want(4.0)));
+            assert_eq!(at(1.0, 10.0), Ok(want(1.0)));
+            // Not a number from 1 up (squares that overflowed, or underflowed to zero): the
+            // Jacobian's, as `rates_accuracy` computes it.
+            let from_jacobian = rates_accuracy(
+                10.0,
+                &jacobian,
+                10.0,
+                angles,
+                position,
+                Order::Acceleration,
+                &required,
+            );
+            for aspect in [f64::NAN, f64::INFINITY, 0.0, 0.5] {
+                assert_eq!(at(aspect, 10.0), from_jacobian, "{aspect}");
+            }
+        }
+        // Refused as rates_accuracy refuses.
+        assert!(matches!(
+            rates_accuracy_at_aspect(
+                1e5,
+                1.0,
+                &jacobian,
+                10.0,
+                angles,
+                None,
+                Order::Velocity,
+                &required
+            ),
+            Err(Error::Inaccurate {
+                order: Order::Velocity,
                 ..
             })
         ));

@@ -139,9 +139,20 @@ impl<T: Real, const N: usize, P> Converged<T, N, P> {
     pub fn position_accuracy_at(&self, condition: T) -> T {
         let kappa = condition.max(T::one());
         let floor = T::constant(16.0) * T::epsilon();
-        let relative = weighted_norm(&self.at.residual, &self.at.weights) / self.at.scale;
-        // The larger, and the residual where it is not a number (an undefined size).
-        let relative = if relative <= floor { floor } else { relative };
+        // On the floor, as a default solve stops: no norm and no division.
+        let on_floor_of = floor * self.at.scale;
+        let on_floor = self
+            .at
+            .residual
+            .iter()
+            .zip(&self.at.weights)
+            .fold(true, |on, (r, w)| on & (r.abs() * *w <= on_floor_of));
+        let relative = if on_floor {
+            floor
+        } else {
+            // Above it, or not a number (an undefined size): the residual itself.
+            weighted_norm(&self.at.residual, &self.at.weights) / self.at.scale
+        };
         T::constant(2.0) * kappa * relative
     }
 }

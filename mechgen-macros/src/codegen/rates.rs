@@ -267,13 +267,31 @@ impl Generator<'_> {
         position: &PositionFrom,
     ) -> TokenStream {
         let position = position.tokens();
-        let angles = self
+        let highest = Ident::new(highest, proc_macro2::Span::call_site());
+        let accuracy = local("accuracy");
+        let angles: Vec<bool> = self
             .model
             .unknowns
             .iter()
-            .map(|unknown| unknown.kind == crate::model::Kind::Angle);
-        let highest = Ident::new(highest, proc_macro2::Span::call_site());
-        let accuracy = local("accuracy");
+            .map(|unknown| unknown.kind == crate::model::Kind::Angle)
+            .collect();
+        // Columns of fixed lengths: the aspect from the dimensions, not the Jacobian (which
+        // decides only where their squares leave the float's range).
+        let receiver = Ident::new("self", proc_macro2::Span::call_site());
+        if let Some(aspect) = self.known_aspect(&receiver, &size) {
+            return quote! {
+                let #accuracy = ::mechgen::__private::rates_accuracy_at_aspect(
+                    #condition,
+                    #aspect,
+                    #matrix,
+                    #size,
+                    [#(#angles),*],
+                    #position,
+                    ::mechgen::Order::#highest,
+                    #required,
+                )?;
+            };
+        }
         quote! {
             let #accuracy = ::mechgen::__private::rates_accuracy(
                 #condition,

@@ -32,6 +32,24 @@ impl Generator<'_> {
         )
     }
 
+    /// `mechgen::__private::aspect(size, [column², …])` over the mechanism `receiver` (whose
+    /// loops' declared lengths sum to `size`, an expression), where
+    /// every angle unknown's column has a length the dimensions fix (see
+    /// [`Self::scene_aspect`]): the aspect the general functions' estimate would compute
+    /// from the Jacobian's columns at any position, without them. `None` where a column's
+    /// length moves with the position.
+    pub(crate) fn known_aspect(&self, receiver: &Ident, size: &TokenStream) -> Option<TokenStream> {
+        let columns = self
+            .model
+            .unknowns
+            .iter()
+            .enumerate()
+            .filter(|(_, unknown)| unknown.kind == Kind::Angle)
+            .map(|(u, _)| self.fixed_column(u, receiver))
+            .collect::<Option<Vec<_>>>()?;
+        Some(quote!(::mechgen::__private::aspect(#size, [#(#columns),*])))
+    }
+
     /// The squared length of angle unknown `u`'s Jacobian column, where the dimensions fix
     /// it: `Σ (coefficient·magnitude)²` over the loops, one vector of each turning with `u`.
     fn fixed_column(&self, u: usize, scaled: &Ident) -> Option<TokenStream> {
