@@ -768,4 +768,63 @@ mod tests {
             })
         ));
     }
+
+    #[test]
+    fn a_known_aspect_judges_the_acceleration_only_when_asked() {
+        let jacobian = [[3.0, 0.0], [4.0, 1.0]];
+        let required = Accuracy::<f64>::required();
+        // κ 1e4: the velocity within what is required, the acceleration not.
+        let kappa = 1e4;
+        let estimate = Accuracy::estimate(kappa, 2.0);
+        assert!(
+            estimate.velocity < required.velocity && estimate.acceleration > required.acceleration
+        );
+        let at = |highest| {
+            rates_accuracy_at_aspect(
+                kappa,
+                2.0,
+                &jacobian,
+                10.0,
+                [true, true],
+                None,
+                highest,
+                &required,
+            )
+        };
+        assert_eq!(at(Order::Velocity), Ok(estimate));
+        assert_eq!(
+            at(Order::Acceleration),
+            Err(Error::Inaccurate {
+                order: Order::Acceleration,
+                estimate: estimate.acceleration,
+                required: required.acceleration,
+            })
+        );
+    }
+
+    #[test]
+    fn the_ordinary_path_reads_the_aspect_of_the_shortest_column() {
+        // Columns 5 and 2 long: the aspect of a size of 10 is 5, on the ordinary path (up to
+        // 15.9) as off it.
+        let jacobian = [[3.0, 0.0], [4.0, 2.0]];
+        let required = Accuracy::<f64>::required();
+        for size in [10.0, 31.0, 40.0] {
+            assert_eq!(
+                rates_accuracy(
+                    10.0,
+                    &jacobian,
+                    size,
+                    [true, true],
+                    Some(0.0),
+                    Order::Acceleration,
+                    &required
+                ),
+                Ok(Accuracy::estimate_at(10.0, size / 2.0, 0.0)),
+                "{size}"
+            );
+        }
+        assert_eq!(ordinary(&jacobian, 10.0, [true, true], true), Some(5.0));
+        assert_eq!(ordinary(&jacobian, 10.0, [true, false], true), Some(2.0));
+        assert_eq!(ordinary(&jacobian, 10.0, [false, false], true), Some(1.0));
+    }
 }
