@@ -400,6 +400,16 @@ mod tests {
             limits.inverse_determinant_turning(1e-9, 1.0, Order::Velocity, short),
             Err(Error::Singular { .. })
         ));
+        // The position is not judged here (it was returned already): a block whose
+        // condition puts the position's estimate past what is required is refused for its
+        // velocity.
+        assert!(matches!(
+            limits.inverse_determinant_turning(1e-7, 1.0, Order::Velocity, short),
+            Err(Error::Inaccurate {
+                order: Order::Velocity,
+                ..
+            })
+        ));
         // The size is kept with a new requirement.
         assert_eq!(
             limits.with_accuracy(&required).least_turning_column,
