@@ -527,6 +527,14 @@ mod tests {
     }
 
     #[test]
+    fn a_turning_column_passes_at_the_least_length_and_above() {
+        assert_eq!(lanes::within_ordinary_aspect(2.5f64, 4.0, 4.0), 2.5);
+        assert_eq!(lanes::within_ordinary_aspect(2.5f64, 5.0, 4.0), 2.5);
+        assert!(lanes::within_ordinary_aspect(2.5f64, 3.9, 4.0).is_nan());
+        assert!(lanes::within_ordinary_aspect(2.5f64, f64::NAN, 4.0).is_nan());
+    }
+
+    #[test]
     fn the_squared_condition_test_fails_at_the_threshold_itself() {
         // |det|·inverse_norms = 0.5/2 = 1/4, the threshold, exactly: singular either way.
         assert!(inverse_determinant(0.5, 0.5, 0.25).is_err());
