@@ -2105,4 +2105,58 @@ mod tests {
         assert_eq!((s.to_bits(), c), (sin.to_bits(), cos));
         assert_eq!(s.to_bits(), (-0.0f64).to_bits());
     }
+
+    /// A `Converged` at a residual of `residual` (weights `weights`, loops' magnitudes summing
+    /// to `scale`) and condition `condition`.
+    fn converged_at(
+        residual: [f64; 2],
+        weights: [f64; 2],
+        scale: f64,
+        condition: f64,
+    ) -> Converged<f64, 2, ()> {
+        let jacobian = [[1.0, 0.0], [0.0, 1.0]];
+        Converged {
+            solved: Solved {
+                value: [0.0; 2],
+                iterations: 1,
+                residual_norm: residual[0].abs().max(residual[1].abs()),
+                condition,
+            },
+            at: Linearisation {
+                residual,
+                jacobian,
+                scale,
+                weights,
+                payload: (),
+            },
+            jacobian: Factored::new(jacobian).unwrap(),
+        }
+    }
+
+    #[test]
+    fn a_position_is_known_to_its_floor_or_to_the_residual_above_it() {
+        let e = f64::EPSILON;
+        // On the floor, 16·ε of the loops' magnitudes (here 10), each component weighted:
+        // 2·κ·16·ε, the contract's 32·ε·κ.
+        let floor = converged_at([1e-15, -3e-14], [1.0, 1.0], 10.0, 3.0);
+        assert_eq!(floor.position_accuracy(), 2.0 * 3.0 * 16.0 * e);
+        assert_eq!(floor.position_accuracy_at(5.0), 2.0 * 5.0 * 16.0 * e);
+        // A condition below 1 counts as 1.
+        assert_eq!(floor.position_accuracy_at(0.5), 2.0 * 16.0 * e);
+        // Above it in one component (the other on it): the weighted residual over the
+        // magnitudes, 2·κ·r/Σ|r|.
+        let above = converged_at([1e-15, 4e-9], [1.0, 0.5], 10.0, 3.0);
+        assert_eq!(above.position_accuracy(), 2.0 * 3.0 * (4e-9 * 0.5 / 10.0));
+        let first = converged_at([2e-9, 1e-15], [1.0, 0.5], 10.0, 3.0);
+        assert_eq!(first.position_accuracy(), 2.0 * 3.0 * (2e-9 / 10.0));
+        // Just above the floor, weighted under it: on it.
+        let weighted = converged_at([1e-15, 5e-14], [1.0, 0.5], 10.0, 3.0);
+        assert_eq!(weighted.position_accuracy(), 2.0 * 3.0 * 16.0 * e);
+        // An undefined size leaves it not a number, or infinite: no rates' estimate holds.
+        assert!(
+            !converged_at([1e-9, 1e-9], [1.0, 1.0], 0.0, 3.0)
+                .position_accuracy()
+                .is_finite()
+        );
+    }
 }
