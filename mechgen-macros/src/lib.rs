@@ -16,6 +16,7 @@ mod errors;
 mod expand;
 mod formula;
 mod model;
+mod sample;
 mod scene;
 mod structure;
 mod symbolic;

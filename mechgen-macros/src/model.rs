@@ -1105,13 +1105,7 @@ fn check_no_loop_is_identically_zero(
     params: &[Symbol],
     errors: &mut Errors,
 ) -> bool {
-    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
-    let mut random = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut random = crate::sample::fixed_sequence();
     let mut found = false;
     // A loop with an expression in error (resolved as zero) was reported already.
     let clean = loops

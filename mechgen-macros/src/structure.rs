@@ -122,13 +122,7 @@ pub fn check(model: &Model, equations: &Equations) -> syn::Result<()> {
 fn generic_rank(model: &Model, equations: &Equations, errors: &mut Errors) {
     let n = model.unknowns.len();
     // A fixed sequence, so that the macro's verdict is the same on every build.
-    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
-    let mut random = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut random = crate::sample::fixed_sequence();
     let mut dependent = None;
     // Three points where the Jacobian is defined, among at most twelve drawn.
     let mut tested = 0;

@@ -342,6 +342,8 @@ pub fn path_generation(
     }
     let n = targets.len();
     let (centre, spread) = centre_and_spread(targets);
+    // Coincident targets still start somewhere: at the smallest positive spread.
+    let spread = spread.max(f64::MIN_POSITIVE);
     let starts = starts(options, Vec::new(), |random| {
         path_start(centre, spread, timing.is_none().then_some(n), random)
     });
@@ -363,9 +365,9 @@ pub fn path_generation(
     solved_with_restarts(starts, 0, solve, options)
 }
 
-/// The targets' centroid, and their largest distance from it (at least the smallest positive
-/// float): where path generation's random starts put the linkage, and their scale.
-fn centre_and_spread(targets: &[Vec2<f64>]) -> (Vec2<f64>, f64) {
+/// The targets' centroid, and their largest distance from it (0 where they all coincide):
+/// where path generation's random starts put the linkage, and their scale.
+pub fn centre_and_spread(targets: &[Vec2<f64>]) -> (Vec2<f64>, f64) {
     let n = targets.len() as f64;
     let centre = targets
         .iter()
@@ -376,8 +378,7 @@ fn centre_and_spread(targets: &[Vec2<f64>]) -> (Vec2<f64>, f64) {
     let spread = targets
         .iter()
         .map(|p| (p.x - centre.x).hypot(p.y - centre.y))
-        .fold(0.0f64, f64::max)
-        .max(f64::MIN_POSITIVE);
+        .fold(0.0f64, f64::max);
     (centre, spread)
 }
 

@@ -744,7 +744,7 @@ fn path_generation_starts_around_the_targets_at_their_scale() {
     assert_eq!(centre, Vec2 { x: 12.0, y: 21.0 });
     assert_eq!(spread, 5f64.sqrt());
     let (_, none) = centre_and_spread(&[Vec2 { x: 3.0, y: 4.0 }; 5]);
-    assert_eq!(none, f64::MIN_POSITIVE);
+    assert_eq!(none, 0.0);
     // Each value drawn uniformly over its documented range: the pivot's distance from the
     // centre and its direction, the ground's angle and length, the coupler point's distance
     // and angle, and the first crank angle. Eight equal bins of 4000 draws hold 500 each,

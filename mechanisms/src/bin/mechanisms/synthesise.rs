@@ -340,17 +340,7 @@ impl Frame {
     /// The frame of `targets` (finite), or why they have none: they all coincide (a path
     /// through one point is any linkage's), or lie too far apart for a float.
     fn of(targets: &[Vec2<f64>]) -> Result<Self, String> {
-        let n = targets.len() as f64;
-        let centre = targets
-            .iter()
-            .fold(Vec2::default(), |c: Vec2<f64>, p| Vec2 {
-                x: c.x + p.x / n,
-                y: c.y + p.y / n,
-            });
-        let spread = targets
-            .iter()
-            .map(|p| (p.x - centre.x).hypot(p.y - centre.y))
-            .fold(0.0f64, f64::max);
+        let (centre, spread) = mechanisms::synthesis::centre_and_spread(targets);
         if spread == 0.0 {
             return Err(format!(
                 "--x and --y give {} targets all at ({}, {}) mm: a coupler curve through one \
