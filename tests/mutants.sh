@@ -119,7 +119,7 @@ install() {
 # The whole list of a file's mutants is kept beside its results (all.txt), so the report can
 # tell the mutants not run (with --from) from those that no longer exist.
 run() {
-    local file stem status results files=("$@")
+    local file stem status results commit files=("$@")
     for file in "${files[@]}"; do
         stem=$(stem "$file")
         results="$OUT/$stem/mutants.out"
@@ -143,12 +143,15 @@ run() {
                 sed 's/[][\\.*+?(){}|^$]/\\&/g' | paste -sd '|'))\$"
         fi
         status=0
+        # The commit of the tree cargo-mutants copies now (a commit made while it runs is not
+        # in its copy).
+        commit=$(stamp)
         # shellcheck disable=SC2046 # the kill-set's options, split into words
         mutants "$@" --file "$file" $(kill_set "$file") --jobs 1 --minimum-test-timeout 30 \
             --no-times --colors never --output "$OUT/$stem" || status=$?
         # 0: all caught; 2: some missed; 3: some timed out. Anything else is cargo-mutants failing.
         case $status in 0 | 2 | 3) ;; *) echo "cargo-mutants failed on $file ($status)" >&2; exit "$status" ;; esac
-        stamp > "$OUT/$stem/commit"
+        echo "$commit" > "$OUT/$stem/commit"
         rm -f "$OUT/$stem/recorded"
         sort -u "$OUT/$stem/unviable.before" "$results/unviable.txt" -o "$results/unviable.txt"
     done
