@@ -792,6 +792,21 @@ mod tests {
             )
         };
         assert_eq!(at(Order::Velocity), Ok(estimate));
+        // The known aspect is read, not the Jacobian's, for a velocity alone too (here a size
+        // of 40 over a column of 1 would say 40).
+        assert_eq!(
+            rates_accuracy_at_aspect(
+                kappa,
+                2.0,
+                &jacobian,
+                40.0,
+                [true, true],
+                None,
+                Order::Velocity,
+                &required,
+            ),
+            Ok(estimate)
+        );
         assert_eq!(
             at(Order::Acceleration),
             Err(Error::Inaccurate {
