@@ -278,23 +278,14 @@ impl Generator<'_> {
         // Columns of fixed lengths: the aspect from the dimensions, not the Jacobian (which
         // decides only where their squares leave the float's range).
         let receiver = Ident::new("self", proc_macro2::Span::call_site());
-        if let Some(aspect) = self.known_aspect(&receiver, &size) {
-            return quote! {
-                let #accuracy = ::mechgen::__private::rates_accuracy_at_aspect(
-                    #condition,
-                    #aspect,
-                    #matrix,
-                    #size,
-                    [#(#angles),*],
-                    #position,
-                    ::mechgen::Order::#highest,
-                    #required,
-                )?;
-            };
-        }
+        let (function, aspect) = match self.known_aspect(&receiver, &size) {
+            Some(aspect) => (quote!(rates_accuracy_at_aspect), quote!(#aspect,)),
+            None => (quote!(rates_accuracy), TokenStream::new()),
+        };
         quote! {
-            let #accuracy = ::mechgen::__private::rates_accuracy(
+            let #accuracy = ::mechgen::__private::#function(
                 #condition,
+                #aspect
                 #matrix,
                 #size,
                 [#(#angles),*],

@@ -18,13 +18,7 @@ impl Generator<'_> {
     /// is judged at the aspect it has there, from the size.) The same aspect as the general
     /// functions', whose estimate weighs each column at the position.
     pub(super) fn scene_aspect(&self, scaled: &Ident) -> (TokenStream, TokenStream) {
-        let columns = self
-            .model
-            .unknowns
-            .iter()
-            .enumerate()
-            .filter(|(_, unknown)| unknown.kind == Kind::Angle)
-            .filter_map(|(u, _)| self.fixed_column(u, scaled));
+        let columns = self.angle_columns(scaled).flatten();
         let size = self.accuracy_size(quote!(#scaled));
         (
             size.clone(),
@@ -39,15 +33,22 @@ impl Generator<'_> {
     /// from the Jacobian's columns at any position, without them. `None` where a column's
     /// length moves with the position.
     pub(crate) fn known_aspect(&self, receiver: &Ident, size: &TokenStream) -> Option<TokenStream> {
-        let columns = self
-            .model
+        let columns = self.angle_columns(receiver).collect::<Option<Vec<_>>>()?;
+        Some(quote!(::mechgen::__private::aspect(#size, [#(#columns),*])))
+    }
+
+    /// Each angle unknown's squared column length over the mechanism `receiver`, where the
+    /// dimensions fix it ([`Self::fixed_column`]).
+    fn angle_columns<'a>(
+        &'a self,
+        receiver: &'a Ident,
+    ) -> impl Iterator<Item = Option<TokenStream>> + 'a {
+        self.model
             .unknowns
             .iter()
             .enumerate()
             .filter(|(_, unknown)| unknown.kind == Kind::Angle)
-            .map(|(u, _)| self.fixed_column(u, receiver))
-            .collect::<Option<Vec<_>>>()?;
-        Some(quote!(::mechgen::__private::aspect(#size, [#(#columns),*])))
+            .map(move |(u, _)| self.fixed_column(u, receiver))
     }
 
     /// The squared length of angle unknown `u`'s Jacobian column, where the dimensions fix
