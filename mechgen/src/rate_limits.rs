@@ -85,12 +85,7 @@ impl<T: Real> RateLimits<T> {
         turning_column: T,
     ) -> Result<T, Error<T>> {
         let relative = det * inverse_norms;
-        if relative.is_nan() || relative.abs() <= crate::singular_threshold::<T>() {
-            return Err(Error::Singular {
-                determinant: det,
-                relative_determinant: relative.abs(),
-            });
-        }
+        singular(det, relative)?;
         // The larger of the mechanism's and this column's, NaN (no rates) for a NaN column.
         let here = self.size / turning_column.sqrt();
         let aspect = if here <= self.aspect {
@@ -131,12 +126,7 @@ impl<T: Real> RateLimits<T> {
     /// Why a block at relative determinant `relative` is refused.
     #[cold]
     fn refused(&self, det: T, relative: T, order: Order) -> Result<T, Error<T>> {
-        if relative.is_nan() || relative.abs() <= crate::singular_threshold::<T>() {
-            return Err(Error::Singular {
-                determinant: det,
-                relative_determinant: relative.abs(),
-            });
-        }
+        singular(det, relative)?;
         let estimate = Accuracy::estimate(relative.abs().recip(), self.aspect);
         let (estimate, required) = match order {
             Order::Position => (estimate.position, self.required.position),
@@ -149,6 +139,18 @@ impl<T: Real> RateLimits<T> {
             required,
         })
     }
+}
+
+/// [`Error::Singular`] for a block of determinant `det` whose relative determinant `relative`
+/// is at or below [`crate::singular_threshold`], or not a number.
+fn singular<T: Real>(det: T, relative: T) -> Result<(), Error<T>> {
+    if relative.is_nan() || relative.abs() <= crate::singular_threshold::<T>() {
+        return Err(Error::Singular {
+            determinant: det,
+            relative_determinant: relative.abs(),
+        });
+    }
+    Ok(())
 }
 
 /// The aspect of a mechanism whose declared lengths sum to `size` and whose angle unknowns'
