@@ -471,6 +471,118 @@ pub fn stagnated<T: Real, const N: usize, P>(
             > T::constant(16.0) * T::epsilon() * converged.at.scale
 }
 
+/// Whether `guess` lies in the ball about `solution` from every point of which Newton on
+/// every unknown converges to `solution` (Kantorovich, estimated as Newton's own test does from
+/// the columns of the loops' full Jacobian at the solution, `columns` their squared norms,
+/// and its relative determinant `relative`): then the solution is the guess's own, whatever
+/// way it was reached.
+///
+/// An iteration on some unknowns with the rest solved in closed form (generated code's
+/// reduced Newton) is not Newton on the loops: where a loop it solves in closed form turns
+/// fast with the iterated unknowns (a short link beside long ones), one step can carry the
+/// iterate past the guess's assembly to another of the same orientation, which no sign
+/// tells apart. Generated code asks this of its solution first, on the common path (a few
+/// dozen instructions); where it fails, [`root_elsewhere`] looks from the guess's side.
+///
+/// The radius is `1/(4·β²·L·(‖J‖ + L))` (Frobenius norms), with `L = max‖column‖` (a turn
+/// `δ` of an angle moves its column, a sum of `r·e^{iθ}`, by at most `|δ|` times its
+/// length) and `β = ‖J⁻¹‖ ≤ κ·N/min‖column‖` (each cofactor is at most the product of the
+/// other columns), bounded with `L·(‖J‖ + L) ≤ 2·L·‖J‖`: certified where
+/// `64·d²·N⁴·L²·‖J‖² ≤ (min‖column‖²·relative²)²` for `d = ‖guess − solution‖`. No square
+/// root and one division; a column that is zero, or a bound that underflows, certifies
+/// nothing.
+#[inline(always)]
+pub fn certified_start<T: Real, const N: usize>(
+    guess: &[T; N],
+    solution: &[T; N],
+    columns: [T; N],
+    relative: T,
+) -> bool {
+    let distance_squared = guess
+        .iter()
+        .zip(solution)
+        .fold(T::zero(), |acc, (g, s)| acc + (*g - *s) * (*g - *s));
+    let (mut norm_squared, mut longest, mut shortest) = (T::zero(), T::zero(), T::infinity());
+    for column in columns {
+        norm_squared = norm_squared + column;
+        longest = longest.max(column);
+        shortest = shortest.min(column);
+    }
+    let n_squared = T::constant((N * N) as f64);
+    // min‖column‖²·relative², the reach of ‖J⁻¹‖ (squared, inverted, over N²).
+    let bound = shortest * relative * relative;
+    let left =
+        T::constant(64.0) * n_squared * n_squared * distance_squared * longest * norm_squared;
+    // A zero bound gives NaN or infinity, which compare false: not certified.
+    left / bound <= bound
+}
+
+/// Kantorovich at `guess`, from the loops' residual `residual` and full Jacobian `jacobian`
+/// there: where `h = β·L·η ≤ 1/2` (`β = ‖J⁻¹‖` and `η = ‖J⁻¹·f‖` computed, Frobenius and
+/// Euclidean norms; `L = max‖column‖` as in [`certified_start`]), a root lies within `2·η`
+/// of the guess, Newton on every unknown from the guess converges to it, and no other root
+/// lies within `1/(β·L)`. That radius, or `None` where the guess is not certified (or the
+/// Jacobian is singular there).
+fn guess_radius<T: Real, const N: usize>(residual: &[T; N], jacobian: &[[T; N]; N]) -> Option<T> {
+    let factored = Factored::new(*jacobian).ok()?;
+    let step = factored.solve(*residual);
+    let eta_squared = step.iter().fold(T::zero(), |acc, v| acc + *v * *v);
+    let mut beta_squared = T::zero();
+    for k in 0..N {
+        let mut unit = [T::zero(); N];
+        unit[k] = T::one();
+        beta_squared = factored
+            .solve(unit)
+            .iter()
+            .fold(beta_squared, |acc, v| acc + *v * *v);
+    }
+    let mut columns = [T::zero(); N];
+    for row in jacobian {
+        for (column, v) in columns.iter_mut().zip(row) {
+            *column = *column + *v * *v;
+        }
+    }
+    let lipschitz_squared = columns.iter().fold(T::zero(), |m, c| m.max(*c));
+    let reach_squared = beta_squared * lipschitz_squared;
+    // h² = β²·L²·η² ≤ 1/4; NaN compares false.
+    (reach_squared * eta_squared <= T::constant(0.25)).then(|| T::one() / reach_squared.sqrt())
+}
+
+/// Whether Kantorovich certifies `guess` (`h = β·L·η ≤ 1/2` at the guess, as the private `guess_radius` computes it): Newton on every unknown
+/// from it converges to the root it is near. Generated code asks this before it lets
+/// Newton on every unknown answer for a reduced iteration that landed on another
+/// orientation: from a guess it certifies, that answer is the guess's root; from any other,
+/// the reduced iteration's [`Error::OtherBranch`] stands.
+#[cold]
+#[inline(never)]
+pub fn guess_certified<T: Real, const N: usize>(residual: &[T; N], jacobian: &[[T; N]; N]) -> bool {
+    guess_radius(residual, jacobian).is_some()
+}
+
+/// Whether `solution` is certainly not the root `guess` is near: Kantorovich certifies the
+/// guess (`h = β·L·η ≤ 1/2` at the guess, as the private `guess_radius` computes it) and `solution` lies farther from it than the radius within
+/// which that root is the only one. Generated code asks this where [`certified_start`]
+/// could not vouch for a reduced iteration's solution, and then solves by Newton on every
+/// unknown from the guess, which converges to the guess's root; where the guess is not
+/// certified, nothing says which root is the guess's, and the solution stands.
+#[cold]
+#[inline(never)]
+pub fn root_elsewhere<T: Real, const N: usize>(
+    residual: &[T; N],
+    jacobian: &[[T; N]; N],
+    guess: &[T; N],
+    solution: &[T; N],
+) -> bool {
+    let Some(radius) = guess_radius(residual, jacobian) else {
+        return false;
+    };
+    let distance_squared = guess
+        .iter()
+        .zip(solution)
+        .fold(T::zero(), |acc, (g, s)| acc + (*g - *s) * (*g - *s));
+    distance_squared > radius * radius
+}
+
 /// [`newton`]'s common path, for generated code to inline: `then` of the solution where
 /// Newton takes full steps each of which lowers the residual, else `otherwise()` (which
 /// generated code makes an out-of-line call of [`newton`] from `guess` again, with an
@@ -2158,5 +2270,107 @@ mod tests {
                 .position_accuracy()
                 .is_finite()
         );
+    }
+
+    #[test]
+    fn a_guess_is_certified_within_the_kantorovich_ball_it_estimates() {
+        // Two unit columns, relative determinant 1: certified where 64·N⁴·d²·L²·‖J‖² =
+        // 64·16·d²·1·2 ≤ 1, d ≤ 1/√2048 ≈ 0.0221.
+        let solution = [0.3, -1.2];
+        let at = |d: f64| [0.3 + d * 0.6, -1.2 - d * 0.8];
+        let unit = [1.0, 1.0];
+        let edge = 1.0 / 2048f64.sqrt();
+        assert!(certified_start(&solution, &solution, unit, 1.0));
+        assert!(certified_start(&at(0.99 * edge), &solution, unit, 1.0));
+        assert!(!certified_start(&at(1.01 * edge), &solution, unit, 1.0));
+        // Half the relative determinant: a quarter of the radius (β² is four times as big).
+        assert!(certified_start(&at(0.24 * edge), &solution, unit, 0.5));
+        assert!(!certified_start(&at(0.26 * edge), &solution, unit, 0.5));
+        assert!(certified_start(&at(0.24 * edge), &solution, unit, -0.5));
+        // Columns of squared norms 4 and 1: L² = 4, ‖J‖² = 5, min‖column‖² = 1, so
+        // 64·16·d²·20 ≤ 1; the same scaled by 9 (a mechanism three times the size) alike.
+        let uneven = 1.0 / (1024.0f64 * 20.0).sqrt();
+        for factor in [1.0, 9.0] {
+            let columns = [4.0 * factor, factor];
+            assert!(certified_start(&at(0.99 * uneven), &solution, columns, 1.0));
+            assert!(!certified_start(
+                &at(1.01 * uneven),
+                &solution,
+                columns,
+                1.0
+            ));
+            let swapped = [factor, 4.0 * factor];
+            assert!(certified_start(&at(0.99 * uneven), &solution, swapped, 1.0));
+            assert!(!certified_start(
+                &at(1.01 * uneven),
+                &solution,
+                swapped,
+                1.0
+            ));
+        }
+        // Three unit columns: N⁴ = 81, ‖J‖² = 3, d ≤ 1/√(64·81·3).
+        let three = [0.3, -1.2, 2.0];
+        let edge3 = 1.0 / (64.0f64 * 81.0 * 3.0).sqrt();
+        let near3 = |d: f64| [0.3, -1.2, 2.0 + d];
+        assert!(certified_start(&near3(0.99 * edge3), &three, [1.0; 3], 1.0));
+        assert!(!certified_start(
+            &near3(1.01 * edge3),
+            &three,
+            [1.0; 3],
+            1.0
+        ));
+        // A zero column, a singular Jacobian, or a guess not finite certifies nothing.
+        assert!(!certified_start(&at(1e-9), &solution, [1.0, 0.0], 1.0));
+        assert!(!certified_start(&at(1e-9), &solution, unit, 0.0));
+        assert!(!certified_start(&[f64::NAN, -1.2], &solution, unit, 1.0));
+        assert!(!certified_start(
+            &[f64::INFINITY, -1.2],
+            &solution,
+            unit,
+            1.0
+        ));
+    }
+
+    #[test]
+    fn a_guess_kantorovich_certifies_says_where_its_root_is_alone() {
+        // J = I: β = ‖I‖ = √2 (Frobenius), L = 1, η = |f|: h = √2·|f| ≤ 1/2 for |f| ≤ 0.3536,
+        // and the guess's root is alone within 1/(β·L) = 0.7071.
+        let unit = [[1.0, 0.0], [0.0, 1.0]];
+        let origin = [0.0, 0.0];
+        assert!(guess_certified(&[0.35, 0.0], &unit));
+        assert!(guess_certified(&[0.0, -0.35], &unit));
+        assert!(!guess_certified(&[0.36, 0.0], &unit));
+        assert!(!root_elsewhere(&[0.1, 0.0], &unit, &origin, &[0.70, 0.0]));
+        assert!(root_elsewhere(&[0.1, 0.0], &unit, &origin, &[0.72, 0.0]));
+        assert!(root_elsewhere(&[0.1, 0.0], &unit, &origin, &[0.0, -0.72]));
+        assert!(root_elsewhere(&[0.1, 0.0], &unit, &[1.0, 1.0], &[1.5, 1.5]));
+        assert!(!root_elsewhere(
+            &[0.1, 0.0],
+            &unit,
+            &[1.0, 1.0],
+            &[1.4, 1.5]
+        ));
+        // Not certified: nothing says which root is the guess's.
+        assert!(!root_elsewhere(&[0.4, 0.0], &unit, &origin, &[5.0, 0.0]));
+        // J = 2·I: β = √2/2, L = 2, η = |f|/2: h = |f|/√2, the same radius.
+        let double = [[2.0, 0.0], [0.0, 2.0]];
+        assert!(guess_certified(&[0.70, 0.0], &double));
+        assert!(!guess_certified(&[0.72, 0.0], &double));
+        assert!(!root_elsewhere(&[0.1, 0.0], &double, &origin, &[0.70, 0.0]));
+        assert!(root_elsewhere(&[0.1, 0.0], &double, &origin, &[0.72, 0.0]));
+        // Columns of lengths 1 and 3 (L = 3), J⁻¹ = diag(1, 1/3): β² = 10/9, η = |f₁|/3.
+        let uneven = [[1.0, 0.0], [0.0, 3.0]];
+        let edge = 0.5 * 3.0 / (3.0 * (10.0f64 / 9.0).sqrt());
+        assert!(guess_certified(&[0.0, 0.99 * edge], &uneven));
+        assert!(!guess_certified(&[0.0, 1.01 * edge], &uneven));
+        // A singular Jacobian, or a residual not finite, certifies nothing.
+        assert!(!guess_certified(&[0.0, 0.0], &[[1.0, 2.0], [2.0, 4.0]]));
+        assert!(!guess_certified(&[f64::NAN, 0.0], &unit));
+        assert!(!root_elsewhere(
+            &[f64::NAN, 0.0],
+            &unit,
+            &origin,
+            &[5.0, 0.0]
+        ));
     }
 }

@@ -307,6 +307,119 @@ fn stephenson_started_near_another_assembly_is_other_branch() {
     }
 }
 
+#[test]
+fn a_step_the_closed_forms_carry_to_another_assembly_is_not_returned() {
+    // A Stephenson whose ternary side C D is 1/5000 of the rest (the edge run's case 5670 of
+    // seed 7): loop 2 nearly fixes theta4 by itself, so given theta4 its closed form turns
+    // theta5 some 5000 times as fast, and one reduced step from this guess (the root's
+    // own, within its Kantorovich ball) carried theta5 from 0.53 to 2.28 and theta3 from
+    // 1.87 to 0.94: loop 1's other assembly, of the same orientation. Newton on every
+    // unknown from the guess finds the guess's root; so must `position` and `motion_near`.
+    let linkage = StephensonSixBar::<f64>::new(
+        2.5186588e-23,
+        1.454942e-19,
+        7.1964074e-20,
+        [4.200979e-20, 2.6639896e-23],
+        1.4604609,
+        2.1684043e-19,
+        1.6516199e-19,
+        (1.9338697e-19, 1.055728e-20),
+    )
+    .unwrap();
+    let theta2 = 0.551801;
+    let start = [
+        1.8680778741836548,
+        0.8754220604896545,
+        0.5342891216278076,
+        1.9063968658447266,
+    ];
+    let guess = StephensonSixBarUnknowns::from_array(start);
+    let options = NewtonOptions::default();
+    // Newton on every unknown, its floor at the loops' own size (the sum of their lengths).
+    let scale = 1.1e-18;
+    let truth = newton_on(
+        theta2,
+        start,
+        scale,
+        |x| linkage.residual(theta2, &(*x).into()),
+        |x| linkage.jacobian(theta2, &(*x).into()),
+    )
+    .unwrap()
+    .value;
+    assert!((truth[0] - 1.868078).abs() < 1e-6 && (truth[2] - 0.534282).abs() < 1e-6);
+    let solved = linkage.position(theta2, &guess, &options).unwrap().value;
+    for (got, want) in solved.to_array().iter().zip(truth) {
+        assert!((got - want).abs() < 1e-12, "{solved:?} against {truth:?}");
+    }
+    let near = linkage
+        .motion_near(theta2, &guess, &options, 1.0, 0.0)
+        .unwrap()
+        .value;
+    assert_eq!(near.position, solved);
+}
+
+#[test]
+fn a_turn_of_the_reduced_orientation_is_left_to_newton_on_every_unknown() {
+    // The edge run's case 28819 of seed 7 with every length × 64532.5 and rounded to f32: C D
+    // is 1/3000 of the rest, and the reduced iteration's own Jacobian turns its orientation
+    // on the way from this guess (within the root's Kantorovich ball) where the loops' does
+    // not. Newton on every unknown keeps the orientation and finds the root, in f32 and f64.
+    let dimensions: [f64; 10] = [
+        2.3004728e27,
+        2.570729e29,
+        1.0207907e31,
+        2.001992e31,
+        3.2265903e27,
+        1.7978873,
+        1.1481228e31,
+        3.9806113e30,
+        9.0793043e30,
+        -9.2291507e30,
+    ];
+    let factor = 6.4532511296945464e4;
+    fn check<T: Real>(dimensions: [f64; 10], factor: f64) {
+        let length = |i: usize| T::constant(f64::from((dimensions[i] * factor) as f32));
+        let linkage = StephensonSixBar::<T>::new(
+            length(0),
+            length(1),
+            length(2),
+            [length(3), length(4)],
+            T::constant(f64::from(dimensions[5] as f32)),
+            length(6),
+            length(7),
+            (length(8), length(9)),
+        )
+        .unwrap();
+        let start = [
+            1.837106704711914,
+            -0.4888606667518616,
+            -0.8594669699668884,
+            1.301087737083435,
+        ]
+        .map(T::constant);
+        let theta2 = T::constant(f64::from(-2.8372917f32));
+        let solved = linkage
+            .position(
+                theta2,
+                &StephensonSixBarUnknowns::from_array(start),
+                &NewtonOptions::default(),
+            )
+            .unwrap()
+            .value
+            .to_array();
+        // The root: theta4 -0.489155, 3e-4 from the guess.
+        let root = [1.8371066, -0.4891546, -0.8595321, 1.3013234];
+        for (got, want) in solved.iter().zip(root) {
+            assert!(
+                (*got - T::constant(want)).abs() < T::constant(1e-5),
+                "{solved:?}"
+            );
+        }
+    }
+    check::<f64>(dimensions, factor);
+    check::<f32>(dimensions, factor);
+}
+
 mechanism! {
     /// The Stephenson six-bar with a shorter output rocker (60 rather than 85): loop 2 now
     /// cannot close where the rocker O4 C turns C more than `cd + l6` from O6.

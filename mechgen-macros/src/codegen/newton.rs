@@ -446,7 +446,7 @@ impl Generator<'_> {
 
     /// An item with `motion_near`'s signature, named and scoped by `name` (`pub fn
     /// motion_near`): `check`, then `body`.
-    fn motion_near_item(
+    pub(super) fn motion_near_item(
         &self,
         name: TokenStream,
         docs: TokenStream,

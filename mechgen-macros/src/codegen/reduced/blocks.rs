@@ -261,3 +261,29 @@ pub(super) fn block_solve(
         }
     }
 }
+
+/// The squared norms of the columns of the loops' full Jacobian, as an array, from its
+/// nonzero `entries` in the order [`block_solver`] squares them (so the compiler computes
+/// each once).
+pub(super) fn column_squares(
+    reduction: &Reduction,
+    graph: &Graph,
+    entries: &[Emitted],
+) -> TokenStream {
+    let n = reduction.jacobian.len();
+    let columns = (0..n).map(|c| {
+        let squares = (0..n)
+            .filter(|&r| !graph.is_zero(reduction.jacobian[r][c]))
+            .map(|r| {
+                let e = entries[r * n + c].receiver();
+                quote!(#e * #e)
+            })
+            .collect::<Vec<_>>();
+        if squares.is_empty() {
+            quote!(T::zero())
+        } else {
+            quote!((#(#squares)+*))
+        }
+    });
+    quote!([#(#columns),*])
+}

@@ -321,6 +321,19 @@ impl Generator<'_> {
                     let #reduced = ::core::option::Option::Some(#failure);
                     #fall_back
                 }
+                // Its orientation is its own Jacobian's, which near a closed form's toggle (a
+                // short link beside long ones) can turn where the loops' does not: from a
+                // guess Kantorovich certifies, Newton on every unknown reaches the guess's
+                // root, and answers.
+                ::core::result::Result::Err(#failure @ ::mechgen::Error::OtherBranch)
+                    if ::mechgen::__private::guess_certified(
+                        &self.residual(#input, #guess),
+                        &self.jacobian(#input, #guess),
+                    ) =>
+                {
+                    let #reduced = ::core::option::Option::Some(#failure);
+                    #fall_back
+                }
                 other => other?,
             };
             let [#(#iterated),*] = #converged.solved.value;

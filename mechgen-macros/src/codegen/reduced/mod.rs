@@ -7,10 +7,13 @@
 //!
 //! Inside the iteration a closed-form angle exists only as its unit vector (no `atan2`); the
 //! angles are computed once, at the solution. The closed forms' branches are the guess's,
-//! fixed before the iteration, and Newton keeps the orientation of its Jacobian, so landing
-//! on another assembly is `Error::OtherBranch`. Where the closed forms cannot close at the
-//! guess itself there is nothing to iterate on, and the functions fall back to Newton on
-//! every unknown.
+//! fixed before the iteration, and Newton keeps the orientation of its Jacobian; as those
+//! signs do not tell every assembly apart, Kantorovich's theorem decides whether the
+//! solution is the guess's root (`certified_start` at the solution, on the common path;
+//! `root_elsewhere` and `guess_certified` at the guess, out of line), and where it certainly
+//! is not, Newton on every unknown answers from the guess. Where the closed forms cannot
+//! close at the guess itself there is nothing to iterate on, and the functions fall back to
+//! Newton on every unknown.
 //!
 //! At the solution, the loops' full Jacobian gives `condition`, the singular check and the
 //! rates through its blocks (see [`block_solver`]): the closed-form loops' 2×2 blocks and the
@@ -40,7 +43,7 @@ use super::emit::local;
 use super::normalise::NewtonEntry;
 use super::{Generator, arg};
 use crate::symbolic::{ExprId, Reduction, Step};
-use blocks::{block_solve, block_solver};
+use blocks::{block_solve, block_solver, column_squares};
 use finish::Finish;
 use iteration::Iteration;
 
@@ -82,6 +85,7 @@ impl Generator<'_> {
             self.reduction_doc(reduction)
         ));
         let full = self.full_position(false);
+        let columns = column_squares(reduction, &self.equations.graph, &entries);
         let (factor, relative) = if reduction.after.is_empty() {
             let relative = local("block_relative");
             (
@@ -113,10 +117,25 @@ impl Generator<'_> {
                 #check
                 #solve
                 #solves
+                #factor
+                // Newton on every unknown from the guess where the solution is certainly not
+                // the guess's root; from the solution, to polish it, where it stagnated.
+                if !::mechgen::__private::certified_start(
+                    &#guess.to_array(),
+                    &[#(#unknown_names),*],
+                    #columns,
+                    #relative,
+                ) && ::mechgen::__private::root_elsewhere(
+                    &self.residual(#input, #guess),
+                    &self.jacobian(#input, #guess),
+                    &#guess.to_array(),
+                    &[#(#unknown_names),*],
+                ) {
+                    return self.#fallback(#input, #guess, #options);
+                }
                 if ::mechgen::__private::stagnated(&#converged, #options) {
                     return self.#fallback(#input, &#ty { #(#unknown_names),* }, #options);
                 }
-                #factor
                 ::core::result::Result::Ok(::mechgen::Solved {
                     value: #ty { #(#unknown_names),* },
                     iterations: #converged.solved.iterations,
@@ -172,6 +191,8 @@ impl Generator<'_> {
         let accuracy = local("accuracy");
         let (converged, factored) = (arg("converged"), arg("jacobian"));
         let graph = &self.equations.graph;
+        let columns = column_squares(reduction, graph, &entries);
+        let all = Ident::new("mechgen_motion_near_all", Span::call_site());
         // Through the blocks where there is no loop solved after the iteration.
         let (factor, velocity, acceleration, relative) = if reduction.after.is_empty() {
             let zeros =
@@ -225,12 +246,26 @@ impl Generator<'_> {
         let body = quote! {
                 #solve
                 #solves
-                if ::mechgen::__private::stagnated(&#converged, #options) {
-                    let #solved = self.#fallback(#input, &#ty { #(#unknown_names),* }, #options)?;
-                    let #motion = self.motion_at(#input, &#solved.value, #input_dot, #input_ddot)?;
-                    return ::core::result::Result::Ok(#solved.map(|_| #motion));
-                }
                 #factor
+                // Newton on every unknown from the guess where the solution is certainly not
+                // the guess's root; from the solution, to polish it, where it stagnated.
+                if !::mechgen::__private::certified_start(
+                    &#guess.to_array(),
+                    &[#(#unknown_names),*],
+                    #columns,
+                    #relative,
+                ) && ::mechgen::__private::root_elsewhere(
+                    &self.residual(#input, #guess),
+                    &self.jacobian(#input, #guess),
+                    &#guess.to_array(),
+                    &[#(#unknown_names),*],
+                ) {
+                    return self.#all(#input, #guess, #options, #input_dot, #input_ddot);
+                }
+                if ::mechgen::__private::stagnated(&#converged, #options) {
+                    let start = #ty { #(#unknown_names),* };
+                    return self.#all(#input, &start, #options, #input_dot, #input_ddot);
+                }
                 #accuracy_check
                 let #rates = #velocity;
                 let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
@@ -249,7 +284,24 @@ impl Generator<'_> {
                     condition: T::one() / #relative.abs(),
                 })
         };
-        self.motion_near_function(docs, TokenStream::new(), check, body)
+        let all_body = quote! {
+            let #solved = self.#fallback(#input, #guess, #options)?;
+            let #motion = self.motion_at(#input, &#solved.value, #input_dot, #input_ddot)?;
+            ::core::result::Result::Ok(#solved.map(|_| #motion))
+        };
+        let all_item = self.motion_near_item(
+            quote!(fn #all),
+            doc(
+                "[`Self::motion_near`] by Newton on every unknown from `guess`, then the \
+                 rates, out of line: where the reduced iteration's solution is certainly not \
+                 the guess's root, or (from that solution) where it stagnated.",
+            ),
+            quote!(#[cold] #[inline(never)]),
+            TokenStream::new(),
+            all_body,
+        );
+        let function = self.motion_near_function(docs, TokenStream::new(), check, body);
+        quote!(#function #all_item)
     }
 
     /// The private Newton on every unknown that the reduced functions fall back to.
@@ -297,8 +349,18 @@ impl Generator<'_> {
              complement).{after}\n\n\
              It keeps to the guess's assembly: each loop solved in closed form stays on the \
              branch the guess is on (by the sign its closed form documents), and Newton keeps \
-             the orientation (the determinant's sign) of its own Jacobian; landing on another \
-             assembly is [`mechgen::Error::OtherBranch`], never a silent switch. Where a \
+             the orientation (the determinant's sign) of its own Jacobian. Neither sign tells \
+             every assembly apart (a loop solved in closed form that turns fast with the \
+             iterated unknowns, a short link beside long ones, can carry one step to another \
+             assembly of the same orientation). So Kantorovich's theorem decides: the \
+             solution stands where the guess lies within the ball about it from which Newton \
+             on every unknown certainly converges to it (estimated from the loops' Jacobian \
+             there); where not, and the guess is certified on its own side (from the loops' \
+             residual and Jacobian at the guess) with the solution outside the ball in which \
+             the guess's root is the only one, Newton on every unknown from `guess` answers, \
+             as it does where the reduced iteration lands on another orientation from a \
+             certified guess. Landing on another assembly is \
+             [`mechgen::Error::OtherBranch`], never a silent switch. Where a \
              closed form cannot close at the guess itself, there is nothing to iterate on and \
              it falls back to Newton on every unknown together.\n\n\
              The closed forms inside each evaluation round at the magnitudes of the points \
