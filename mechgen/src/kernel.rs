@@ -108,6 +108,87 @@ pub fn unscaled<T: Real, const N: usize>(
     crate::newton::finite(values, quantity)
 }
 
+/// The power of two `tempo` that brings the input rates and accelerations, as the larger of
+/// `max|rate|` and `√max|acceleration|`, into `[1/2, 1)`, and its inverse: time counted in
+/// units of `tempo`, for a computation on the mechanism scaled by [`length_scale`], where
+/// rates as far from 1 as its lengths were would leave a squared rate, or a rate times a
+/// length, outside the float's range (lengths of 1e300 turning at 1e-200 rad/s have a
+/// slider acceleration of 1e-100, whose squared rate of 1e-400 underflows). `(1, 1)` where
+/// every one is zero or one is infinite; a NaN is passed over (the callers refuse both).
+/// Exact, like the lengths' scaling: the same bits at every scale.
+pub fn rate_scale<T: Real>(rates: &[T], accelerations: &[T]) -> (T, T) {
+    let fastest = rates.iter().fold(T::zero(), |m, r| m.max(r.abs()));
+    let sharpest = accelerations.iter().fold(T::zero(), |m, a| m.max(a.abs()));
+    let largest = fastest.max(sharpest.sqrt());
+    if largest == T::zero() || !largest.is_finite() {
+        return (T::one(), T::one());
+    }
+    let tempo = crate::real::normaliser(largest);
+    (tempo, tempo.recip())
+}
+
+/// `values` back from a computation on the mechanism scaled by [`length_scale`] with time
+/// counted in units of [`rate_scale`]'s `tempo`: each times `unscale` where it is a length
+/// (`lengths`), and times `untempo` `order` times (1 for rates, 2 for accelerations). The
+/// factors are powers of two, applied as one, in steps that all move the value the same way,
+/// so that nothing overflows or underflows on the way to a result that does not; an error
+/// naming `quantity` if one is then not finite.
+pub fn untimed<T: Real, const N: usize>(
+    values: [T; N],
+    lengths: [bool; N],
+    unscale: T,
+    untempo: T,
+    order: i32,
+    quantity: &'static str,
+) -> Result<[T; N], Error<T>> {
+    let time = order * crate::real::binary_exponent(untempo);
+    let length = crate::real::binary_exponent(unscale);
+    let mut values = values;
+    for (value, is_length) in values.iter_mut().zip(lengths) {
+        *value = times_power_of_two(*value, if is_length { time + length } else { time });
+    }
+    crate::newton::finite(values, quantity)
+}
+
+/// Whether the closed forms and Newton compute rates and accelerations as given: the input
+/// rates' squares plus the accelerations' magnitudes within [`Real::RATES_AS_GIVEN`],
+/// or all zero. Elsewhere (rates of 1e-200 on a mechanism of 1e50, whose squares underflow
+/// while a length's acceleration does not) they compute with time counted in units of
+/// [`rate_scale`], out of line. A sum and two comparisons on the common path.
+#[inline(always)]
+pub fn rates_as_given<T: Real>(rates: &[T], accelerations: &[T]) -> bool {
+    let squares = rates.iter().fold(T::zero(), |sum, r| sum + *r * *r);
+    let sum = accelerations.iter().fold(squares, |sum, a| sum + a.abs());
+    let [slowest, fastest] = T::RATES_AS_GIVEN;
+    (sum >= slowest && sum <= fastest)
+        || rates
+            .iter()
+            .chain(accelerations)
+            .all(|value| *value == T::zero())
+}
+
+/// `value` times `untempo` `order` times (a rate, 1; an acceleration, 2), as one power of
+/// two applied in steps that all move it the same way, so that it does not overflow or
+/// underflow on the way to a result that does not (see [`untimed`]).
+#[inline]
+pub fn retimed<T: Real>(value: T, untempo: T, order: i32) -> T {
+    times_power_of_two(value, order * crate::real::binary_exponent(untempo))
+}
+
+/// `value · 2^exponent`, in steps of at most `2^60` (within every float type's normal range),
+/// all moving it the same way: no step overflows or underflows unless the result does.
+fn times_power_of_two<T: Real>(value: T, exponent: i32) -> T {
+    let (mut value, mut exponent) = (value, exponent);
+    while exponent != 0 {
+        // Not `clamp`, whose check of its bounds is a panic path the no-panic check reads.
+        #[allow(clippy::manual_clamp)]
+        let step = exponent.max(-60).min(60);
+        value = value * crate::real::power_of_two::<T>(step);
+        exponent -= step;
+    }
+    value
+}
+
 /// Whether the closed forms and Newton solve a mechanism with these lengths as it is given:
 /// its size, the sum of their magnitudes, within [`Real::SIZES_AS_GIVEN`] (not a NaN, not
 /// zero). Elsewhere they solve the mechanism scaled by [`length_scale`], out of line. Within
@@ -598,5 +679,87 @@ mod tests {
                 assert_eq!(inverse, squared);
             }
         }
+    }
+
+    #[test]
+    fn time_is_counted_in_a_power_of_two_that_brings_the_rates_near_1() {
+        // The larger of max|ω| and √max|α|, brought into [1/2, 1).
+        assert_eq!(rate_scale(&[3.0f64], &[1.0]), (0.25, 4.0));
+        assert_eq!(rate_scale(&[-3.0f64, 0.5], &[100.0]), (1.0 / 16.0, 16.0));
+        assert_eq!(rate_scale(&[0.0f64], &[-100.0]), (1.0 / 16.0, 16.0));
+        assert_eq!(rate_scale(&[1e-200f64], &[0.0]).0, 2f64.powi(664));
+        assert_eq!(rate_scale(&[0.75f32], &[0.0]), (1.0, 1.0));
+        // Nothing to scale by: as given.
+        assert_eq!(rate_scale(&[0.0f64], &[0.0]), (1.0, 1.0));
+        assert_eq!(rate_scale::<f64>(&[], &[]), (1.0, 1.0));
+        // A NaN is passed over (the callers have refused it).
+        assert_eq!(rate_scale(&[f64::NAN], &[4.0]), (0.25, 4.0));
+        assert_eq!(rate_scale(&[f64::INFINITY], &[1.0]), (1.0, 1.0));
+    }
+
+    #[test]
+    fn rates_come_back_in_the_callers_units_and_time() {
+        let unscale = 2f64.powi(997);
+        let untempo = 2f64.powi(-664);
+        // A rate: times untempo, and unscale where it is a length.
+        assert_eq!(
+            untimed([0.5, 0.25], [false, true], 4.0, 8.0, 1, "velocity"),
+            Ok([4.0, 8.0])
+        );
+        // An acceleration: untempo twice; 0.26 · 2^997 · 2^-1328 is about 1e-100, where
+        // untempo² alone (2^-1328) would underflow.
+        let [angle, length] = untimed(
+            [0.26, 0.26],
+            [false, true],
+            unscale,
+            untempo,
+            2,
+            "acceleration",
+        )
+        .unwrap();
+        assert_eq!(angle, 0.0);
+        assert_eq!(length, 0.26 * 2f64.powi(997 - 1328));
+        // Overflow on the way but not at the end, and the other way round.
+        let [up] = untimed(
+            [2f64.powi(-1000)],
+            [true],
+            2f64.powi(1000),
+            2f64.powi(500),
+            2,
+            "a",
+        )
+        .unwrap();
+        assert_eq!(up, 2f64.powi(1000));
+        assert_eq!(
+            untimed([1.0f64], [false], 1.0, 2f64.powi(600), 2, "acceleration"),
+            Err(Error::NonFinite {
+                quantity: "acceleration"
+            })
+        );
+        // f32: steps within its range.
+        let [small] = untimed([0.5f32], [true], 2f32.powi(100), 2f32.powi(-60), 2, "a").unwrap();
+        assert_eq!(small, 2f32.powi(-21));
+    }
+
+    #[test]
+    fn rates_are_taken_as_given_within_their_range_or_all_zero() {
+        assert_eq!(f64::RATES_AS_GIVEN, [2f64.powi(-600), 2f64.powi(600)]);
+        assert_eq!(f32::RATES_AS_GIVEN, [2f32.powi(-60), 2f32.powi(60)]);
+        assert!(rates_as_given(&[10.0f64], &[2.0]));
+        assert!(rates_as_given(&[0.0f64], &[0.0]));
+        assert!(rates_as_given::<f64>(&[], &[]));
+        // The squares and magnitudes summed: each side of the range.
+        assert!(rates_as_given(&[2f64.powi(-300)], &[0.0]));
+        assert!(!rates_as_given(&[2f64.powi(-301)], &[0.0]));
+        assert!(rates_as_given(&[2f64.powi(-301)], &[2f64.powi(-600)]));
+        assert!(!rates_as_given(&[2f64.powi(-301)], &[2f64.powi(-601)]));
+        assert!(rates_as_given(&[0.0f64], &[-(2f64.powi(-600))]));
+        assert!(!rates_as_given(&[0.0f64], &[-(2f64.powi(-601))]));
+        assert!(rates_as_given(&[2f64.powi(300)], &[0.0]));
+        assert!(!rates_as_given(&[2f64.powi(300)], &[2f64.powi(548)]));
+        assert!(!rates_as_given(&[1e-170f64], &[0.0]));
+        assert!(rates_as_given(&[1e-9f32], &[0.0]));
+        assert!(!rates_as_given(&[1e-20f32], &[0.0]));
+        assert!(!rates_as_given(&[f64::NAN], &[0.0]));
     }
 }

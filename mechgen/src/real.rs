@@ -72,6 +72,14 @@ pub trait Real: num_traits::Float + Debug + Display + Default + Send + Sync + 's
     #[doc(hidden)]
     const SIZES_AS_GIVEN: [Self; 2];
 
+    /// The input rates (as `Σ rate² + Σ |acceleration|`) at which the closed forms and
+    /// Newton compute rates and accelerations as given (see `rates_as_given` in the
+    /// runtime's kernel helpers): `[2^-600, 2^600]` for `f64`, `[2^-60, 2^60]` for `f32`, so
+    /// that with a size within [`Self::SIZES_AS_GIVEN`] and links down to 2^-60 of it no
+    /// squared rate, nor a length times one, leaves the float's normal range.
+    #[doc(hidden)]
+    const RATES_AS_GIVEN: [Self; 2];
+
     /// `π/2` in two parts for [`fast::unit_angle`](crate::fast::unit_angle): the first
     /// rounded to nearest, the second `π/2` minus the first, rounded to nearest.
     #[doc(hidden)]
@@ -132,6 +140,7 @@ impl Real for f64 {
 
     const EPSILON_CUBE_ROOT: Self = 6.055_454_452_393_339e-6;
     const SIZES_AS_GIVEN: [Self; 2] = [6.223_015_277_861_142e-61, 1.606_938_044_258_990_3e60];
+    const RATES_AS_GIVEN: [Self; 2] = [2.409_919_865_102_884e-181, 4.149_515_568_880_993e180];
     const UNIT_ANGLE_PI_OVER_2: [Self; 2] =
         [core::f64::consts::FRAC_PI_2, 6.123_233_995_736_766e-17];
     const UNIT_ANGLE_SPLITTER: Self = 134_217_729.0;
@@ -187,6 +196,7 @@ impl Real for f32 {
 
     const EPSILON_CUBE_ROOT: Self = 4.921_566_6e-3;
     const SIZES_AS_GIVEN: [Self; 2] = [1.525_878_9e-5, 16_777_216.0];
+    const RATES_AS_GIVEN: [Self; 2] = [8.673_617_4e-19, 1.152_921_5e18];
     const UNIT_ANGLE_PI_OVER_2: [Self; 2] = [core::f32::consts::FRAC_PI_2, -4.371_139e-8];
     const UNIT_ANGLE_SPLITTER: Self = 4097.0;
 

@@ -782,3 +782,74 @@ fn solving_as_given_or_scaled_gives_the_same_bits() {
     assert!(check::<f32>((16.0, 26.0), -40) > 2000);
     assert!(check::<f32>((-5.0, 10.0), 60) > 2000);
 }
+
+/// Rates as far from 1 as the lengths are (a slider-crank of 1e300 turning at 1e-200 rad/s,
+/// whose slider accelerates at about 1e-100): `motion` and `motion_near`, which compute on
+/// the mechanism scaled to size 1 (and on one of 1e50 as given), count time in units that
+/// bring the rates near 1 too wherever the rates are far from 1, so no squared rate
+/// underflows (the slider's acceleration came out 0, with a stated relative accuracy of
+/// 6e-14) or overflows; they agree with `motion_at`, which computes in the mechanism's own
+/// units. Where the true value is beyond the float's range, an error.
+#[test]
+fn rates_far_from_1_on_a_mechanism_far_from_size_1() {
+    fn check<T: Real>(size: T, omega: T, alpha: T) -> Option<[[T; 2]; 2]> {
+        let linkage =
+            SliderCrank::new(T::constant(0.3) * size, size, T::constant(0.1) * size).unwrap();
+        let theta2 = T::constant(0.7);
+        let q = linkage.assemble(theta2, Branch::Open).unwrap();
+        let at = linkage.motion_at(theta2, &q, omega, alpha);
+        let motion = linkage.motion(theta2, Branch::Open, omega, alpha);
+        let near = linkage
+            .motion_near(theta2, &q, &NewtonOptions::default(), omega, alpha)
+            .map(|solved| solved.value);
+        let (Ok(at), Ok(motion), Ok(near)) = (at, motion, near) else {
+            assert!(
+                motion.is_err() && near.is_err(),
+                "{size:?} {omega:?} {alpha:?}: {motion:?}"
+            );
+            return None;
+        };
+        for got in [motion, near] {
+            let pairs = [
+                (got.velocity.to_array(), at.velocity.to_array()),
+                (got.acceleration.to_array(), at.acceleration.to_array()),
+            ];
+            for (got, want) in pairs {
+                for (g, w) in got.into_iter().zip(want) {
+                    assert!(
+                        (g - w).abs() <= T::constant(1e-5) * w.abs(),
+                        "{size:?} {omega:?} {alpha:?}: {g:?} against {w:?}"
+                    );
+                }
+            }
+        }
+        Some([motion.velocity.to_array(), motion.acceleration.to_array()])
+    }
+    // The slider's acceleration, about 0.26·size·ω².
+    let [_, [_, d_ddot]] = check(1e300f64, 1e-200, 0.0).unwrap();
+    assert!(
+        (d_ddot / -2.6469180409627e-101 - 1.0).abs() < 1e-12,
+        "{d_ddot}"
+    );
+    let [_, [_, d_ddot]] = check(1e300f64, 1e-200, 3e-399).unwrap();
+    assert!(d_ddot < -1e-101);
+    let [_, [theta3_ddot, _]] = check(1e-300f64, 1e100, 1e300).unwrap();
+    assert!((theta3_ddot / -2.304571515774686e299 - 1.0).abs() < 1e-12);
+    // A size the solvers take as given, with rates they do not: 1e50 turning at 1e-170.
+    let [_, [_, d_ddot]] = check(1e50f64, 1e-170, 0.0).unwrap();
+    assert!(
+        (d_ddot / -2.6469180409627e-291 - 1.0).abs() < 1e-12,
+        "{d_ddot}"
+    );
+    // f32: 1e30 turning at 1e-25 (ω² = 1e-50 is below f32's range), and 1e6, as given,
+    // turning at 1e-20 (ω² = 1e-40 is below its normal range).
+    let [_, [_, d_ddot]] = check(1e30f32, 1e-25, 0.0).unwrap();
+    assert!(d_ddot < -1e-21 && d_ddot > -1e-19, "{d_ddot}");
+    let [_, [_, d_ddot]] = check(1e6f32, 1e-20, 0.0).unwrap();
+    assert!((d_ddot / -2.646918e-35 - 1.0).abs() < 1e-5, "{d_ddot}");
+    // The angle's acceleration, about ω², beyond f64's range: an error, not an infinity.
+    assert!(check(1e-300f64, 1e200, 0.0).is_none());
+    // Ordinary rates on an ordinary mechanism: as before.
+    check(1.0f64, 3.0, 2.0).unwrap();
+    check(1e-3f32, 5.0, -1e4).unwrap();
+}

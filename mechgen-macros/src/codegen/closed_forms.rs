@@ -365,30 +365,26 @@ impl Generator<'_> {
         let branch_argument = self.branch_argument(steps);
         let Normalised {
             prologue,
+            rates_prologue,
             receiver,
             input: scaled_input,
             input_dot: scaled_dot,
             input_ddot: scaled_ddot,
             restore,
-            ..
         } = self.normalised();
         let motion = local("motion");
         let [position, velocity, acceleration] =
             ["position", "velocity", "acceleration"].map(local);
-        let finish = [
-            (&position, "position"),
-            (&velocity, "velocity"),
-            (&acceleration, "acceleration"),
-        ]
-        .map(|(values, quantity)| self.unscaled_unknowns(values, quantity));
-        let [finish_position, finish_velocity, finish_acceleration] = finish;
+        let finish_position = self.unscaled_unknowns(&position, "position");
+        let finish_velocity = self.untimed_unknowns(&velocity, "velocity", 1);
+        let finish_acceleration = self.untimed_unknowns(&acceleration, "acceleration", 2);
         let [given_position, given_velocity, given_acceleration] = [
             (&position, "position"),
             (&velocity, "velocity"),
             (&acceleration, "acceleration"),
         ]
         .map(|(values, quantity)| self.finite_unknowns(values, quantity));
-        let as_given = self.as_given();
+        let as_given = self.as_given_with_rates();
         let scaled = local("mechgen_motion_scaled");
         let (public_parameter, conversion) = self.public_branch_parameter(steps);
         quote! {
@@ -430,6 +426,7 @@ impl Generator<'_> {
                 #input_ddot_params,
             ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
                 #prologue
+                #rates_prologue
                 let #motion = #receiver
                     .#inner(#scaled_input #branch_argument, #scaled_dot, #scaled_ddot)#restore?;
                 let #position = #motion.position;

@@ -20,8 +20,12 @@ pub(super) struct Normalised {
     pub(super) prologue: TokenStream,
     /// The scaled copy.
     pub(super) receiver: Ident,
+    /// Binds `tempo` and `untempo`: the power of two time is counted in (see
+    /// `mechgen::__private::rate_scale`), for a function with rates.
+    pub(super) rates_prologue: TokenStream,
     /// The inputs, and their rates and accelerations, as the scaled copy takes them (lists,
-    /// comma-separated).
+    /// comma-separated): lengths times `scale`, rates times `tempo`, accelerations times it
+    /// twice.
     pub(super) input: TokenStream,
     pub(super) input_dot: TokenStream,
     pub(super) input_ddot: TokenStream,
@@ -35,14 +39,30 @@ impl Generator<'_> {
     /// that it gives the same bits at every size (see [`Normalised`]).
     pub(super) fn normalised(&self) -> Normalised {
         let (scale, unscale) = (local("scale"), local("unscale"));
+        let tempo = local("tempo");
         let receiver = local("normalised");
         let name = &self.model.name;
         let lengths = self.length_params();
         let fields = self.scaled_fields(&scale);
         let input = self.first_input();
         let length_input = self.model.inputs[0].kind == Kind::Length;
-        // Each input (or its rate, or acceleration) times the scale where it is a length.
-        let scaled = |values: Vec<&Ident>| {
+        // Each input (or its rate, or acceleration) times the scale where it is a length,
+        // and a rate times `tempo` `order` times.
+        let scaled = |values: Vec<&Ident>, order: usize| {
+            let values = values
+                .into_iter()
+                .zip(&self.model.inputs)
+                .map(|(value, input)| {
+                    let value = if input.kind == Kind::Length {
+                        quote!(#value * #scale)
+                    } else {
+                        quote!(#value)
+                    };
+                    (0..order).fold(value, |value, _| quote!(#value * #tempo))
+                });
+            quote!(#(#values),*)
+        };
+        let rate_scale = |values: Vec<&Ident>| {
             let values = values
                 .into_iter()
                 .zip(&self.model.inputs)
@@ -53,17 +73,25 @@ impl Generator<'_> {
                         quote!(#value)
                     }
                 });
-            quote!(#(#values),*)
+            quote!(&[#(#values),*])
         };
+        let (dots, ddots) = (
+            rate_scale(self.input_dots.iter().collect()),
+            rate_scale(self.input_ddots.iter().collect()),
+        );
+        let untempo = local("untempo");
         Normalised {
             prologue: quote! {
                 let (#scale, #unscale) = ::mechgen::__private::length_scale(&[#(self.#lengths),*]);
                 let #receiver = #name { #(#fields),* };
             },
+            rates_prologue: quote! {
+                let (#tempo, #untempo) = ::mechgen::__private::rate_scale(#dots, #ddots);
+            },
             receiver,
-            input: scaled(self.inputs()),
-            input_dot: scaled(self.input_dots.iter().collect()),
-            input_ddot: scaled(self.input_ddots.iter().collect()),
+            input: scaled(self.inputs(), 0),
+            input_dot: scaled(self.input_dots.iter().collect(), 1),
+            input_ddot: scaled(self.input_ddots.iter().collect(), 2),
             restore: length_input.then(|| {
                 let error = arg("failure");
                 quote!(.map_err(|#error| ::mechgen::__private::at_input(#error, #input)))
@@ -99,6 +127,32 @@ impl Generator<'_> {
         }
     }
 
+    /// Rates (`order` 1) or accelerations (`order` 2) of the unknowns (an unknowns struct,
+    /// `values`) back in the mechanism's units and the caller's time: as
+    /// [`Self::unscaled_unknowns`], and times `untempo` `order` times
+    /// (`mechgen::__private::untimed`).
+    pub(super) fn untimed_unknowns(
+        &self,
+        values: &Ident,
+        quantity: &str,
+        order: i32,
+    ) -> TokenStream {
+        let ty = &self.unknowns_type;
+        let lengths = self.length_unknowns();
+        let (unscale, untempo) = (local("unscale"), local("untempo"));
+        let order = proc_macro2::Literal::i32_unsuffixed(order);
+        quote! {
+            #ty::from_array(::mechgen::__private::untimed(
+                #values.to_array(),
+                [#(#lengths),*],
+                #unscale,
+                #untempo,
+                #order,
+                #quantity,
+            )?)
+        }
+    }
+
     /// Whether to solve the mechanism as it is given (`mechgen::__private::as_given`, from
     /// its lengths and a length input): its size well inside the float's range.
     pub(super) fn as_given(&self) -> TokenStream {
@@ -121,6 +175,15 @@ impl Generator<'_> {
             })
         }));
         quote!(::mechgen::__private::as_given(&[#(#sizes),*]))
+    }
+
+    /// [`Self::as_given`] for a function with rates: the input rates and accelerations too
+    /// (`mechgen::__private::rates_as_given`), whose squares and products with lengths
+    /// elsewhere leave the float's range.
+    pub(super) fn as_given_with_rates(&self) -> TokenStream {
+        let as_given = self.as_given();
+        let (dots, ddots) = (&self.input_dots, &self.input_ddots);
+        quote!(#as_given && ::mechgen::__private::rates_as_given(&[#(#dots),*], &[#(#ddots),*]))
     }
 
     /// `values` (an unknowns struct) checked finite as `quantity` where the unknowns hold a
@@ -154,12 +217,17 @@ impl Generator<'_> {
         let ty = &self.unknowns_type;
         let Normalised {
             prologue,
+            rates_prologue,
             receiver,
             input: scaled_input,
             input_dot: scaled_dot,
             input_ddot: scaled_ddot,
             ..
         } = self.normalised();
+        let rates_prologue = match entry {
+            NewtonEntry::Position => TokenStream::new(),
+            NewtonEntry::MotionNear => rates_prologue,
+        };
         let lengths = self.length_unknowns();
         let guess_value = if lengths.contains(&true) {
             quote!(#ty::from_array(::mechgen::__private::scaled(#guess.to_array(), [#(#lengths),*], #scale)))
@@ -177,12 +245,9 @@ impl Generator<'_> {
             NewtonEntry::MotionNear => {
                 let [position, velocity, acceleration] =
                     ["position", "velocity", "acceleration"].map(local);
-                let [finish_position, finish_velocity, finish_acceleration] = [
-                    (&position, "position"),
-                    (&velocity, "velocity"),
-                    (&acceleration, "acceleration"),
-                ]
-                .map(|(values, quantity)| self.unscaled_unknowns(values, quantity));
+                let finish_position = self.unscaled_unknowns(&position, "position");
+                let finish_velocity = self.untimed_unknowns(&velocity, "velocity", 1);
+                let finish_acceleration = self.untimed_unknowns(&acceleration, "acceleration", 2);
                 (
                     quote!(motion_near),
                     quote!(, #input_dots, #input_ddots),
@@ -204,7 +269,10 @@ impl Generator<'_> {
         };
         let normalised = entry.normalised();
         let solve = entry.solve();
-        let as_given = self.as_given();
+        let as_given = match entry {
+            NewtonEntry::Position => self.as_given(),
+            NewtonEntry::MotionNear => self.as_given_with_rates(),
+        };
         let (rate_parameters_again, plain_arguments) = match entry {
             NewtonEntry::Position => (TokenStream::new(), TokenStream::new()),
             NewtonEntry::MotionNear => (
@@ -246,6 +314,7 @@ impl Generator<'_> {
                 #rate_parameters_again
             ) -> #result {
                 #prologue
+                #rates_prologue
                 let #scaled_guess = #guess_value;
                 let #scaled_options = ::mechgen::NewtonOptions {
                     tolerance: #options.tolerance * #scale,

@@ -195,9 +195,10 @@ impl Generator<'_> {
         let scaled_rates = scaled_inputs(&rate_names);
         let scaled_input = scaled_inputs(&[input]);
 
-        // Outputs in the order listed, checked finite together.
+        // Outputs in the order listed, checked finite together; each with its time order.
         let mut values = values.into_iter();
         let mut checked = Vec::new();
+        let mut checked_orders = Vec::new();
         let fields: Vec<TokenStream> = scene
             .items
             .iter()
@@ -218,6 +219,7 @@ impl Generator<'_> {
                         }
                         let index = Literal::usize_unsuffixed(checked.len());
                         checked.push(quote!(#value));
+                        checked_orders.push(item.order);
                         let checked_values = local("values");
                         quote!(#checked_values[#index])
                     })
@@ -273,15 +275,50 @@ impl Generator<'_> {
             );
         }
         let checked_name = checked_kernel(name);
-        // What the scalar kernels, fast and checked, compute before their outputs.
+        // What the scalar kernels, fast and checked, compute before their outputs; the
+        // checked one with time counted in units that bring the rates near 1
+        // (`mechgen::__private::rate_scale`): exact, so the same bits where the fast one
+        // answers, and the outputs where a squared rate in the scaled units overflows (a
+        // tiny mechanism turning fast) and the fast one gives up.
         let body = read_late(bindings, body, &checked);
+        let (tempo, untempo) = (local("tempo"), local("untempo"));
+        let timed = if mode == Mode::Checked && order >= Order::Rate {
+            let (accelerations, scaled_ddot) = if order >= Order::Acceleration {
+                (
+                    quote!(&[#input_ddot]),
+                    quote!(let #input_ddot = #input_ddot * #tempo * #tempo;),
+                )
+            } else {
+                (quote!(&[]), TokenStream::new())
+            };
+            quote! {
+                let (#tempo, #untempo) =
+                    ::mechgen::__private::rate_scale(&[#input_dot], #accelerations);
+                let #input_dot = #input_dot * #tempo;
+                #scaled_ddot
+            }
+        } else {
+            TokenStream::new()
+        };
         let computed = quote! {
             #input_trig
             #scaled_input
             #scaled_rates
+            #timed
             #(#body)*
         };
         if mode == Mode::Checked {
+            let checked: Vec<TokenStream> = checked
+                .iter()
+                .zip(&checked_orders)
+                .map(|(value, order)| match order {
+                    Order::Value => value.clone(),
+                    Order::Rate => quote!(::mechgen::__private::retimed(#value, #untempo, 1)),
+                    Order::Acceleration => {
+                        quote!(::mechgen::__private::retimed(#value, #untempo, 2))
+                    }
+                })
+                .collect();
             let docs = doc(&format!(
                 "[`Self::{}`] with each step that can fail checked where it happens: the fast \
                  kernel's way out, which says why it failed.",
@@ -326,11 +363,19 @@ impl Generator<'_> {
             (passed, TokenStream::new())
         };
         let docs = docs_or(&scene.docs, &fallback);
-        let errors = doc(
+        let slow_rates = if order >= Order::Rate {
+            "\n\nThe input rate is taken as given, for speed: one whose square, times the \
+             shortest link over the longest, is not a normal number (below about 1e-145 rad/s \
+             in f64, 1e-15 in f32) gives rates and accelerations of lengths and points that \
+             underflow; the general `motion` counts time in units that keep it in range."
+        } else {
+            ""
+        };
+        let errors = doc(&format!(
             "Errors: [`mechgen::Error::CannotAssemble`] outside the range of motion; \
              [`mechgen::Error::Singular`] where rates are asked for at a toggle; a non-finite \
-             argument or result.",
-        );
+             argument or result.{slow_rates}"
+        ));
         let (public_parameter, conversion) = self.public_branch_parameter(steps);
         quote! {
             #docs
