@@ -853,3 +853,43 @@ fn rates_far_from_1_on_a_mechanism_far_from_size_1() {
     check(1.0f64, 3.0, 2.0).unwrap();
     check(1e-3f32, 5.0, -1e4).unwrap();
 }
+
+/// The general rate functions compute on the mechanism scaled to size 1 too, with time in a
+/// power of two, wherever lengths or rates are far from 1: a four-bar of 1e300 turning at
+/// 1e5 rad/s has angular accelerations of about 1e10 rad/s², which `acceleration` and
+/// `motion_at` refused as not finite (a length times a squared rate, 1e310, overflowed on
+/// the way). Its angles' rates and accelerations are the unit four-bar's, bit for bit
+/// (scaling by a power of two changes nothing).
+#[test]
+fn rates_of_a_huge_mechanism_turning_fast_are_its_unit_copys() {
+    let unit = FourBar::new(1.8f64, 0.8, 2.0, 1.5).unwrap();
+    let factor = 2f64.powi(996);
+    let huge = FourBar::new(1.8 * factor, 0.8 * factor, 2.0 * factor, 1.5 * factor).unwrap();
+    let (theta2, omega, alpha) = (1.0, 1e5, -3e9);
+    let q = unit.assemble(theta2, Branch::Open).unwrap();
+    let v = unit.velocity(theta2, &q, omega).unwrap();
+    let a = unit.acceleration(theta2, &q, omega, &v, alpha).unwrap();
+    assert!(a.to_array().iter().all(|x| x.abs() > 1e8 && x.is_finite()));
+    assert_eq!(huge.assemble(theta2, Branch::Open).unwrap(), q);
+    assert_eq!(huge.velocity(theta2, &q, omega).unwrap(), v);
+    assert_eq!(huge.acceleration(theta2, &q, omega, &v, alpha).unwrap(), a);
+    let at = huge.motion_at(theta2, &q, omega, alpha).unwrap();
+    assert_eq!((at.velocity, at.acceleration), (v, a));
+    // `motion`, by its closed forms, to rounding.
+    let motion = huge.motion(theta2, Branch::Open, omega, alpha).unwrap();
+    let pairs = [(motion.velocity, v), (motion.acceleration, a)];
+    for (got, want) in pairs {
+        for (g, w) in got.to_array().into_iter().zip(want.to_array()) {
+            assert!((g - w).abs() <= 1e-13 * w.abs(), "{g} against {w}");
+        }
+    }
+    // And slowly: 1e-200 rad/s, accelerations of 1e-400 rad/s², below the float's range.
+    let slow = huge.motion_at(theta2, &q, 1e-200, 0.0).unwrap();
+    assert!(slow.velocity.to_array().iter().all(|x| x.abs() > 1e-201));
+    assert!(
+        slow.acceleration
+            .to_array()
+            .iter()
+            .all(|x| x.abs() < 1e-300)
+    );
+}

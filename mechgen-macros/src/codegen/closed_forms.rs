@@ -371,6 +371,7 @@ impl Generator<'_> {
             input_dot: scaled_dot,
             input_ddot: scaled_ddot,
             restore,
+            ..
         } = self.normalised();
         let motion = local("motion");
         let [position, velocity, acceleration] =

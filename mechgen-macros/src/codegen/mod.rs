@@ -496,7 +496,11 @@ impl<'a> Generator<'a> {
 
     /// A checked kinematics function taking the first `arity` of the arguments
     /// (input, position, input rate, velocity, input acceleration, acceleration): it rejects
-    /// non-finite parameters and arguments, then runs `body`.
+    /// non-finite parameters and arguments, then runs `body`. With `timed` (what its output
+    /// is: the unknowns' rates or accelerations), it runs
+    /// `body` on the mechanism as given only where its size and the input rates are well
+    /// inside the float's range, and elsewhere, out of line, on the mechanism scaled by a
+    /// power of two with time counted in another (see [`normalise`]).
     fn checked_function(
         &self,
         name: &str,
@@ -504,6 +508,7 @@ impl<'a> Generator<'a> {
         arity: usize,
         output: &TokenStream,
         body: TokenStream,
+        timed: Option<normalise::RatesOutput>,
     ) -> TokenStream {
         let inputs = self.input_args();
         let (unknowns, _, _) = self.signature_types();
@@ -537,6 +542,17 @@ impl<'a> Generator<'a> {
             .then(|| quote!(::mechgen::__private::check_finite(&[#(#scalar_checks),*])?;));
         let name = Ident::new(name, proc_macro2::Span::call_site());
         let docs = doc(docs);
+        if let Some(rates) = timed {
+            return self.normalised_rates_function(
+                &name,
+                docs,
+                arity,
+                output,
+                quote!(self.mechgen_check_finite(#inputs)?; #scalar_checks #(#unknowns_checks)*),
+                body,
+                rates,
+            );
+        }
         quote! {
             #docs
             pub fn #name(

@@ -5,7 +5,7 @@
 //! the same bits, and no square or product of lengths overflows or underflows.
 
 use proc_macro2::{Ident, Span, TokenStream};
-use quote::quote;
+use quote::{format_ident, quote};
 
 use super::emit::local;
 use super::{Generator, arg};
@@ -21,8 +21,10 @@ pub(super) struct Normalised {
     /// The scaled copy.
     pub(super) receiver: Ident,
     /// Binds `tempo` and `untempo`: the power of two time is counted in (see
-    /// `mechgen::__private::rate_scale`), for a function with rates.
+    /// `mechgen::__private::rate_scale`), for a function with rates and accelerations.
     pub(super) rates_prologue: TokenStream,
+    /// The same for a function with rates alone.
+    pub(super) velocity_prologue: TokenStream,
     /// The inputs, and their rates and accelerations, as the scaled copy takes them (lists,
     /// comma-separated): lengths times `scale`, rates times `tempo`, accelerations times it
     /// twice.
@@ -62,22 +64,11 @@ impl Generator<'_> {
                 });
             quote!(#(#values),*)
         };
-        let rate_scale = |values: Vec<&Ident>| {
-            let values = values
-                .into_iter()
-                .zip(&self.model.inputs)
-                .map(|(value, input)| {
-                    if input.kind == Kind::Length {
-                        quote!(#value * #scale)
-                    } else {
-                        quote!(#value)
-                    }
-                });
-            quote!(&[#(#values),*])
-        };
+        // The rates and accelerations as `rate_scale` reads them: in the scaled lengths, not
+        // yet in `tempo`.
         let (dots, ddots) = (
-            rate_scale(self.input_dots.iter().collect()),
-            rate_scale(self.input_ddots.iter().collect()),
+            scaled(self.input_dots.iter().collect(), 0),
+            scaled(self.input_ddots.iter().collect(), 0),
         );
         let untempo = local("untempo");
         Normalised {
@@ -86,7 +77,10 @@ impl Generator<'_> {
                 let #receiver = #name { #(#fields),* };
             },
             rates_prologue: quote! {
-                let (#tempo, #untempo) = ::mechgen::__private::rate_scale(#dots, #ddots);
+                let (#tempo, #untempo) = ::mechgen::__private::rate_scale(&[#dots], &[#ddots]);
+            },
+            velocity_prologue: quote! {
+                let (#tempo, #untempo) = ::mechgen::__private::rate_scale(&[#dots], &[]);
             },
             receiver,
             input: scaled(self.inputs(), 0),
@@ -181,9 +175,163 @@ impl Generator<'_> {
     /// (`mechgen::__private::rates_as_given`), whose squares and products with lengths
     /// elsewhere leave the float's range.
     pub(super) fn as_given_with_rates(&self) -> TokenStream {
+        self.as_given_with(true)
+    }
+
+    /// [`Self::as_given_with_rates`], with the input accelerations or (`accelerations`
+    /// false, for a function that takes none) without.
+    fn as_given_with(&self, accelerations: bool) -> TokenStream {
         let as_given = self.as_given();
-        let (dots, ddots) = (&self.input_dots, &self.input_ddots);
+        let dots = &self.input_dots;
+        let ddots = accelerations
+            .then_some(&self.input_ddots)
+            .into_iter()
+            .flatten();
         quote!(#as_given && ::mechgen::__private::rates_as_given(&[#(#dots),*], &[#(#ddots),*]))
+    }
+
+    /// A rates function (`name`: `velocity`, `order` 1; `acceleration`, `order` 2) taking
+    /// the first `arity` of the arguments (input, position, input rate, velocity, input
+    /// acceleration): `checks`, then `body` on the mechanism as given where its size and the
+    /// input rates are well inside the float's range ([`Self::as_given_with_rates`]), and
+    /// elsewhere, out of line, on the mechanism scaled by a power of two with time counted in
+    /// another (`mechgen::__private::rate_scale`): the position's lengths times the scale, a
+    /// velocity's too and all of it times `tempo`, and the answer back in the caller's units
+    /// and time. The same bits either way while nothing overflows or underflows; where the
+    /// rates as given would (a squared rate of 1e-400 times a length of 1e300), the right
+    /// answer rather than a zero or an error.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn normalised_rates_function(
+        &self,
+        name: &Ident,
+        docs: TokenStream,
+        arity: usize,
+        output: &TokenStream,
+        checks: TokenStream,
+        body: TokenStream,
+        rates: RatesOutput,
+    ) -> TokenStream {
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let (position, velocity, value) = (arg("position"), arg("velocity"), local("value"));
+        let (input_params, input) = (self.input_params(), self.input_args());
+        let (dot_params, ddot_params) = (self.input_dot_params(), self.input_ddot_params());
+        let (dot_args, ddot_args) = (self.input_dot_args(), self.input_ddot_args());
+        let Normalised {
+            prologue,
+            rates_prologue,
+            velocity_prologue,
+            receiver,
+            input: scaled_input,
+            input_dot: scaled_dot,
+            input_ddot: scaled_ddot,
+            restore,
+        } = self.normalised();
+        let accelerations = arity >= 5 || rates == RatesOutput::Motion;
+        let rates_prologue = if accelerations {
+            rates_prologue
+        } else {
+            velocity_prologue
+        };
+        let (scale, tempo) = (local("scale"), local("tempo"));
+        let lengths = self.length_unknowns();
+        let (mut params, mut args, mut scaled_args) = (
+            vec![
+                quote!(#input_params),
+                quote!(#position: &#unknowns),
+                dot_params,
+            ],
+            vec![input.clone(), quote!(#position), dot_args],
+            vec![scaled_input, quote!(&#position), scaled_dot],
+        );
+        let mut scaled_velocity = TokenStream::new();
+        // `motion_at` takes the input's acceleration after its rate, with no velocity.
+        if arity >= 4 && rates != RatesOutput::Motion {
+            params.push(quote!(#velocity: &#unknowns));
+            args.push(quote!(#velocity));
+            scaled_args.push(quote!(&#velocity));
+            scaled_velocity = quote! {
+                let #velocity = #ty::from_array(::mechgen::__private::untimed(
+                    #velocity.to_array(),
+                    [#(#lengths),*],
+                    #scale,
+                    #tempo,
+                    1,
+                    "velocity",
+                )?);
+            };
+        }
+        if accelerations {
+            params.push(ddot_params);
+            args.push(ddot_args);
+            scaled_args.push(scaled_ddot);
+        }
+        let given_position = local("given_position");
+        let finish = match rates {
+            RatesOutput::Velocity => self.untimed_unknowns(&value, "velocity", 1),
+            RatesOutput::Acceleration => self.untimed_unknowns(&value, "acceleration", 2),
+            RatesOutput::Motion => {
+                let (rates, accelerations) = (local("rates"), local("accelerations"));
+                let velocity = self.untimed_unknowns(&rates, "velocity", 1);
+                let acceleration = self.untimed_unknowns(&accelerations, "acceleration", 2);
+                quote! {{
+                    let #rates = #value.velocity;
+                    let #accelerations = #value.acceleration;
+                    ::mechgen::Motion {
+                        position: *#given_position,
+                        velocity: #velocity,
+                        acceleration: #acceleration,
+                        accuracy: #value.accuracy,
+                    }
+                }}
+            }
+        };
+        let as_given = self.as_given_with(accelerations);
+        let solve = format_ident!("mechgen_{}_solve", name);
+        let normalised = format_ident!("mechgen_{}_normalised", name);
+        let normalised_doc = super::docs::doc(&format!(
+            "[`Self::{name}`] on the mechanism scaled by a power of two, with time counted in \
+             another, for a mechanism or rates far from 1: the same bits as at any other size."
+        ));
+        let solve_doc = super::docs::doc(&format!(
+            "[`Self::{name}`] on the mechanism it is called on: the mechanism as given, or \
+             scaled by a power of two."
+        ));
+        quote! {
+            #docs
+            pub fn #name(&self, #(#params),*) -> ::core::result::Result<#output, ::mechgen::Error<T>> {
+                #checks
+                if #as_given {
+                    self.#solve(#(#args),*)
+                } else {
+                    self.#normalised(#(#args),*)
+                }
+            }
+
+            #normalised_doc
+            #[cold]
+            #[inline(never)]
+            fn #normalised(&self, #(#params),*) -> ::core::result::Result<#output, ::mechgen::Error<T>> {
+                #prologue
+                #rates_prologue
+                let #given_position = #position;
+                let #position = #ty::from_array(::mechgen::__private::scaled(
+                    #position.to_array(),
+                    [#(#lengths),*],
+                    #scale,
+                ));
+                #scaled_velocity
+                let #value = #receiver.#solve(#(#scaled_args),*)#restore?;
+                ::core::result::Result::Ok(#finish)
+            }
+
+            #solve_doc
+            #[allow(unused_variables)]
+            #[inline(always)]
+            fn #solve(&self, #(#params),*) -> ::core::result::Result<#output, ::mechgen::Error<T>> {
+                #body
+            }
+        }
     }
 
     /// `values` (an unknowns struct) checked finite as `quantity` where the unknowns hold a
@@ -361,4 +509,15 @@ impl NewtonEntry {
         };
         Ident::new(name, Span::call_site())
     }
+}
+
+/// What a function [`Generator::normalised_rates_function`] makes returns.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum RatesOutput {
+    /// The unknowns' rates (`velocity`).
+    Velocity,
+    /// Their accelerations (`acceleration`).
+    Acceleration,
+    /// A `Motion`: the position given, rates, accelerations and accuracy (`motion_at`).
+    Motion,
 }

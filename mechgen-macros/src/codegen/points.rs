@@ -14,7 +14,7 @@ impl Generator<'_> {
         let body = self.points_body(|p| vec![p.position], &[], "point position");
         let docs = "The tracked points' positions at a solved `position`.";
         let output = quote!(#ty<::mechgen::Vec2<T>>);
-        self.checked_function("points", docs, 2, &output, body)
+        self.checked_function("points", docs, 2, &output, body, None)
     }
 
     pub(super) fn point_velocities(&self) -> TokenStream {
@@ -22,7 +22,7 @@ impl Generator<'_> {
         let body = self.points_body(|p| vec![p.velocity], &[], "point velocity");
         let docs = "The tracked points' velocities at a solved `position` and `velocity`.";
         let output = quote!(#ty<::mechgen::Vec2<T>>);
-        self.checked_function("point_velocities", docs, 4, &output, body)
+        self.checked_function("point_velocities", docs, 4, &output, body, None)
     }
 
     pub(super) fn point_accelerations(&self) -> TokenStream {
@@ -31,7 +31,7 @@ impl Generator<'_> {
         let docs = "The tracked points' accelerations at a solved `position`, `velocity` and \
              `acceleration`.";
         let output = quote!(#ty<::mechgen::Vec2<T>>);
-        self.checked_function("point_accelerations", docs, 6, &output, body)
+        self.checked_function("point_accelerations", docs, 6, &output, body, None)
     }
 
     pub(super) fn point_acceleration_parts(&self) -> TokenStream {
@@ -46,7 +46,7 @@ impl Generator<'_> {
              sliding `r̈·e^{iθ}` and Coriolis `2·i·ṙ·θ̇·e^{iθ}` parts, which sum to \
              [`Self::point_accelerations`].";
         let output = quote!(#ty<::mechgen::AccelerationParts<T>>);
-        self.checked_function("point_acceleration_parts", docs, 6, &output, body)
+        self.checked_function("point_acceleration_parts", docs, 6, &output, body, None)
     }
 
     /// The body of a points function: each point's value built from `which` of its

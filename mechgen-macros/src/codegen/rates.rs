@@ -6,6 +6,7 @@ use quote::quote;
 
 use super::docs::doc;
 use super::emit::{Block, Emitted, local};
+use super::normalise::RatesOutput;
 use super::{Bindings, Generator, arg, matrix};
 use crate::model::SymbolRef;
 use crate::symbolic::{ExprId, Step, Var};
@@ -31,7 +32,14 @@ impl Generator<'_> {
              `assemble`). A position from Newton is known less well, and its rates with it: \
              [`Self::motion_at`] and `motion_near` estimate them for it."
         );
-        self.checked_function("velocity", &docs, 3, &unknowns, body)
+        self.checked_function(
+            "velocity",
+            &docs,
+            3,
+            &unknowns,
+            body,
+            Some(RatesOutput::Velocity),
+        )
     }
 
     pub(super) fn acceleration(&self) -> TokenStream {
@@ -53,17 +61,22 @@ impl Generator<'_> {
              than [`mechgen::Accuracy::required`] ([`mechgen::Error::Inaccurate`]), judged as \
              at a closed form's position, as [`Self::velocity`]."
         );
-        self.checked_function("acceleration", &docs, 5, &unknowns, body)
+        self.checked_function(
+            "acceleration",
+            &docs,
+            5,
+            &unknowns,
+            body,
+            Some(RatesOutput::Acceleration),
+        )
     }
 
     /// `motion_at(input, &position, rate, acceleration)`: velocity and acceleration at a
     /// solved position (from Newton, say) in one pass, every shared sine and product once.
     pub(super) fn motion_at(&self) -> TokenStream {
-        let (input_params, input) = (self.input_params(), self.input_args());
+        let input = self.input_args();
         let (input_dot_text, input_ddot_text) = (self.input_dots_text(), self.input_ddots_text());
         let the_input = self.the_input();
-        let (input_dot_params, input_ddot_params) =
-            (self.input_dot_params(), self.input_ddot_params());
         let position = arg("position");
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
@@ -104,18 +117,17 @@ impl Generator<'_> {
              a closed form's rates have, and the rates are refused sooner.\n\nErrors: as \
              [`Self::velocity`] and [`Self::acceleration`], judged by that accuracy."
         ));
-        quote! {
-            #docs
-            pub fn motion_at(
-                &self,
-                #input_params,
-                #position: &#unknowns,
-                #input_dot_params,
-                #input_ddot_params,
-            ) -> ::core::result::Result<::mechgen::Motion<#unknowns, T>, ::mechgen::Error<T>> {
+        self.normalised_rates_function(
+            &Ident::new("motion_at", proc_macro2::Span::call_site()),
+            docs,
+            4,
+            &quote!(::mechgen::Motion<#unknowns, T>),
+            quote! {
                 self.mechgen_check_finite(#input)?;
                 #rates_check
                 ::mechgen::__private::finite(#position.to_array(), "position")?;
+            },
+            quote! {
                 #bindings
                 #rate_solves
                 ::core::result::Result::Ok(::mechgen::Motion {
@@ -124,8 +136,9 @@ impl Generator<'_> {
                     acceleration: #ty::from_array(#accelerations),
                     accuracy: #accuracy,
                 })
-            }
-        }
+            },
+            RatesOutput::Motion,
+        )
     }
 
     /// The velocity and acceleration solves from emitted Jacobian and right-hand sides

@@ -101,7 +101,7 @@ impl Generator<'_> {
              leaves fewer digits than [`mechgen::Accuracy::required`] asks of a velocity \
              ([`mechgen::Error::Inaccurate`]): the same solve, and the same estimate.";
         let output = quote!(#ty<#unknowns<T>>);
-        self.checked_function("sensitivities", docs, 2, &output, body)
+        self.checked_function("sensitivities", docs, 2, &output, body, None)
     }
 
     fn points_sensitivities(&self, sensitivities: &crate::symbolic::Sensitivities) -> TokenStream {
@@ -178,7 +178,7 @@ impl Generator<'_> {
              input held, the unknowns' part from [`Self::sensitivities`]' solve.\n\nErrors: as \
              [`Self::sensitivities`].";
         let output = quote!(#ty<#points_type<::mechgen::Vec2<T>>>);
-        self.checked_function("point_sensitivities", docs, 2, &output, body)
+        self.checked_function("point_sensitivities", docs, 2, &output, body, None)
     }
 
     /// The placeholder field of a sensitivities value for a declaration without parameters.
