@@ -762,4 +762,15 @@ mod tests {
         assert!(!rates_as_given(&[1e-20f32], &[0.0]));
         assert!(!rates_as_given(&[f64::NAN], &[0.0]));
     }
+
+    #[test]
+    fn a_rate_is_retimed_by_untempo_once_and_an_acceleration_twice() {
+        assert_eq!(retimed(3.0f64, 4.0, 1), 12.0);
+        assert_eq!(retimed(3.0f64, 4.0, 2), 48.0);
+        assert_eq!(retimed(3.0f64, 0.25, 2), 0.1875);
+        assert_eq!(retimed(-3.0f64, 4.0, 0), -3.0);
+        // Past the float's range on the way, not at the end: 2^-1000 · (2^600)².
+        assert_eq!(retimed(2f64.powi(-1000), 2f64.powi(600), 2), 2f64.powi(200));
+        assert_eq!(retimed(0.5f32, 2f32.powi(-100), 1), 2f32.powi(-101));
+    }
 }

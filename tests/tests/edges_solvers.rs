@@ -893,3 +893,38 @@ fn rates_of_a_huge_mechanism_turning_fast_are_its_unit_copys() {
             .all(|x| x.abs() < 1e-300)
     );
 }
+
+/// A scene's fast kernel gives up where a squared rate overflows in its scaled units (a
+/// slider-crank of 1e-300 turning at 1e200 rad/s), and its checked kernel counts time in a
+/// power of two that brings the rate near 1: the slider's acceleration of about 1e100 and
+/// its rate, as `motion` gives them; the rod's angular acceleration, about 1e400 rad/s², is
+/// beyond the float's range, so the scene that asks for it says so.
+#[test]
+fn a_scene_of_a_tiny_mechanism_turning_fast_answers_by_its_checked_kernel() {
+    let size = 1e-300f64;
+    let linkage = SliderCrank::new(0.3 * size, size, 0.1 * size).unwrap();
+    let scenes = linkage.scenes().unwrap();
+    let (theta2, omega, alpha) = (0.7, 1e200, 0.0);
+    let slider = scenes.slider(theta2, Branch::Open, omega, alpha).unwrap();
+    let motion = linkage.motion_at(
+        theta2,
+        &linkage.assemble(theta2, Branch::Open).unwrap(),
+        omega,
+        alpha,
+    );
+    // `motion_at` refuses, for the rod's acceleration; the slider's is the unit copy's.
+    assert!(motion.is_err());
+    let unit = SliderCrank::new(0.3f64, 1.0, 0.1).unwrap();
+    let unit_slider = unit
+        .scenes()
+        .unwrap()
+        .slider(theta2, Branch::Open, 1.0, 0.0)
+        .unwrap();
+    assert!((slider.d_dot / (unit_slider.d_dot * 1e-100) - 1.0).abs() < 1e-14);
+    assert!((slider.d_ddot / (unit_slider.d_ddot * 1e100) - 1.0).abs() < 1e-14);
+    assert!(slider.d_ddot.abs() > 1e99);
+    assert!(matches!(
+        scenes.state(theta2, Branch::Open, omega, alpha),
+        Err(Error::NonFinite { .. })
+    ));
+}
