@@ -98,6 +98,7 @@ impl Generator<'_> {
                 quote!(#factored.relative()),
             )
         };
+        let elsewhere = self.root_elsewhere(&columns, &relative);
         let wrapper = self.normalised_newton(NewtonEntry::Position, doc);
         let inner = NewtonEntry::Position.solve();
         let inner_doc = super::docs::doc(
@@ -120,17 +121,7 @@ impl Generator<'_> {
                 #factor
                 // Newton on every unknown from the guess where the solution is certainly not
                 // the guess's root; from the solution, to polish it, where it stagnated.
-                if !::mechgen::__private::certified_start(
-                    &#guess.to_array(),
-                    &[#(#unknown_names),*],
-                    #columns,
-                    #relative,
-                ) && ::mechgen::__private::root_elsewhere(
-                    &self.residual(#input, #guess),
-                    &self.jacobian(#input, #guess),
-                    &#guess.to_array(),
-                    &[#(#unknown_names),*],
-                ) {
+                if #elsewhere {
                     return self.#fallback(#input, #guess, #options);
                 }
                 if ::mechgen::__private::stagnated(&#converged, #options) {
@@ -222,6 +213,7 @@ impl Generator<'_> {
                 quote!(#factored.relative()),
             )
         };
+        let elsewhere = self.root_elsewhere(&columns, &relative);
         // The rates' estimate at Newton's position, its error from the residual it stopped at
         // and the full Jacobian's condition.
         let condition = quote!((T::one() / #relative.abs()));
@@ -249,17 +241,7 @@ impl Generator<'_> {
                 #factor
                 // Newton on every unknown from the guess where the solution is certainly not
                 // the guess's root; from the solution, to polish it, where it stagnated.
-                if !::mechgen::__private::certified_start(
-                    &#guess.to_array(),
-                    &[#(#unknown_names),*],
-                    #columns,
-                    #relative,
-                ) && ::mechgen::__private::root_elsewhere(
-                    &self.residual(#input, #guess),
-                    &self.jacobian(#input, #guess),
-                    &#guess.to_array(),
-                    &[#(#unknown_names),*],
-                ) {
+                if #elsewhere {
                     return self.#all(#input, #guess, #options, #input_dot, #input_ddot);
                 }
                 if ::mechgen::__private::stagnated(&#converged, #options) {
@@ -302,6 +284,28 @@ impl Generator<'_> {
         );
         let function = self.motion_near_function(docs, TokenStream::new(), check, body);
         quote!(#function #all_item)
+    }
+
+    /// Whether the reduced iteration's solution (the unknowns, bound by name) is certainly
+    /// not the guess's root: `certified_start` cannot vouch for it from the solution's side
+    /// (`columns`, the loops' Jacobian's squared column norms there; `relative`, its
+    /// relative determinant), and `root_elsewhere` says so from the guess's, out of line.
+    fn root_elsewhere(&self, columns: &TokenStream, relative: &TokenStream) -> TokenStream {
+        let (guess, input) = (arg("guess"), self.input_args());
+        let unknown_names: Vec<_> = self.model.unknowns.iter().map(|u| &u.name).collect();
+        quote! {
+            !::mechgen::__private::certified_start(
+                &#guess.to_array(),
+                &[#(#unknown_names),*],
+                #columns,
+                #relative,
+            ) && ::mechgen::__private::root_elsewhere(
+                &self.residual(#input, #guess),
+                &self.jacobian(#input, #guess),
+                &#guess.to_array(),
+                &[#(#unknown_names),*],
+            )
+        }
     }
 
     /// The private Newton on every unknown that the reduced functions fall back to.
