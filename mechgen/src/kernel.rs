@@ -128,11 +128,11 @@ pub fn rate_scale<T: Real>(rates: &[T], accelerations: &[T]) -> (T, T) {
 }
 
 /// `values` back from a computation on the mechanism scaled by [`length_scale`] with time
-/// counted in units of [`rate_scale`]'s `tempo`: each times `unscale` where it is a length
-/// (`lengths`), and times `untempo` `order` times (1 for rates, 2 for accelerations). The
-/// factors are powers of two, applied as one, in steps that all move the value the same way,
-/// so that nothing overflows or underflows on the way to a result that does not; an error
-/// naming `quantity` if one is then not finite.
+/// counted in units of [`rate_scale`]'s `tempo` (or, given `scale` and `tempo`, into it):
+/// each times `unscale` where it is a length (`lengths`), and `untempo` `order` times (1,
+/// rates; 2, accelerations). The factors are powers of two, applied as one, in steps that
+/// all move the value the same way, so nothing overflows or underflows on the way to a
+/// result that does not; an error naming `quantity` if one is then not finite.
 pub fn untimed<T: Real, const N: usize>(
     values: [T; N],
     lengths: [bool; N],

@@ -548,11 +548,11 @@ fn guess_radius<T: Real, const N: usize>(residual: &[T; N], jacobian: &[[T; N]; 
     (reach_squared * eta_squared <= T::constant(0.25)).then(|| T::one() / reach_squared.sqrt())
 }
 
-/// Whether Kantorovich certifies `guess` (`h = β·L·η ≤ 1/2` at the guess, as the private `guess_radius` computes it): Newton on every unknown
-/// from it converges to the root it is near. Generated code asks this before it lets
-/// Newton on every unknown answer for a reduced iteration that landed on another
-/// orientation: from a guess it certifies, that answer is the guess's root; from any other,
-/// the reduced iteration's [`Error::OtherBranch`] stands.
+/// Whether Kantorovich certifies `guess` (`h = β·L·η ≤ 1/2` there, see `guess_radius`):
+/// Newton on every unknown from it converges to the root it is near. Generated code asks
+/// this before it lets Newton on every unknown answer for a reduced iteration that landed
+/// on another orientation: from a guess it certifies, that answer is the guess's root;
+/// from any other, the reduced iteration's [`Error::OtherBranch`] stands.
 #[cold]
 #[inline(never)]
 pub fn guess_certified<T: Real, const N: usize>(residual: &[T; N], jacobian: &[[T; N]; N]) -> bool {
@@ -560,7 +560,7 @@ pub fn guess_certified<T: Real, const N: usize>(residual: &[T; N], jacobian: &[[
 }
 
 /// Whether `solution` is certainly not the root `guess` is near: Kantorovich certifies the
-/// guess (`h = β·L·η ≤ 1/2` at the guess, as the private `guess_radius` computes it) and `solution` lies farther from it than the radius within
+/// guess (see `guess_radius`) and `solution` lies farther from it than the radius within
 /// which that root is the only one. Generated code asks this where [`certified_start`]
 /// could not vouch for a reduced iteration's solution, and then solves by Newton on every
 /// unknown from the guess, which converges to the guess's root; where the guess is not
