@@ -5,7 +5,7 @@
 //! the reason there is none.
 
 use crate::closed::Failure;
-use crate::{Error, Real};
+use crate::{Accuracy, Error, Order, Real};
 
 /// The error to report: a non-finite argument if there is one (its NaN or infinity is what
 /// made the computation fail), else `error`. Kernels check their arguments only on this,
@@ -148,6 +148,57 @@ pub fn untimed<T: Real, const N: usize>(
         *value = times_power_of_two(*value, if is_length { time + length } else { time });
     }
     crate::newton::finite(values, quantity)
+}
+
+/// The accuracy a result computed in the units of [`length_scale`] and [`rate_scale`]
+/// states once [`untimed`] has brought it back to the mechanism's own: `stated` (the scaled
+/// computation's, which scaling by powers of two leaves as it is), plus what the float's
+/// smallest numbers cost where the rates or accelerations leave its normal range there (a
+/// rod of 1e300 turning at 1e-180 rad/s has an angular acceleration of about 1e-360, which
+/// no f64 holds: 0 is the best there is, and it says nothing of the rod's end, which
+/// accelerates at about 1e-60). Every result is then within half the spacing `μ` of the
+/// float's subnormal numbers of the true value, which against the sizes the accuracy is
+/// relative to (see [`Accuracy`]: an angle's rate weighted by its column, at most twice the
+/// size; a length's against the size, at least half the scaled one over `scale`) is at most
+/// `μ·tempo^k·max(1, scale)/s`, with `s` the scaled input rates' `Σ|ω|` (velocities, `k = 1`)
+/// or `Σω² + Σ|α|` (accelerations, `k = 2`), taken 16 times for those factors and for an
+/// input that is a length. `rates` and `accelerations` are the input's as the scaled
+/// computation took them. Zero rates add nothing (their results are exact zeros); rates so
+/// slow that their floor is not even a float are [`Error::Inaccurate`] with an infinite
+/// estimate, as is every result whose accuracy with its floor is below `required` up to the
+/// order `highest`.
+#[cold]
+pub fn stated_in_own_units<T: Real>(
+    stated: Accuracy<T>,
+    rates: &[T],
+    accelerations: &[T],
+    tempo: T,
+    scale: T,
+    required: &Accuracy<T>,
+    highest: Order,
+) -> Result<Accuracy<T>, Error<T>> {
+    let speed = rates.iter().fold(T::zero(), |sum, r| sum + r.abs());
+    let spin = accelerations.iter().fold(
+        rates.iter().fold(T::zero(), |sum, r| sum + *r * *r),
+        |sum, a| sum + a.abs(),
+    );
+    let spacing = T::min_positive_value() * T::epsilon();
+    let floor = |order: i32, rate: T| {
+        if rate == T::zero() {
+            return T::zero();
+        }
+        let exponent = order * crate::real::binary_exponent(tempo)
+            + crate::real::binary_exponent(scale).max(0)
+            + 4;
+        times_power_of_two(spacing, exponent) / rate
+    };
+    let accuracy = Accuracy {
+        position: stated.position,
+        velocity: stated.velocity + floor(1, speed),
+        acceleration: stated.acceleration + floor(2, spin),
+    };
+    accuracy.within(required, highest)?;
+    Ok(accuracy)
 }
 
 /// Whether the closed forms and Newton compute rates and accelerations as given: the input

@@ -48,7 +48,8 @@ pub mod __private {
     pub use crate::kernel::{
         all_finite as finite_all, angle, as_given, at_input, blame, branch_root, inverse,
         inverse_determinant, lanes, length_scale, newton_at_scale, outputs_finite, rate_scale,
-        rates_as_given, retimed, scaled, triangle_root, unit_angle, unscaled, untimed,
+        rates_as_given, retimed, scaled, stated_in_own_units, triangle_root, unit_angle, unscaled,
+        untimed,
     };
     pub use crate::linear::{Factored, orientation, solve_lu, solve2};
     pub use crate::newton::{

@@ -1800,6 +1800,9 @@ pub fn weighted_error(
     if got.iter().any(|g| !g.is_finite()) {
         return f64::INFINITY;
     }
+    // Weighted and divided at 256 bits, then rounded: a difference below f64's range (an
+    // angular acceleration of 1e-400 returned as 0) times a column of 1e300 is not zero.
+    let by = Big::from_f64(scale);
     got.iter()
         .zip(want)
         .zip(&truth.columns)
@@ -1809,10 +1812,13 @@ pub fn weighted_error(
             if angle {
                 d = d.wrapped();
             }
-            (d.abs().to_f64() * c).abs()
+            if scale > 0.0 && scale.is_finite() {
+                (d.abs() * Big::from_f64(*c) / &by).to_f64().abs()
+            } else {
+                (d.abs().to_f64() * c).abs() / scale
+            }
         })
         .fold(0.0, f64::max)
-        / scale
 }
 
 /// The weighted error of a position (angles modulo 2π).
@@ -1820,13 +1826,21 @@ pub fn position_error(model: &Model, truth: &Truth, got: &[f64]) -> f64 {
     weighted_error(truth, &model.angles, got, truth.q(), model.size)
 }
 
-/// The size rates are measured against: the larger of `size·scale` (with `scale` the input's
-/// rate, or its rate squared plus its acceleration) and the true rates' weighted size.
-pub fn rate_size(truth: &Truth, rates: &[Big], size: f64, scale: f64) -> f64 {
+/// The size rates at `level` are measured against: the larger of the size times the input's
+/// rate (level 1, velocities) or its rate squared plus its acceleration (level 2), and the
+/// true rates' weighted size (alone at level 0). The size multiplies first, so that a squared
+/// rate that underflows in f64 by itself (1e-200 rad/s on a mechanism of 1e300) still counts.
+pub fn rate_size(truth: &Truth, rates: &[Big], size: f64, level: usize) -> f64 {
+    let (w, a) = (truth.omega.abs(), truth.alpha.abs());
+    let floor = match level {
+        1 => size * w,
+        2 => size * w * w + size * a,
+        _ => 0.0,
+    };
     rates
         .iter()
         .zip(&truth.columns)
-        .fold(size * scale, |m, (r, c)| m.max((r.to_f64() * c).abs()))
+        .fold(floor, |m, (r, c)| m.max((r.to_f64() * c).abs()))
 }
 
 /// The largest loop residual of a position (evaluated exactly), each over the sum of its loop's
@@ -2706,14 +2720,43 @@ pub mod judge {
             } else {
                 (0.0, 0.0)
             };
+            // Rates whose results leave the float's normal range (a rod of 1e300 turning at
+            // 1e-180 rad/s, whose angular acceleration of 1e-360 no f64 holds) are known only
+            // to the spacing of its subnormal numbers, against the size and the input's rate
+            // (or its square plus its acceleration) the contract measures them by, the size
+            // at most 1 for an angle's (`mechgen::__private::stated_in_own_units`, 4 times).
+            let spacing = if e > 1e-10 {
+                f64::from(f32::MIN_POSITIVE) * f64::from(f32::EPSILON)
+            } else {
+                f64::MIN_POSITIVE * f64::EPSILON
+            } * 64.0
+                * (1.0 / self.size()).max(1.0);
+            let (w, a) = (t.omega.abs(), t.alpha.abs());
+            let range = |rate: f64| {
+                if rate == 0.0 { 0.0 } else { spacing / rate }
+            };
+            // `spacing/(ω² + |α|)` within a factor of 2, where `ω²` underflows in f64.
+            let range2 = if w == 0.0 && a == 0.0 {
+                0.0
+            } else {
+                let by_rate = if w > 0.0 {
+                    spacing / w / w
+                } else {
+                    f64::INFINITY
+                };
+                let by_acceleration = if a > 0.0 { spacing / a } else { f64::INFINITY };
+                by_rate.min(by_acceleration)
+            };
             let (estimate, required) = match order {
                 mechgen::Order::Position => (POSITION_FACTOR * e * kappa, e.sqrt()),
                 mechgen::Order::Velocity => (
-                    e * kappa * (64.0 + 12.0 * kappa) * shrunk + newton_velocity,
+                    e * kappa * (64.0 + 12.0 * kappa) * shrunk + newton_velocity + range(w),
                     e.cbrt(),
                 ),
                 mechgen::Order::Acceleration => (
-                    e * kappa * (256.0 + kappa * kappa) * shrunk * shrunk + newton_acceleration,
+                    e * kappa * (256.0 + kappa * kappa) * shrunk * shrunk
+                        + newton_acceleration
+                        + range2,
                     e.sqrt().sqrt(),
                 ),
             };
@@ -2929,12 +2972,7 @@ pub mod judge {
                     v.fail(api, "not finite inside Ok", format!("{got:?}"));
                     return;
                 }
-                let scale = if level == 1 {
-                    truth.omega.abs()
-                } else {
-                    truth.omega * truth.omega + truth.alpha.abs()
-                };
-                let rate_scale = rate_size(truth, want, size, scale);
+                let rate_scale = rate_size(truth, want, size, level as usize);
                 let bound = FACTOR * self.eps * kappa.powi(level + 1) * rho.powi(level);
                 let error = weighted_error(truth, &vec![false; self.n()], got, want, rate_scale);
                 if error > bound {
@@ -2977,19 +3015,14 @@ pub mod judge {
                 &no_angles,
                 &got[1],
                 tv,
-                rate_size(truth, tv, size, truth.omega.abs()),
+                rate_size(truth, tv, size, 1),
             );
             let acceleration = weighted_error(
                 truth,
                 &no_angles,
                 &got[2],
                 ta,
-                rate_size(
-                    truth,
-                    ta,
-                    size,
-                    truth.omega * truth.omega + truth.alpha.abs(),
-                ),
+                rate_size(truth, ta, size, 2),
             );
             for (what, error, bound) in [
                 ("position", position, stated[0]),
@@ -3152,8 +3185,8 @@ pub mod judge {
             let size = self.size();
             let rho = t.aspect(size);
             let n = self.n();
-            let scale_v = rate_size(t, tv, size, t.omega.abs());
-            let scale_a = rate_size(t, ta, size, t.omega * t.omega + t.alpha.abs());
+            let scale_v = rate_size(t, tv, size, 1);
+            let scale_a = rate_size(t, ta, size, 2);
             let allowed = |j: usize, level: i32, scale: f64| {
                 FACTOR * self.eps * kappa.powi(level + 1) * rho.powi(level) * scale / t.columns[j]
             };
@@ -3174,13 +3207,15 @@ pub mod judge {
                     Some(Var::Input) => (0.0, 0.0, 0.0, t.omega.abs(), t.alpha.abs()),
                     _ => (0.0, 0.0, 0.0, 0.0, 0.0),
                 };
-                // Rounding of this vector at this level.
-                let floor = FACTOR * self.eps * r * [1.0, w, a + w * w][level];
+                // Rounding of this vector at this level. The length multiplies first, so that
+                // a squared rate that underflows by itself in f64 still counts.
+                let spin = r * a + r * w * w;
+                let floor = FACTOR * self.eps * [r, r * w, spin][level];
                 bound += floor
                     + match level {
                         0 => r * d0,
                         1 => r * d1 + r * w * d0,
-                        _ => r * d2 + 2.0 * r * w * d1 + r * (a + w * w) * d0,
+                        _ => r * d2 + 2.0 * r * w * d1 + spin * d0,
                     };
             }
             bound
@@ -3226,17 +3261,11 @@ pub mod judge {
                             0 => (t.q()[*index].clone(), self.size()),
                             1 => {
                                 let w = t.velocity.as_ref().expect("rates");
-                                (
-                                    w[*index].clone(),
-                                    rate_size(t, w, self.size(), t.omega.abs()),
-                                )
+                                (w[*index].clone(), rate_size(t, w, self.size(), 1))
                             }
                             _ => {
                                 let w = t.acceleration.as_ref().expect("rates");
-                                (
-                                    w[*index].clone(),
-                                    rate_size(t, w, self.size(), t.omega * t.omega + t.alpha.abs()),
-                                )
+                                (w[*index].clone(), rate_size(t, w, self.size(), 2))
                             }
                         };
                         let mut d = Big::from_f64(*value) - &want;
@@ -3629,11 +3658,11 @@ pub mod judge {
                 let speed = t
                     .velocity
                     .as_ref()
-                    .map_or(0.0, |w| rate_size(t, w, size, 0.0));
+                    .map_or(0.0, |w| rate_size(t, w, size, 0));
                 let acceleration = t
                     .acceleration
                     .as_ref()
-                    .map_or(0.0, |w| rate_size(t, w, size, 0.0));
+                    .map_or(0.0, |w| rate_size(t, w, size, 0));
                 // A point's acceleration sums every link's `|r|·(ω² + |α|)`.
                 let spin = |w: f64, a: f64| (w * w + a.abs()).max(w.abs());
                 let mut fastest = spin(t.omega, t.alpha);
@@ -4222,6 +4251,61 @@ pub mod draw {
         }
     }
 
+    /// Rates far from 1, at extreme scales: time counted in units of `2^-k`, so that the
+    /// input turns at `ω·2^k` and accelerates at `α·4^k` (exact but where that is below the
+    /// float's normal range), with `k` from −1000 to 504 (f64) or −110 to 56 (f32), far beyond
+    /// where `motion` and the rest count time afresh ([2^-600, 2^600] and [2^-60, 2^60] for
+    /// `Σω² + Σ|α|`) and slow enough for `ω²` to underflow on a mechanism of 1e300; for the
+    /// scene kernels
+    /// up to 420 or 40, rates whose squares times a ratio of lengths of 1e8 are still
+    /// normal numbers, as they require (README, **Rates**). Within what keeps the size
+    /// times the rate and its
+    /// square inside the float's range (2^±900, 2^±100), at the size drawn and at the size
+    /// rescaled to, so that every true rate is a number the float holds and the judge's
+    /// bounds, in f64, are too. `None` for one case in
+    /// seven (rates as drawn) and at moderate scales. Drawn from a stream of its own, so
+    /// that every other draw, and so every case the README and the regression tests name
+    /// by number, stays as it was.
+    fn tempo(
+        scales: Scales,
+        float: Float,
+        dims: &[f64],
+        rescale: Option<f64>,
+        kind: Kind,
+        api: Api,
+        rng: &Rng,
+    ) -> Option<i32> {
+        if scales == Scales::Moderate {
+            return None;
+        }
+        let mut side = Rng(rng.0 ^ 0x7E3A_0C1D_5B29_F461);
+        if !side.chance(1.0 / 7.0) {
+            return None;
+        }
+        let slots = judge::length_slots(kind);
+        let longest = dims
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| slots.contains(i))
+            .fold(0.0f64, |m, (_, d)| m.max(d.abs()));
+        // The scene kernels' documented domain, or every rate that is a normal number and
+        // every acceleration (`α·4^k`, |α| ≤ 10, next to `ω²` ≤ 1e4·4^k) below the largest.
+        let (slowest, fastest, room): (f64, f64, f64) = match (float, api == Api::Scenes) {
+            (Float::F64, true) => (-420.0, 420.0, 900.0),
+            (Float::F64, false) => (-1000.0, 504.0, 900.0),
+            (Float::F32, true) => (-40.0, 40.0, 100.0),
+            (Float::F32, false) => (-110.0, 56.0, 100.0),
+        };
+        let sizes = [longest.log2(), (longest * rescale.unwrap_or(1.0)).log2()];
+        let slowest = sizes
+            .iter()
+            .fold(slowest, |k, size| k.max(((-room - size) / 2.0).ceil()));
+        let fastest = sizes
+            .iter()
+            .fold(fastest, |k, size| k.min(((room - size) / 2.0).floor()));
+        (slowest < fastest).then(|| side.range(slowest, fastest).round() as i32)
+    }
+
     /// One case of `family`.
     pub fn case(family: &Family, rng: &mut Rng) -> Case {
         let kind = rng.pick(&family.kinds);
@@ -4330,6 +4414,14 @@ pub mod draw {
                 2f64.powf(k)
             }
         });
+        let (omega, alpha) = match tempo(family.scales, float, &dims, rescale, kind, api, rng) {
+            // An acceleration below the float's smallest is rounded as the call will take it.
+            Some(k) => (
+                float.round(omega * 2f64.powi(k)),
+                float.round(alpha * 2f64.powi(2 * k)),
+            ),
+            None => (omega, alpha),
+        };
         Case {
             kind,
             float,

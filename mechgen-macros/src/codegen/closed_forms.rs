@@ -386,6 +386,12 @@ impl Generator<'_> {
         ]
         .map(|(values, quantity)| self.finite_unknowns(values, quantity));
         let as_given = self.as_given_with_rates();
+        let stated = self.stated_in_own_units(
+            quote!(#motion.accuracy),
+            (&scaled_dot, &scaled_ddot),
+            quote!(&::mechgen::Accuracy::required()),
+            "Acceleration",
+        );
         let scaled = local("mechgen_motion_scaled");
         let (public_parameter, conversion) = self.public_branch_parameter(steps);
         quote! {
@@ -437,7 +443,7 @@ impl Generator<'_> {
                     position: #finish_position,
                     velocity: #finish_velocity,
                     acceleration: #finish_acceleration,
-                    accuracy: #motion.accuracy,
+                    accuracy: #stated,
                 })
             }
 

@@ -242,7 +242,7 @@ impl Generator<'_> {
                 dot_params,
             ],
             vec![input.clone(), quote!(#position), dot_args],
-            vec![scaled_input, quote!(&#position), scaled_dot],
+            vec![scaled_input, quote!(&#position), scaled_dot.clone()],
         );
         let mut scaled_velocity = TokenStream::new();
         // `motion_at` takes the input's acceleration after its rate, with no velocity.
@@ -264,27 +264,72 @@ impl Generator<'_> {
         if accelerations {
             params.push(ddot_params);
             args.push(ddot_args);
-            scaled_args.push(scaled_ddot);
+            scaled_args.push(scaled_ddot.clone());
         }
         let given_position = local("given_position");
-        let finish = match rates {
-            RatesOutput::Velocity => self.untimed_unknowns(&value, "velocity", 1),
-            RatesOutput::Acceleration => self.untimed_unknowns(&value, "acceleration", 2),
+        let accuracy = local("accuracy");
+        let required = quote!(&::mechgen::Accuracy::required());
+        let ddots = if accelerations {
+            scaled_ddot.clone()
+        } else {
+            TokenStream::new()
+        };
+        // The velocity and acceleration solves hand back the accuracy they checked, which
+        // only this path, where results may leave the float's normal range, reads.
+        let (solved, finish) = match rates {
+            RatesOutput::Velocity | RatesOutput::Acceleration => {
+                let (quantity, order, highest) = if rates == RatesOutput::Velocity {
+                    ("velocity", 1, "Velocity")
+                } else {
+                    ("acceleration", 2, "Acceleration")
+                };
+                let stated = self.stated_in_own_units(
+                    quote!(#accuracy),
+                    (&scaled_dot, &ddots),
+                    required,
+                    highest,
+                );
+                let finish = self.untimed_unknowns(&value, quantity, order);
+                (
+                    quote!(let (#value, #accuracy) =),
+                    quote! {{
+                        #stated;
+                        #finish
+                    }},
+                )
+            }
             RatesOutput::Motion => {
                 let (rates, accelerations) = (local("rates"), local("accelerations"));
                 let velocity = self.untimed_unknowns(&rates, "velocity", 1);
                 let acceleration = self.untimed_unknowns(&accelerations, "acceleration", 2);
-                quote! {{
-                    let #rates = #value.velocity;
-                    let #accelerations = #value.acceleration;
-                    ::mechgen::Motion {
-                        position: *#given_position,
-                        velocity: #velocity,
-                        acceleration: #acceleration,
-                        accuracy: #value.accuracy,
-                    }
-                }}
+                let stated = self.stated_in_own_units(
+                    quote!(#value.accuracy),
+                    (&scaled_dot, &ddots),
+                    required,
+                    "Acceleration",
+                );
+                (
+                    quote!(let #value =),
+                    quote! {{
+                        let #rates = #value.velocity;
+                        let #accelerations = #value.acceleration;
+                        ::mechgen::Motion {
+                            position: *#given_position,
+                            velocity: #velocity,
+                            acceleration: #acceleration,
+                            accuracy: #stated,
+                        }
+                    }},
+                )
             }
+        };
+        let (solve_output, as_given_value) = if rates == RatesOutput::Motion {
+            (quote!(#output), TokenStream::new())
+        } else {
+            (
+                quote!((#output, ::mechgen::Accuracy<T>)),
+                quote!(.map(|(#value, _)| #value)),
+            )
         };
         let as_given = self.as_given_with(accelerations);
         let solve = format_ident!("mechgen_{}_solve", name);
@@ -302,7 +347,7 @@ impl Generator<'_> {
             pub fn #name(&self, #(#params),*) -> ::core::result::Result<#output, ::mechgen::Error<T>> {
                 #checks
                 if #as_given {
-                    self.#solve(#(#args),*)
+                    self.#solve(#(#args),*)#as_given_value
                 } else {
                     self.#normalised(#(#args),*)
                 }
@@ -321,16 +366,44 @@ impl Generator<'_> {
                     #scale,
                 ));
                 #scaled_velocity
-                let #value = #receiver.#solve(#(#scaled_args),*)#restore?;
+                #solved #receiver.#solve(#(#scaled_args),*)#restore?;
                 ::core::result::Result::Ok(#finish)
             }
 
             #solve_doc
             #[allow(unused_variables)]
             #[inline(always)]
-            fn #solve(&self, #(#params),*) -> ::core::result::Result<#output, ::mechgen::Error<T>> {
+            fn #solve(&self, #(#params),*) -> ::core::result::Result<#solve_output, ::mechgen::Error<T>> {
                 #body
             }
+        }
+    }
+
+    /// The accuracy `stated` by a computation in the scaled units (lengths times `scale`,
+    /// time counted in `tempo`, whose input rates and accelerations were `rates`), in the
+    /// mechanism's own: with what the float's smallest numbers cost where the results leave
+    /// its normal range, checked against `required` up to the order `highest`
+    /// (`mechgen::__private::stated_in_own_units`).
+    pub(super) fn stated_in_own_units(
+        &self,
+        stated: TokenStream,
+        rates: (&TokenStream, &TokenStream),
+        required: TokenStream,
+        highest: &str,
+    ) -> TokenStream {
+        let (scale, tempo) = (local("scale"), local("tempo"));
+        let (dots, ddots) = rates;
+        let highest = Ident::new(highest, Span::call_site());
+        quote! {
+            ::mechgen::__private::stated_in_own_units(
+                #stated,
+                &[#dots],
+                &[#ddots],
+                #tempo,
+                #scale,
+                #required,
+                ::mechgen::Order::#highest,
+            )?
         }
     }
 
@@ -396,6 +469,12 @@ impl Generator<'_> {
                 let finish_position = self.unscaled_unknowns(&position, "position");
                 let finish_velocity = self.untimed_unknowns(&velocity, "velocity", 1);
                 let finish_acceleration = self.untimed_unknowns(&acceleration, "acceleration", 2);
+                let stated = self.stated_in_own_units(
+                    quote!(#value.accuracy),
+                    (&scaled_dot, &scaled_ddot),
+                    quote!(&#options.accuracy),
+                    "Acceleration",
+                );
                 (
                     quote!(motion_near),
                     quote!(, #input_dots, #input_ddots),
@@ -409,7 +488,7 @@ impl Generator<'_> {
                             position: #finish_position,
                             velocity: #finish_velocity,
                             acceleration: #finish_acceleration,
-                            accuracy: #value.accuracy,
+                            accuracy: #stated,
                         }
                     }},
                 )

@@ -206,9 +206,10 @@ impl Generator<'_> {
         quote! {
             #prologue
             #solve
-            // The estimate was checked; only `motion` and `motion_at` return it.
-            let _ = #accuracy;
-            ::mechgen::__private::finite(#solution, #quantity).map(#ty::from_array)
+            // The estimate was checked; the public function drops it, the path that scales
+            // the mechanism adds what the float's range costs the results to it.
+            ::mechgen::__private::finite(#solution, #quantity)
+                .map(|values| (#ty::from_array(values), #accuracy))
         }
     }
 
