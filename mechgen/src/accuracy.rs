@@ -37,6 +37,12 @@
 //! An angle unknown whose vector has shrunk to less than `√ε` of the mechanism's size (the
 //! sum of its declared lengths) has an undetermined direction whatever κ says (κ does not
 //! see a column's scale): its rates' estimates are infinite.
+//!
+//! Rates or accelerations below the float's normal range (a rod of 1e300 turning at 1e-200
+//! rad/s has an angular acceleration of about 1e-400 rad/s², which no f64 holds) are known
+//! only to the spacing of its subnormal numbers: the estimates of results computed where
+//! that can happen (the mechanism or its rates far from 1) add that floor, against the
+//! sizes above, so such a result is `Inaccurate` rather than a 0 stated to 14 digits.
 
 use crate::real::normaliser;
 use crate::{Error, Real};

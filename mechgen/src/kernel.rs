@@ -824,4 +824,107 @@ mod tests {
         assert_eq!(retimed(2f64.powi(-1000), 2f64.powi(600), 2), 2f64.powi(200));
         assert_eq!(retimed(0.5f32, 2f32.powi(-100), 1), 2f32.powi(-101));
     }
+    #[test]
+    fn results_back_in_their_own_units_state_the_floats_floor() {
+        use crate::{Accuracy, Error, Order};
+        let none = Accuracy {
+            position: 0.0f64,
+            velocity: 0.0,
+            acceleration: 0.0,
+        };
+        let required = Accuracy::<f64>::required();
+        let state = |rates: &[f64], accelerations: &[f64], tempo: f64, scale: f64| {
+            stated_in_own_units(
+                none,
+                rates,
+                accelerations,
+                tempo,
+                scale,
+                &required,
+                Order::Acceleration,
+            )
+        };
+        // Half the subnormals' spacing 2^-1074, over the sizes the accuracy is relative to,
+        // 16 times: 2^(k·log2(tempo) + max(0, log2(scale)) + 4 − 1074) over Σ|ω| or
+        // Σω² + Σ|α| as the scaled computation took them.
+        let floor = state(&[0.5], &[0.25], 2f64.powi(500), 1.0).unwrap();
+        assert_eq!(floor.position, 0.0);
+        assert_eq!(floor.velocity, 2f64.powi(500 + 4 - 1074) / 0.5);
+        assert_eq!(floor.acceleration, 2f64.powi(1000 + 4 - 1074) / 0.5);
+        // A mechanism scaled up (a tiny one) has lengths' rates that much nearer the floor;
+        // one scaled down does not have its angles' any further from it.
+        let tiny = state(&[0.5], &[0.25], 2f64.powi(400), 2f64.powi(60)).unwrap();
+        assert_eq!(tiny.velocity, 2f64.powi(460 + 4 - 1074) / 0.5);
+        assert_eq!(tiny.acceleration, 2f64.powi(860 + 4 - 1074) / 0.5);
+        let huge = state(&[0.5], &[0.25], 2f64.powi(400), 2f64.powi(-60)).unwrap();
+        assert_eq!(huge, state(&[0.5], &[0.25], 2f64.powi(400), 1.0).unwrap());
+        assert_eq!(huge.velocity, 2f64.powi(400 + 4 - 1074) / 0.5);
+        // Added to what the scaled computation stated.
+        let stated = Accuracy {
+            position: 1e-15,
+            velocity: 2e-14,
+            acceleration: 3e-13,
+        };
+        let sum = stated_in_own_units(
+            stated,
+            &[0.5],
+            &[0.25],
+            2f64.powi(500),
+            1.0,
+            &required,
+            Order::Acceleration,
+        )
+        .unwrap();
+        assert_eq!(sum.position, 1e-15);
+        assert_eq!(sum.velocity, 2e-14 + floor.velocity);
+        assert_eq!(sum.acceleration, 3e-13 + floor.acceleration);
+        // No rates, no floor: their results are exact zeros.
+        let still = state(&[0.0], &[0.0], 2f64.powi(900), 2f64.powi(900)).unwrap();
+        assert_eq!(still, none);
+        // Accelerations from the input's acceleration alone, and squares of several rates.
+        let pushed = state(&[0.0], &[-0.5], 2f64.powi(500), 1.0).unwrap();
+        assert_eq!(pushed.velocity, 0.0);
+        assert_eq!(pushed.acceleration, 2f64.powi(1000 + 4 - 1074) / 0.5);
+        let two = state(&[0.5, -0.5], &[0.0, 0.0], 2f64.powi(500), 1.0).unwrap();
+        assert_eq!(two.velocity, 2f64.powi(500 + 4 - 1074));
+        assert_eq!(two.acceleration, 2f64.powi(1000 + 4 - 1074) / 0.5);
+        // Slower still (1e-200 rad/s: tempo 2^665), the accelerations are below the float's
+        // range: beyond what is required, up to the order asked for.
+        let slow = state(&[0.75], &[0.0], 2f64.powi(665), 1.0);
+        assert!(matches!(
+            slow,
+            Err(Error::Inaccurate {
+                order: Order::Acceleration,
+                estimate,
+                ..
+            }) if estimate > 1e70
+        ));
+        let rates_only = stated_in_own_units(
+            none,
+            &[0.75],
+            &[],
+            2f64.powi(665),
+            1.0,
+            &required,
+            Order::Velocity,
+        )
+        .unwrap();
+        assert_eq!(rates_only.velocity, 2f64.powi(665 + 4 - 1074) / 0.75);
+        // f32: spacing 2^-149.
+        let single = stated_in_own_units(
+            Accuracy {
+                position: 0.0f32,
+                velocity: 0.0,
+                acceleration: 0.0,
+            },
+            &[0.5],
+            &[0.0],
+            2f32.powi(60),
+            1.0,
+            &Accuracy::required(),
+            Order::Acceleration,
+        )
+        .unwrap();
+        assert_eq!(single.acceleration, 2f32.powi(120 + 4 - 149) / 0.25);
+    }
 }

@@ -2695,6 +2695,39 @@ pub mod judge {
         /// the truth's (as it is at a position within its error of the truth near a toggle)
         /// and the judge's aspect, exceeds `mechgen::Accuracy::required`:
         /// then `Inaccurate` is the documented answer.
+        /// What the float's range costs rates (`level` 1) or accelerations (2) relative to
+        /// the sizes the contract measures them by: results below its normal range (a rod
+        /// of 1e300 turning at 1e-180 rad/s, whose angular acceleration of 1e-360 no f64
+        /// holds) are known only to the spacing of its subnormal numbers, against the size
+        /// times the input's rate (or its square plus its acceleration), the size at most 1
+        /// for an angle's (`mechgen::__private::stated_in_own_units`, 16 times).
+        fn range_floor(&self, level: i32) -> f64 {
+            let Some(t) = &self.truth else {
+                return 0.0;
+            };
+            let spacing = if self.eps > 1e-10 {
+                f64::from(f32::MIN_POSITIVE) * f64::from(f32::EPSILON)
+            } else {
+                f64::MIN_POSITIVE * f64::EPSILON
+            } * 16.0
+                * (1.0 / self.size()).max(1.0);
+            let (w, a) = (t.omega.abs(), t.alpha.abs());
+            if level == 1 {
+                return if w == 0.0 { 0.0 } else { spacing / w };
+            }
+            // `spacing/(ω² + |α|)` within a factor of 2, where `ω²` underflows in f64.
+            if w == 0.0 && a == 0.0 {
+                return 0.0;
+            }
+            let by_rate = if w > 0.0 {
+                spacing / w / w
+            } else {
+                f64::INFINITY
+            };
+            let by_acceleration = if a > 0.0 { spacing / a } else { f64::INFINITY };
+            by_rate.min(by_acceleration)
+        }
+
         fn inaccuracy_allowed(&self, order: mechgen::Order, newton: bool) -> bool {
             let Some(t) = &self.truth else {
                 return true;
@@ -2720,43 +2753,18 @@ pub mod judge {
             } else {
                 (0.0, 0.0)
             };
-            // Rates whose results leave the float's normal range (a rod of 1e300 turning at
-            // 1e-180 rad/s, whose angular acceleration of 1e-360 no f64 holds) are known only
-            // to the spacing of its subnormal numbers, against the size and the input's rate
-            // (or its square plus its acceleration) the contract measures them by, the size
-            // at most 1 for an angle's (`mechgen::__private::stated_in_own_units`, 4 times).
-            let spacing = if e > 1e-10 {
-                f64::from(f32::MIN_POSITIVE) * f64::from(f32::EPSILON)
-            } else {
-                f64::MIN_POSITIVE * f64::EPSILON
-            } * 64.0
-                * (1.0 / self.size()).max(1.0);
-            let (w, a) = (t.omega.abs(), t.alpha.abs());
-            let range = |rate: f64| {
-                if rate == 0.0 { 0.0 } else { spacing / rate }
-            };
-            // `spacing/(ω² + |α|)` within a factor of 2, where `ω²` underflows in f64.
-            let range2 = if w == 0.0 && a == 0.0 {
-                0.0
-            } else {
-                let by_rate = if w > 0.0 {
-                    spacing / w / w
-                } else {
-                    f64::INFINITY
-                };
-                let by_acceleration = if a > 0.0 { spacing / a } else { f64::INFINITY };
-                by_rate.min(by_acceleration)
-            };
             let (estimate, required) = match order {
                 mechgen::Order::Position => (POSITION_FACTOR * e * kappa, e.sqrt()),
                 mechgen::Order::Velocity => (
-                    e * kappa * (64.0 + 12.0 * kappa) * shrunk + newton_velocity + range(w),
+                    e * kappa * (64.0 + 12.0 * kappa) * shrunk
+                        + newton_velocity
+                        + 4.0 * self.range_floor(1),
                     e.cbrt(),
                 ),
                 mechgen::Order::Acceleration => (
                     e * kappa * (256.0 + kappa * kappa) * shrunk * shrunk
                         + newton_acceleration
-                        + range2,
+                        + 4.0 * self.range_floor(2),
                     e.sqrt().sqrt(),
                 ),
             };
@@ -2973,7 +2981,8 @@ pub mod judge {
                     return;
                 }
                 let rate_scale = rate_size(truth, want, size, level as usize);
-                let bound = FACTOR * self.eps * kappa.powi(level + 1) * rho.powi(level);
+                let bound = FACTOR * self.eps * kappa.powi(level + 1) * rho.powi(level)
+                    + self.range_floor(level);
                 let error = weighted_error(truth, &vec![false; self.n()], got, want, rate_scale);
                 if error > bound {
                     let what = if level == 1 {

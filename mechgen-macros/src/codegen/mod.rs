@@ -18,6 +18,7 @@ pub(crate) mod rates;
 mod reduced;
 mod scenes;
 mod sensitivities;
+mod timed;
 mod types;
 
 use std::collections::BTreeSet;
@@ -508,7 +509,7 @@ impl<'a> Generator<'a> {
         arity: usize,
         output: &TokenStream,
         body: TokenStream,
-        timed: Option<normalise::RatesOutput>,
+        timed: Option<timed::RatesOutput>,
     ) -> TokenStream {
         let inputs = self.input_args();
         let (unknowns, _, _) = self.signature_types();

@@ -6,7 +6,7 @@ use quote::quote;
 
 use super::docs::doc;
 use super::emit::{Block, Emitted, local};
-use super::normalise::RatesOutput;
+use super::timed::RatesOutput;
 use super::{Bindings, Generator, arg, matrix};
 use crate::model::SymbolRef;
 use crate::symbolic::{ExprId, Step, Var};
