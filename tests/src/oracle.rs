@@ -1802,7 +1802,7 @@ pub fn weighted_error(
     }
     // Weighted and divided at 256 bits, then rounded: a difference below f64's range (an
     // angular acceleration of 1e-400 returned as 0) times a column of 1e300 is not zero.
-    let by = Big::from_f64(scale);
+    let by = Big::from_f64(if scale.is_finite() { scale } else { 1.0 });
     got.iter()
         .zip(want)
         .zip(&truth.columns)
@@ -1812,7 +1812,7 @@ pub fn weighted_error(
             if angle {
                 d = d.wrapped();
             }
-            if scale > 0.0 && scale.is_finite() {
+            if scale > 0.0 && scale.is_finite() && c.is_finite() {
                 (d.abs() * Big::from_f64(*c) / &by).to_f64().abs()
             } else {
                 (d.abs().to_f64() * c).abs() / scale
