@@ -153,23 +153,33 @@ pub fn untimed<T: Real, const N: usize>(
 /// The accuracy a result computed in the units of [`length_scale`] and [`rate_scale`]
 /// states once [`untimed`] has brought it back to the mechanism's own: `stated` (the scaled
 /// computation's, which scaling by powers of two leaves as it is), plus what the float's
-/// smallest numbers cost where the rates or accelerations leave its normal range there (a
-/// rod of 1e300 turning at 1e-180 rad/s has an angular acceleration of about 1e-360, which
-/// no f64 holds: 0 is the best there is, and it says nothing of the rod's end, which
-/// accelerates at about 1e-60). Every result is then within half the spacing `μ` of the
-/// float's subnormal numbers of the true value, which against the sizes the accuracy is
-/// relative to (see [`Accuracy`]: an angle's rate weighted by its column, at most twice the
-/// size; a length's against the size, at least half the scaled one over `scale`) is at most
-/// `μ·tempo^k·max(1, scale)/s`, with `s` the scaled input rates' `Σ|ω|` (velocities, `k = 1`)
-/// or `Σω² + Σ|α|` (accelerations, `k = 2`), taken 16 times for those factors and for an
-/// input that is a length. `rates` and `accelerations` are the input's as the scaled
-/// computation took them. Zero rates add nothing (their results are exact zeros); rates so
-/// slow that their floor is not even a float are [`Error::Inaccurate`] with an infinite
-/// estimate, as is every result whose accuracy with its floor is below `required` up to the
-/// order `highest`.
+/// smallest numbers cost where rates or accelerations leave its normal range (a rod of 1e300
+/// turning at 1e-180 rad/s has an angular acceleration of about 1e-360, which no f64 holds:
+/// 0 is the best there is, and it says nothing of the rod's end, which accelerates at about
+/// 1e-60).
+///
+/// A result rounded into the subnormal numbers is within their spacing `μ` of the true
+/// value: in the scaled computation's units, against the sizes the accuracy is relative to
+/// there (see [`Accuracy`]: an angle's rate weighted by its column, at most twice the size;
+/// a length's against the size, at least 1/2), at most `2μ/s`, with `s` the scaled input
+/// rates' `Σ|ω|` (velocities, `k = 1`) or `Σω² + Σ|α|` (accelerations, `k = 2`); in the
+/// mechanism's own units, where time counts `tempo` times as much and a length `scale`
+/// times less, at most `2μ·tempo^k·scale/s` for a length and `2μ·tempo^k/s` for an angle.
+/// The floor is `16μ·max(1, tempo^k·scale)/s`, 16 for those factors, their sum and an input
+/// that is a length, with `scale` the larger of the lengths' scale, where an unknown is a
+/// length, and 1, where one is an angle (an angle's rates are no nearer the floor on a tiny
+/// mechanism, nor further from it on a huge one). `rates` and `accelerations` are the
+/// inputs' as the scaled computation took them, `given` the caller's rates. Zero rates add nothing (their results are exact zeros),
+/// but rates the caller gave that rounded to zero in the scaled units (a crank at 1e-230
+/// rad/s accelerating at 1e200 rad/s², in the acceleration's time) left the velocities
+/// nothing to go on: an infinite floor. A result whose accuracy with its floor is beyond
+/// `required`, at the rates' orders up to `highest`, is [`Error::Inaccurate`]; the position's
+/// is the caller's to judge, as on the path that does not scale.
 #[cold]
+#[allow(clippy::too_many_arguments)]
 pub fn stated_in_own_units<T: Real>(
     stated: Accuracy<T>,
+    given: &[T],
     rates: &[T],
     accelerations: &[T],
     tempo: T,
@@ -187,31 +197,42 @@ pub fn stated_in_own_units<T: Real>(
         if rate == T::zero() {
             return T::zero();
         }
-        let exponent = order * crate::real::binary_exponent(tempo)
-            + crate::real::binary_exponent(scale).max(0)
+        let exponent = (order * crate::real::binary_exponent(tempo)
+            + crate::real::binary_exponent(scale))
+        .max(0)
             + 4;
         times_power_of_two(spacing, exponent) / rate
     };
+    let lost = speed == T::zero() && given.iter().any(|rate| *rate != T::zero());
     let accuracy = Accuracy {
         position: stated.position,
-        velocity: stated.velocity + floor(1, speed),
+        velocity: stated.velocity + if lost { T::infinity() } else { floor(1, speed) },
         acceleration: stated.acceleration + floor(2, spin),
     };
-    accuracy.within(required, highest)?;
+    let rates_required = Accuracy {
+        position: T::infinity(),
+        ..*required
+    };
+    accuracy.within(&rates_required, highest)?;
     Ok(accuracy)
 }
 
 /// Whether the closed forms and Newton compute rates and accelerations as given: the input
-/// rates' squares plus the accelerations' magnitudes within [`Real::RATES_AS_GIVEN`],
-/// or all zero. Elsewhere (rates of 1e-200 on a mechanism of 1e50, whose squares underflow
-/// while a length's acceleration does not) they compute with time counted in units of
-/// [`rate_scale`], out of line. A sum and two comparisons on the common path.
+/// rates' squares plus the accelerations' magnitudes within [`Real::RATES_AS_GIVEN`], and
+/// the squares alone too unless every rate is zero (a crank at 1e-320 rad/s accelerating at
+/// 1 rad/s² has velocities below the float's normal range), or all zero. Elsewhere (rates of
+/// 1e-200 on a mechanism of 1e50, whose squares underflow while a length's acceleration
+/// does not) they compute with time counted in units of [`rate_scale`], out of line, where
+/// the accuracy stated says what the float's range costs ([`stated_in_own_units`]). Two
+/// sums and three comparisons on the common path.
 #[inline(always)]
 pub fn rates_as_given<T: Real>(rates: &[T], accelerations: &[T]) -> bool {
     let squares = rates.iter().fold(T::zero(), |sum, r| sum + *r * *r);
     let sum = accelerations.iter().fold(squares, |sum, a| sum + a.abs());
     let [slowest, fastest] = T::RATES_AS_GIVEN;
-    (sum >= slowest && sum <= fastest)
+    (sum >= slowest
+        && sum <= fastest
+        && (squares >= slowest || rates.iter().all(|rate| *rate == T::zero())))
         || rates
             .iter()
             .chain(accelerations)
@@ -802,8 +823,15 @@ mod tests {
         // The squares and magnitudes summed: each side of the range.
         assert!(rates_as_given(&[2f64.powi(-300)], &[0.0]));
         assert!(!rates_as_given(&[2f64.powi(-301)], &[0.0]));
-        assert!(rates_as_given(&[2f64.powi(-301)], &[2f64.powi(-600)]));
+        assert!(!rates_as_given(&[2f64.powi(-301)], &[2f64.powi(-600)]));
         assert!(!rates_as_given(&[2f64.powi(-301)], &[2f64.powi(-601)]));
+        // The squares alone within the range too, unless the rates are all zero: a rate of
+        // 1e-320 beside an acceleration of 1 is not taken as given.
+        assert!(rates_as_given(&[2f64.powi(-300)], &[1.0]));
+        assert!(!rates_as_given(&[1e-320f64], &[1.0]));
+        assert!(rates_as_given(&[0.0f64], &[1.0]));
+        assert!(rates_as_given(&[0.0f64, 1.0], &[1.0, 0.0]));
+        assert!(!rates_as_given(&[1e-40f32], &[1.0]));
         assert!(rates_as_given(&[0.0f64], &[-(2f64.powi(-600))]));
         assert!(!rates_as_given(&[0.0f64], &[-(2f64.powi(-601))]));
         assert!(rates_as_given(&[2f64.powi(300)], &[0.0]));
@@ -837,6 +865,7 @@ mod tests {
             stated_in_own_units(
                 none,
                 rates,
+                rates,
                 accelerations,
                 tempo,
                 scale,
@@ -844,21 +873,35 @@ mod tests {
                 Order::Acceleration,
             )
         };
-        // Half the subnormals' spacing 2^-1074, over the sizes the accuracy is relative to,
-        // 16 times: 2^(k·log2(tempo) + max(0, log2(scale)) + 4 − 1074) over Σ|ω| or
-        // Σω² + Σ|α| as the scaled computation took them.
+        // The subnormals' spacing 2^-1074 over the sizes the accuracy is relative to, 16
+        // times: 2^(max(0, k·log2(tempo) + log2(scale)) + 4 − 1074) over Σ|ω| or Σω² + Σ|α|
+        // as the scaled computation took them.
         let floor = state(&[0.5], &[0.25], 2f64.powi(500), 1.0).unwrap();
         assert_eq!(floor.position, 0.0);
         assert_eq!(floor.velocity, 2f64.powi(500 + 4 - 1074) / 0.5);
         assert_eq!(floor.acceleration, 2f64.powi(1000 + 4 - 1074) / 0.5);
-        // A mechanism scaled up (a tiny one) has lengths' rates that much nearer the floor;
-        // one scaled down does not have its angles' any further from it.
+        // Lengths scaled up (a tiny mechanism with a length unknown) are that much nearer the
+        // floor, scaled down that much further from it, down to the scaled computation's.
         let tiny = state(&[0.5], &[0.25], 2f64.powi(400), 2f64.powi(60)).unwrap();
         assert_eq!(tiny.velocity, 2f64.powi(460 + 4 - 1074) / 0.5);
         assert_eq!(tiny.acceleration, 2f64.powi(860 + 4 - 1074) / 0.5);
         let huge = state(&[0.5], &[0.25], 2f64.powi(400), 2f64.powi(-60)).unwrap();
-        assert_eq!(huge, state(&[0.5], &[0.25], 2f64.powi(400), 1.0).unwrap());
-        assert_eq!(huge.velocity, 2f64.powi(400 + 4 - 1074) / 0.5);
+        assert_eq!(huge.velocity, 2f64.powi(340 + 4 - 1074) / 0.5);
+        assert_eq!(huge.acceleration, 2f64.powi(740 + 4 - 1074) / 0.5);
+        let lower = state(&[0.5], &[0.25], 2f64.powi(40), 2f64.powi(-60)).unwrap();
+        assert_eq!(lower.velocity, 2f64.powi(4 - 1074) / 0.5);
+        assert_eq!(lower.acceleration, 2f64.powi(20 + 4 - 1074) / 0.5);
+        // A tiny mechanism turning fast, time counted in units below 1: no nearer the floor
+        // than its lengths' scale times the tempo says (the slider of 1e-300 at 1e100 rad/s
+        // and 1e300 rad/s², its slider's velocity 1e-200, is far from it).
+        let quick = state(&[0.25], &[0.5], 2f64.powi(-499), 2f64.powi(997)).unwrap();
+        assert_eq!(quick.velocity, 2f64.powi(498 + 4 - 1074) / 0.25);
+        assert_eq!(quick.acceleration, 2f64.powi(4 - 1074) / 0.5625);
+        // Time counted in units below 1 (fast rates) does not shrink the floor below the
+        // scaled computation's own rounding.
+        let fast = state(&[0.5], &[0.25], 2f64.powi(-300), 1.0).unwrap();
+        assert_eq!(fast.velocity, 2f64.powi(4 - 1074) / 0.5);
+        assert_eq!(fast.acceleration, 2f64.powi(4 - 1074) / 0.5);
         // Added to what the scaled computation stated.
         let stated = Accuracy {
             position: 1e-15,
@@ -867,6 +910,7 @@ mod tests {
         };
         let sum = stated_in_own_units(
             stated,
+            &[0.5],
             &[0.5],
             &[0.25],
             2f64.powi(500),
@@ -878,9 +922,45 @@ mod tests {
         assert_eq!(sum.position, 1e-15);
         assert_eq!(sum.velocity, 2e-14 + floor.velocity);
         assert_eq!(sum.acceleration, 3e-13 + floor.acceleration);
+        // The position's accuracy is the caller's to judge, as where nothing is scaled.
+        let loose = Accuracy {
+            position: 1.0,
+            ..stated
+        };
+        let kept = stated_in_own_units(
+            loose,
+            &[0.5],
+            &[0.5],
+            &[0.25],
+            2f64.powi(500),
+            1.0,
+            &required,
+            Order::Acceleration,
+        )
+        .unwrap();
+        assert_eq!(kept.position, 1.0);
         // No rates, no floor: their results are exact zeros.
         let still = state(&[0.0], &[0.0], 2f64.powi(900), 2f64.powi(900)).unwrap();
         assert_eq!(still, none);
+        // Rates the caller gave that rounded to zero in the scaled units: no velocity left.
+        let lost = stated_in_own_units(
+            none,
+            &[1e-230],
+            &[0.0],
+            &[0.5],
+            2f64.powi(-333),
+            1.0,
+            &required,
+            Order::Acceleration,
+        );
+        assert!(matches!(
+            lost,
+            Err(Error::Inaccurate {
+                order: Order::Velocity,
+                estimate,
+                ..
+            }) if estimate.is_infinite()
+        ));
         // Accelerations from the input's acceleration alone, and squares of several rates.
         let pushed = state(&[0.0], &[-0.5], 2f64.powi(500), 1.0).unwrap();
         assert_eq!(pushed.velocity, 0.0);
@@ -902,6 +982,7 @@ mod tests {
         let rates_only = stated_in_own_units(
             none,
             &[0.75],
+            &[0.75],
             &[],
             2f64.powi(665),
             1.0,
@@ -917,6 +998,7 @@ mod tests {
                 velocity: 0.0,
                 acceleration: 0.0,
             },
+            &[0.5],
             &[0.5],
             &[0.0],
             2f32.powi(60),

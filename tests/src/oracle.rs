@@ -1837,10 +1837,15 @@ pub fn rate_size(truth: &Truth, rates: &[Big], size: f64, level: usize) -> f64 {
         2 => size * w * w + size * a,
         _ => 0.0,
     };
-    rates
-        .iter()
-        .zip(&truth.columns)
-        .fold(floor, |m, (r, c)| m.max((r.to_f64() * c).abs()))
+    // Weighted at 256 bits: an angle's rate below f64's range times a long column is not 0.
+    rates.iter().zip(&truth.columns).fold(floor, |m, (r, c)| {
+        let weighted = if c.is_finite() {
+            (r * Big::from_f64(*c)).to_f64()
+        } else {
+            r.to_f64() * c
+        };
+        m.max(weighted.abs())
+    })
 }
 
 /// The largest loop residual of a position (evaluated exactly), each over the sum of its loop's
@@ -2690,27 +2695,29 @@ pub mod judge {
             self.truth.as_ref().map_or(1.0, |t| t.aspect(self.size()))
         }
 
-        /// Whether mechgen's estimate (`mechgen::Accuracy::estimate`, or `estimate_at` for rates
-        /// at a `newton` position) of `order` at the true position, with κ up to eight times
-        /// the truth's (as it is at a position within its error of the truth near a toggle)
-        /// and the judge's aspect, exceeds `mechgen::Accuracy::required`:
-        /// then `Inaccurate` is the documented answer.
         /// What the float's range costs rates (`level` 1) or accelerations (2) relative to
         /// the sizes the contract measures them by: results below its normal range (a rod
         /// of 1e300 turning at 1e-180 rad/s, whose angular acceleration of 1e-360 no f64
         /// holds) are known only to the spacing of its subnormal numbers, against the size
         /// times the input's rate (or its square plus its acceleration), the size at most 1
-        /// for an angle's (`mechgen::__private::stated_in_own_units`, 16 times).
+        /// for an angle's and 1 where every unknown is an angle
+        /// (`mechgen::__private::stated_in_own_units`, 16 times).
         fn range_floor(&self, level: i32) -> f64 {
             let Some(t) = &self.truth else {
                 return 0.0;
             };
+            // A length's rates are nearer the floor on a tiny mechanism; an angle's are not.
+            let lengths = self.model.angles.iter().any(|angle| !angle);
             let spacing = if self.eps > 1e-10 {
                 f64::from(f32::MIN_POSITIVE) * f64::from(f32::EPSILON)
             } else {
                 f64::MIN_POSITIVE * f64::EPSILON
             } * 16.0
-                * (1.0 / self.size()).max(1.0);
+                * if lengths {
+                    (1.0 / self.size()).max(1.0)
+                } else {
+                    1.0
+                };
             let (w, a) = (t.omega.abs(), t.alpha.abs());
             if level == 1 {
                 return if w == 0.0 { 0.0 } else { spacing / w };
@@ -2728,6 +2735,13 @@ pub mod judge {
             by_rate.min(by_acceleration)
         }
 
+        /// Whether mechgen's estimate (`mechgen::Accuracy::estimate`, or `estimate_at` for rates
+        /// at a `newton` position) of `order` at the true position, with κ up to eight times
+        /// the truth's (as it is at a position within its error of the truth near a toggle)
+        /// and the judge's aspect, plus the float's floor (64 times [`Self::range_floor`]: the
+        /// runtime's is relative to the longest length and the scaled rates, within a few
+        /// times of the judge's), exceeds `mechgen::Accuracy::required`: then `Inaccurate` is
+        /// the documented answer.
         fn inaccuracy_allowed(&self, order: mechgen::Order, newton: bool) -> bool {
             let Some(t) = &self.truth else {
                 return true;
@@ -2758,13 +2772,13 @@ pub mod judge {
                 mechgen::Order::Velocity => (
                     e * kappa * (64.0 + 12.0 * kappa) * shrunk
                         + newton_velocity
-                        + 4.0 * self.range_floor(1),
+                        + 64.0 * self.range_floor(1),
                     e.cbrt(),
                 ),
                 mechgen::Order::Acceleration => (
                     e * kappa * (256.0 + kappa * kappa) * shrunk * shrunk
                         + newton_acceleration
-                        + 4.0 * self.range_floor(2),
+                        + 64.0 * self.range_floor(2),
                     e.sqrt().sqrt(),
                 ),
             };
@@ -3056,9 +3070,10 @@ pub mod judge {
             }
         }
 
-        /// Whether a true rate or acceleration (times its column: a point's speed) is beyond
-        /// a sixteenth of the float's largest number, where computing it may overflow and
-        /// `NonFinite` is the honest answer.
+        /// Whether a true rate or acceleration, or one times its column (a point's speed), is
+        /// beyond a sixteenth of the float's largest number, where computing it may overflow
+        /// and `NonFinite` is the honest answer (edge run case 810100: an f32 rod's angular
+        /// acceleration of 4e38 rad/s², turning at 3e18 rad/s).
         fn rates_unrepresentable(&self) -> bool {
             let Some(t) = &self.truth else {
                 return false;
@@ -3072,7 +3087,10 @@ pub mod judge {
                 .into_iter()
                 .flatten()
                 .flat_map(|values| values.iter().zip(&t.columns))
-                .any(|(value, column)| (value.to_f64() * column).abs() > largest);
+                .any(|(value, column)| {
+                    let value = value.to_f64();
+                    (value * column).abs() > largest || value.abs() > largest
+                });
             // A point's acceleration sums each link's centripetal and tangential terms,
             // `|r|·(ω² + |α|)`, the input's and the unknowns' alike (a crank at ω2 = 43 rad/s
             // with a length of 2e35 is beyond f32 by itself): within the mechanism's size
@@ -4265,16 +4283,17 @@ pub mod draw {
     /// float's normal range), with `k` from −1000 to 504 (f64) or −110 to 56 (f32), far beyond
     /// where `motion` and the rest count time afresh ([2^-600, 2^600] and [2^-60, 2^60] for
     /// `Σω² + Σ|α|`) and slow enough for `ω²` to underflow on a mechanism of 1e300; for the
-    /// scene kernels
-    /// up to 420 or 40, rates whose squares times a ratio of lengths of 1e8 are still
-    /// normal numbers, as they require (README, **Rates**). Within what keeps the size
-    /// times the rate and its
-    /// square inside the float's range (2^±900, 2^±100), at the size drawn and at the size
-    /// rescaled to, so that every true rate is a number the float holds and the judge's
-    /// bounds, in f64, are too. `None` for one case in
-    /// seven (rates as drawn) and at moderate scales. Drawn from a stream of its own, so
-    /// that every other draw, and so every case the README and the regression tests name
-    /// by number, stays as it was.
+    /// scene kernels up to 420 or 40, rates whose squares times a ratio of lengths of 1e8 are
+    /// still normal numbers, as they require (README, **Rates**). Within what keeps the size
+    /// times the rate and its square inside the float's range (2^±900, 2^±100), at the size
+    /// drawn and at the size rescaled to, so that the judge's bounds, in f64, are numbers
+    /// (an angle's acceleration may still be below the float's range, which the contract
+    /// then says, `Inaccurate`). So tiny mechanisms turn fast and huge ones slowly; the
+    /// others are regression tests (`tests/tests/edges_solvers.rs`). `Some` for one case in
+    /// seven at extreme scales, drawn from a stream of its own, so that every other draw
+    /// stays as it was: a case number the README or a regression test names is the same
+    /// mechanism, input, branch and guess, its rates (unused by `position` and `assemble`)
+    /// far from 1 in one case in seven.
     fn tempo(
         scales: Scales,
         float: Float,

@@ -968,3 +968,102 @@ fn a_scene_of_a_tiny_mechanism_turning_fast_answers_by_its_checked_kernel() {
         Err(Error::NonFinite { .. })
     ));
 }
+
+/// The float's floor in the accuracy a scaled computation states, only where a result can
+/// leave its range (found by review of the first version, which charged an angle's rates
+/// with a tiny mechanism's lengths, and missed rates lost before they were solved with):
+/// - a four-bar of 1e-300, every unknown an angle, turning at 1e-10 rad/s: its rates and
+///   accelerations are normal numbers, the unit four-bar's bit for bit, and `Ok` (it was
+///   `Inaccurate`); a slider-crank of 1e-300 at that rate, whose slider accelerates at
+///   about 3e-321, a subnormal number, `Inaccurate`;
+/// - a crank at 1e-230 rad/s accelerating at 1e200 rad/s², whose rate rounds to 0 in the
+///   acceleration's units of time: `Inaccurate` at the velocity (its velocities came back 0,
+///   stated to 1e-14), and one at 1e-320 rad/s beside 1 rad/s² (then taken as given, its
+///   velocities subnormal) too; at 1e-200 rad/s beside 1 rad/s², `Ok` and right;
+/// - `motion_near` asked for a position more accurate than its estimate is `Ok` at every
+///   size alike: the position's accuracy is the caller's to judge (the path that scales
+///   refused it).
+#[test]
+fn the_floats_floor_only_where_results_leave_its_range() {
+    let dims = [1.8f64, 0.8, 2.0, 1.5];
+    let unit = FourBar::new(dims[0], dims[1], dims[2], dims[3]).unwrap();
+    let factor = 2f64.powi(-996);
+    let tiny = FourBar::new(
+        dims[0] * factor,
+        dims[1] * factor,
+        dims[2] * factor,
+        dims[3] * factor,
+    )
+    .unwrap();
+    let (theta2, omega) = (1.0, 1e-10);
+    let want = unit.motion(theta2, Branch::Open, omega, 0.0).unwrap();
+    let got = tiny.motion(theta2, Branch::Open, omega, 0.0).unwrap();
+    assert_eq!(
+        (got.velocity, got.acceleration),
+        (want.velocity, want.acceleration)
+    );
+    assert!(got.accuracy.acceleration < 1e-12, "{:?}", got.accuracy);
+    let q = unit.assemble(theta2, Branch::Open).unwrap();
+    let v = tiny.velocity(theta2, &q, omega).unwrap();
+    assert_eq!(v, unit.velocity(theta2, &q, omega).unwrap());
+    assert_eq!(
+        tiny.acceleration(theta2, &q, omega, &v, 0.0).unwrap(),
+        unit.acceleration(theta2, &q, omega, &v, 0.0).unwrap()
+    );
+
+    let s = 1e-300f64;
+    let slider = SliderCrank::new(0.3 * s, s, 0.1 * s).unwrap();
+    let inaccurate = |r: Result<_, Error<f64>>, order: mechgen::Order| matches!(r, Err(Error::Inaccurate { order: o, .. }) if o == order);
+    assert!(inaccurate(
+        slider.motion(0.7, Branch::Open, 1e-10, 0.0).map(|_| ()),
+        mechgen::Order::Acceleration
+    ));
+    // Its velocities, about 1e-310, keep some 40 bits: within what is required.
+    let sq = slider.assemble(0.7, Branch::Open).unwrap();
+    assert!(slider.velocity(0.7, &sq, 1e-10).is_ok());
+
+    assert!(inaccurate(
+        unit.motion(theta2, Branch::Open, 1e-230, 1e200).map(|_| ()),
+        mechgen::Order::Velocity
+    ));
+    assert!(inaccurate(
+        unit.motion_at(theta2, &q, 1e-230, 1e200).map(|_| ()),
+        mechgen::Order::Velocity
+    ));
+    assert!(inaccurate(
+        unit.motion(theta2, Branch::Open, 1e-320, 1.0).map(|_| ()),
+        mechgen::Order::Velocity
+    ));
+    assert!(inaccurate(
+        unit.velocity(theta2, &q, 1e-320).map(|_| ()),
+        mechgen::Order::Velocity
+    ));
+    let slow = unit.motion(theta2, Branch::Open, 1e-200, 1.0).unwrap();
+    let per_unit = unit.velocity(theta2, &q, 1.0).unwrap();
+    for (got, want) in slow
+        .velocity
+        .to_array()
+        .into_iter()
+        .zip(per_unit.to_array())
+    {
+        assert!(
+            (got / (want * 1e-200) - 1.0).abs() < 1e-13,
+            "{got:e} {want:e}"
+        );
+    }
+
+    let mut options = NewtonOptions::default();
+    options.accuracy.position = 1e-300;
+    let guess = FourBarUnknowns {
+        theta3: q.theta3 + 1e-3,
+        theta4: q.theta4 - 1e-3,
+    };
+    let as_given = unit
+        .motion_near(theta2, &guess, &options, 10.0, 0.0)
+        .unwrap();
+    let scaled = tiny
+        .motion_near(theta2, &guess, &options, 10.0, 0.0)
+        .unwrap();
+    assert_eq!(as_given.value.position, scaled.value.position);
+    assert!(as_given.value.accuracy.position > options.accuracy.position);
+}

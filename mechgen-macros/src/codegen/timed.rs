@@ -204,7 +204,7 @@ impl Generator<'_> {
     /// The accuracy `stated` by a computation in the scaled units (lengths times `scale`,
     /// time counted in `tempo`, whose input rates and accelerations were `rates`), in the
     /// mechanism's own: with what the float's smallest numbers cost where the results leave
-    /// its normal range, checked against `required` up to the order `highest`
+    /// its normal range, checked against `required` at the rates' orders up to `highest`
     /// (`mechgen::__private::stated_in_own_units`).
     pub(super) fn stated_in_own_units(
         &self,
@@ -213,12 +213,23 @@ impl Generator<'_> {
         required: TokenStream,
         highest: &str,
     ) -> TokenStream {
-        let (scale, tempo) = (local("scale"), local("tempo"));
+        let tempo = local("tempo");
+        // A length's rates are nearer the float's floor on a tiny mechanism, by the scale; an
+        // angle's are not, on a mechanism of any size: the larger of those there are.
+        let lengths = self.length_unknowns();
+        let scale = local("scale");
+        let scale = match (lengths.contains(&true), lengths.contains(&false)) {
+            (true, true) => quote!(#scale.max(T::one())),
+            (true, false) => quote!(#scale),
+            (false, _) => quote!(T::one()),
+        };
         let (dots, ddots) = rates;
+        let given = self.input_dot_args();
         let highest = Ident::new(highest, Span::call_site());
         quote! {
             ::mechgen::__private::stated_in_own_units(
                 #stated,
+                &[#given],
                 &[#dots],
                 &[#ddots],
                 #tempo,
