@@ -224,19 +224,26 @@ pub fn stated_in_own_units<T: Real>(
 /// 1e-200 on a mechanism of 1e50, whose squares underflow while a length's acceleration
 /// does not) they compute with time counted in units of [`rate_scale`], out of line, where
 /// the accuracy stated says what the float's range costs ([`stated_in_own_units`]). Two
-/// sums and three comparisons on the common path.
+/// sums, three comparisons and a branch on the common path.
 #[inline(always)]
 pub fn rates_as_given<T: Real>(rates: &[T], accelerations: &[T]) -> bool {
     let squares = rates.iter().fold(T::zero(), |sum, r| sum + *r * *r);
     let sum = accelerations.iter().fold(squares, |sum, a| sum + a.abs());
     let [slowest, fastest] = T::RATES_AS_GIVEN;
-    (sum >= slowest
-        && sum <= fastest
-        && (squares >= slowest || rates.iter().all(|rate| *rate == T::zero())))
-        || rates
-            .iter()
-            .chain(accelerations)
-            .all(|value| *value == T::zero())
+    // The three together (`&`, not `&&`), for one branch; still rates, out of line.
+    ((sum >= slowest) & (sum <= fastest) & (squares >= slowest))
+        || still_as_given(rates, accelerations, sum)
+}
+
+/// [`rates_as_given`] where the rates' squares are not within the range: rates that are all
+/// zero, with accelerations whose sum is within it, or zero too.
+#[cold]
+#[inline(never)]
+fn still_as_given<T: Real>(rates: &[T], accelerations: &[T], sum: T) -> bool {
+    let [slowest, fastest] = T::RATES_AS_GIVEN;
+    rates.iter().all(|rate| *rate == T::zero())
+        && ((sum >= slowest && sum <= fastest)
+            || accelerations.iter().all(|value| *value == T::zero()))
 }
 
 /// `value` times `untempo` `order` times (a rate, 1; an acceleration, 2), as one power of
