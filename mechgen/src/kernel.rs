@@ -915,36 +915,28 @@ mod tests {
             velocity: 2e-14,
             acceleration: 3e-13,
         };
-        let sum = stated_in_own_units(
-            stated,
-            &[0.5],
-            &[0.5],
-            &[0.25],
-            2f64.powi(500),
-            1.0,
-            &required,
-            Order::Acceleration,
-        )
-        .unwrap();
+        let stating = |stated: Accuracy<f64>| {
+            stated_in_own_units(
+                stated,
+                &[0.5],
+                &[0.5],
+                &[0.25],
+                2f64.powi(500),
+                1.0,
+                &required,
+                Order::Acceleration,
+            )
+            .unwrap()
+        };
+        let sum = stating(stated);
         assert_eq!(sum.position, 1e-15);
         assert_eq!(sum.velocity, 2e-14 + floor.velocity);
         assert_eq!(sum.acceleration, 3e-13 + floor.acceleration);
         // The position's accuracy is the caller's to judge, as where nothing is scaled.
-        let loose = Accuracy {
+        let kept = stating(Accuracy {
             position: 1.0,
             ..stated
-        };
-        let kept = stated_in_own_units(
-            loose,
-            &[0.5],
-            &[0.5],
-            &[0.25],
-            2f64.powi(500),
-            1.0,
-            &required,
-            Order::Acceleration,
-        )
-        .unwrap();
+        });
         assert_eq!(kept.position, 1.0);
         // No rates, no floor: their results are exact zeros.
         let still = state(&[0.0], &[0.0], 2f64.powi(900), 2f64.powi(900)).unwrap();
