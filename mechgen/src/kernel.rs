@@ -165,16 +165,24 @@ pub fn untimed<T: Real, const N: usize>(
 /// rates' `Σ|ω|` (velocities, `k = 1`) or `Σω² + Σ|α|` (accelerations, `k = 2`); in the
 /// mechanism's own units, where time counts `tempo` times as much and a length `scale`
 /// times less, at most `2μ·tempo^k·scale/s` for a length and `2μ·tempo^k/s` for an angle.
-/// The floor is `16μ·max(1, tempo^k·scale)/s`, 16 for those factors, their sum and an input
-/// that is a length, with `scale` the larger of the lengths' scale, where an unknown is a
-/// length, and 1, where one is an angle (an angle's rates are no nearer the floor on a tiny
-/// mechanism, nor further from it on a huge one). `rates` and `accelerations` are the
-/// inputs' as the scaled computation took them, `given` the caller's rates. Zero rates add nothing (their results are exact zeros),
-/// but rates the caller gave that rounded to zero in the scaled units (a crank at 1e-230
-/// rad/s accelerating at 1e200 rad/s², in the acceleration's time) left the velocities
-/// nothing to go on: an infinite floor. A result whose accuracy with its floor is beyond
-/// `required`, at the rates' orders up to `highest`, is [`Error::Inaccurate`]; the position's
-/// is the caller's to judge, as on the path that does not scale.
+/// The floor is `16μ·(1 + e/ε + tempo^k·scale)/s`, 16 for those factors and an input that
+/// is a length, with `scale` the larger of the lengths' scale, where an unknown is a length,
+/// and 1, where one is an angle (an angle's rates are no nearer the floor on a tiny
+/// mechanism, nor further from it on a huge one), and `e` the stated estimate: rounding
+/// inside the scaled computation is amplified as its own is (by κ and more), which matters
+/// where a scaled rate is itself near the subnormal numbers (a crank at 1e-300 rad/s
+/// accelerating at 1e30 rad/s², time counted by the acceleration). `rates` and
+/// `accelerations` are the inputs' as the scaled computation took them, `given` the
+/// caller's rates.
+///
+/// Zero rates add nothing (their results are exact zeros), but rates the caller gave that
+/// rounded to zero in the scaled units (a crank at 1e-230 rad/s accelerating at 1e200
+/// rad/s², in the acceleration's time) left the velocities nothing to go on: an infinite
+/// floor. A result whose accuracy with its floor is beyond `required`, at the rates' orders
+/// up to `highest`, is [`Error::Inaccurate`]; the position's is the caller's to judge, as on
+/// the path that does not scale. (Velocities are linear in the rates and do not need the
+/// acceleration's time: where an acceleration dwarfs the squared rate, 1e60 rad/s² beside
+/// 1e-290 rad/s, they are refused where they could be had.)
 #[cold]
 #[allow(clippy::too_many_arguments)]
 pub fn stated_in_own_units<T: Real>(
@@ -193,21 +201,27 @@ pub fn stated_in_own_units<T: Real>(
         |sum, a| sum + a.abs(),
     );
     let spacing = T::min_positive_value() * T::epsilon();
-    let floor = |order: i32, rate: T| {
+    // Inside the scaled computation, amplified as its own rounding is (the estimate over ε:
+    // κ and more); on the way back, not.
+    let floor = |order: i32, rate: T, estimate: T| {
         if rate == T::zero() {
             return T::zero();
         }
-        let exponent = (order * crate::real::binary_exponent(tempo)
-            + crate::real::binary_exponent(scale))
-        .max(0)
-            + 4;
-        times_power_of_two(spacing, exponent) / rate
+        let inside = times_power_of_two(spacing, 4) * (T::one() + estimate / T::epsilon());
+        let exponent =
+            order * crate::real::binary_exponent(tempo) + crate::real::binary_exponent(scale) + 4;
+        (inside + times_power_of_two(spacing, exponent)) / rate
     };
     let lost = speed == T::zero() && given.iter().any(|rate| *rate != T::zero());
     let accuracy = Accuracy {
         position: stated.position,
-        velocity: stated.velocity + if lost { T::infinity() } else { floor(1, speed) },
-        acceleration: stated.acceleration + floor(2, spin),
+        velocity: stated.velocity
+            + if lost {
+                T::infinity()
+            } else {
+                floor(1, speed, stated.velocity)
+            },
+        acceleration: stated.acceleration + floor(2, spin, stated.acceleration),
     };
     let rates_required = Accuracy {
         position: T::infinity(),
@@ -881,8 +895,8 @@ mod tests {
             )
         };
         // The subnormals' spacing 2^-1074 over the sizes the accuracy is relative to, 16
-        // times: 2^(max(0, k·log2(tempo) + log2(scale)) + 4 − 1074) over Σ|ω| or Σω² + Σ|α|
-        // as the scaled computation took them.
+        // times: (2^(4 − 1074)·(1 + e/ε) + 2^(k·log2(tempo) + log2(scale) + 4 − 1074)) over
+        // Σ|ω| or Σω² + Σ|α| as the scaled computation took them, e the stated estimate.
         let floor = state(&[0.5], &[0.25], 2f64.powi(500), 1.0).unwrap();
         assert_eq!(floor.position, 0.0);
         assert_eq!(floor.velocity, 2f64.powi(500 + 4 - 1074) / 0.5);
@@ -897,18 +911,44 @@ mod tests {
         assert_eq!(huge.acceleration, 2f64.powi(740 + 4 - 1074) / 0.5);
         let lower = state(&[0.5], &[0.25], 2f64.powi(40), 2f64.powi(-60)).unwrap();
         assert_eq!(lower.velocity, 2f64.powi(4 - 1074) / 0.5);
-        assert_eq!(lower.acceleration, 2f64.powi(20 + 4 - 1074) / 0.5);
+        assert_eq!(
+            lower.acceleration,
+            (2f64.powi(4 - 1074) + 2f64.powi(20 + 4 - 1074)) / 0.5
+        );
         // A tiny mechanism turning fast, time counted in units below 1: no nearer the floor
         // than its lengths' scale times the tempo says (the slider of 1e-300 at 1e100 rad/s
         // and 1e300 rad/s², its slider's velocity 1e-200, is far from it).
         let quick = state(&[0.25], &[0.5], 2f64.powi(-499), 2f64.powi(997)).unwrap();
         assert_eq!(quick.velocity, 2f64.powi(498 + 4 - 1074) / 0.25);
-        assert_eq!(quick.acceleration, 2f64.powi(4 - 1074) / 0.5625);
+        assert_eq!(
+            quick.acceleration,
+            (2f64.powi(4 - 1074) + 2f64.powi(-1 + 4 - 1074)) / 0.5625
+        );
         // Time counted in units below 1 (fast rates) does not shrink the floor below the
         // scaled computation's own rounding.
         let fast = state(&[0.5], &[0.25], 2f64.powi(-300), 1.0).unwrap();
         assert_eq!(fast.velocity, 2f64.powi(4 - 1074) / 0.5);
         assert_eq!(fast.acceleration, 2f64.powi(4 - 1074) / 0.5);
+        // Where the scaled rate is itself near the subnormal numbers (time counted by a
+        // dominant acceleration), their spacing is amplified inside as the estimate says.
+        let near = stated_in_own_units(
+            Accuracy {
+                position: 0.0,
+                velocity: 1e-10,
+                acceleration: 0.0,
+            },
+            &[1e-300],
+            &[1e-310],
+            &[1.0],
+            2f64.powi(-100),
+            1.0,
+            &required,
+            Order::Velocity,
+        )
+        .unwrap();
+        let inside = 2f64.powi(4 - 1074) * (1.0 + 1e-10 / f64::EPSILON);
+        assert_eq!(near.velocity, 1e-10 + inside / 1e-310);
+        assert!(near.velocity > 1e-7);
         // Added to what the scaled computation stated.
         let stated = Accuracy {
             position: 1e-15,

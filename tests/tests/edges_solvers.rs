@@ -978,8 +978,10 @@ fn a_scene_of_a_tiny_mechanism_turning_fast_answers_by_its_checked_kernel() {
 ///   about 3e-321, a subnormal number, `Inaccurate`;
 /// - a crank at 1e-230 rad/s accelerating at 1e200 rad/s², whose rate rounds to 0 in the
 ///   acceleration's units of time: `Inaccurate` at the velocity (its velocities came back 0,
-///   stated to 1e-14), and one at 1e-320 rad/s beside 1 rad/s² (then taken as given, its
-///   velocities subnormal) too; at 1e-200 rad/s beside 1 rad/s², `Ok` and right;
+///   stated to 1e-14; they exist, about 1e-230, but the time unit that would keep them is
+///   not the accelerations', a limit the docs of `stated_in_own_units` state), and one at
+///   1e-320 rad/s beside 1 rad/s² (then taken as given, its velocities subnormal) too; at
+///   1e-200 rad/s beside 1 rad/s², `Ok` and right;
 /// - `motion_near` asked for a position more accurate than its estimate is `Ok` at every
 ///   size alike: the position's accuracy is the caller's to judge (the path that scales
 ///   refused it).
