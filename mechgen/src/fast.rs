@@ -272,7 +272,9 @@ pub fn unit_angle<T: Real>(y: T, x: T) -> T {
     // r − 1 = (x² + y² − 1)/2 to first order. x² + y² − 1 = (M² − 1) + w² for the larger
     // magnitude M, from exact squares (Veltkamp's splits into halves): M² − 1 is exact by
     // Sterbenz's lemma, so is its sum with the head of w², and the tails are small.
-    let big = p * ax + q * ay;
+    // The larger magnitude, `p·|x| + q·|y|`, by one comparison (a packed `max` in lanes): a
+    // NaN in either input makes `w` NaN whichever is chosen.
+    let big = if ax > ay { ax } else { ay };
     let (big_hi, big_lo) = split(big);
     let (w_hi, w_lo) = split(w);
     let excess =
