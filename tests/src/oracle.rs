@@ -2703,6 +2703,11 @@ pub mod judge {
         /// for an angle's and 1 where every unknown is an angle
         /// (`mechgen::__private::stated_in_own_units`, 16 times).
         fn range_floor(&self, level: i32) -> f64 {
+            self.range_floor_scaled(level, 1.0)
+        }
+
+        /// [`Self::range_floor`] with every length times `factor` (the rates as they are).
+        fn range_floor_scaled(&self, level: i32, factor: f64) -> f64 {
             let Some(t) = &self.truth else {
                 return 0.0;
             };
@@ -2714,7 +2719,7 @@ pub mod judge {
                 f64::MIN_POSITIVE * f64::EPSILON
             } * 16.0
                 * if lengths {
-                    (1.0 / self.size()).max(1.0)
+                    (1.0 / (self.size() * factor)).max(1.0)
                 } else {
                     1.0
                 };
@@ -2743,6 +2748,17 @@ pub mod judge {
         /// times of the judge's), exceeds `mechgen::Accuracy::required`: then `Inaccurate` is
         /// the documented answer.
         fn inaccuracy_allowed(&self, order: mechgen::Order, newton: bool) -> bool {
+            self.inaccuracy_allowed_scaled(order, newton, 1.0)
+        }
+
+        /// [`Self::inaccuracy_allowed`] with every length times `factor`: the same but for
+        /// the float's floor, which a tiny mechanism's rates of lengths meet sooner.
+        fn inaccuracy_allowed_scaled(
+            &self,
+            order: mechgen::Order,
+            newton: bool,
+            factor: f64,
+        ) -> bool {
             let Some(t) = &self.truth else {
                 return true;
             };
@@ -2772,13 +2788,13 @@ pub mod judge {
                 mechgen::Order::Velocity => (
                     e * kappa * (64.0 + 12.0 * kappa) * shrunk
                         + newton_velocity
-                        + 64.0 * self.range_floor(1),
+                        + 64.0 * self.range_floor_scaled(1, factor),
                     e.cbrt(),
                 ),
                 mechgen::Order::Acceleration => (
                     e * kappa * (256.0 + kappa * kappa) * shrunk * shrunk
                         + newton_acceleration
-                        + 64.0 * self.range_floor(2),
+                        + 64.0 * self.range_floor_scaled(2, factor),
                     e.sqrt().sqrt(),
                 ),
             };
@@ -3704,7 +3720,23 @@ pub mod judge {
             let rates_overflow = (before == "NonFinite" || again.outcome == "NonFinite")
                 && (largest > T::max_value().to_f64().unwrap_or(f64::MAX) / 64.0
                     || e.rates_unbounded_near_limit(e.size() * factor.max(1.0)));
+            // Rates that leave the float's normal range at one of the two sizes (a slider of
+            // 1e-250 turning at 1e-40 rad/s, scaled by 1e-64) are known there only to its
+            // subnormal spacing, which the contract states: `Inaccurate` on that side, `Ok`
+            // on the other, whatever the factor.
+            let newton = matches!(case.api, Api::Position | Api::MotionNear);
+            let leaves_range = [before.as_str(), again.outcome.as_str()]
+                .iter()
+                .all(|o| *o == "Ok" || *o == "Inaccurate")
+                && [mechgen::Order::Velocity, mechgen::Order::Acceleration]
+                    .into_iter()
+                    .any(|order| {
+                        [1.0, factor]
+                            .into_iter()
+                            .any(|f| e.inaccuracy_allowed_scaled(order, newton, f))
+                    });
             let excused = rates_overflow
+                || leaves_range
                 || (!exact && (e.near_limit() || e.singular_allowed() || at_the_threshold));
             if !excused {
                 verdict.fail(
@@ -4284,16 +4316,18 @@ pub mod draw {
     /// where `motion` and the rest count time afresh ([2^-600, 2^600] and [2^-60, 2^60] for
     /// `Σω² + Σ|α|`) and slow enough for `ω²` to underflow on a mechanism of 1e300; for the
     /// scene kernels up to 420 or 40, rates whose squares times a ratio of lengths of 1e8 are
-    /// still normal numbers, as they require (README, **Rates**). Within what keeps the size
-    /// times the rate and its square inside the float's range (2^±900, 2^±100), at the size
-    /// drawn and at the size rescaled to, so that the judge's bounds, in f64, are numbers
-    /// (an angle's acceleration may still be below the float's range, which the contract
-    /// then says, `Inaccurate`). So tiny mechanisms turn fast and huge ones slowly; the
-    /// others are regression tests (`tests/tests/edges_solvers.rs`). `Some` for one case in
-    /// seven at extreme scales, drawn from a stream of its own, so that every other draw
-    /// stays as it was: a case number the README or a regression test names is the same
-    /// mechanism, input, branch and guess, its rates (unused by `position` and `assemble`)
-    /// far from 1 in one case in seven.
+    /// still normal numbers, as they require (README, **Rates**). The size times the rate
+    /// squared, at the size drawn and at the size rescaled to, stays below 2^900 (2^100 in
+    /// f32), so that the judge's bounds, in f64, are numbers, and above 2^-1200 (2^-160),
+    /// past the float's smallest subnormal: tiny mechanisms turn slowly too, their rates of
+    /// lengths and angles' accelerations below the float's range, which the contract then
+    /// says (`Inaccurate`); huge ones turning fast are the regression tests'
+    /// (`tests/tests/edges_solvers.rs`). The scene kernels' within 2^±900 (2^±100), their
+    /// domain (README, **Rates**: the size times the rate squared a normal number too).
+    /// `Some` for one case in seven at extreme scales, drawn from a stream of its own, so
+    /// that every other draw stays as it was: a case number the README or a regression test
+    /// names is the same mechanism, input, branch and guess, its rates (unused by `position`
+    /// and `assemble`) far from 1 in one case in seven.
     fn tempo(
         scales: Scales,
         float: Float,
@@ -4318,19 +4352,22 @@ pub mod draw {
             .fold(0.0f64, |m, (_, d)| m.max(d.abs()));
         // The scene kernels' documented domain, or every rate that is a normal number and
         // every acceleration (`α·4^k`, |α| ≤ 10, next to `ω²` ≤ 1e4·4^k) below the largest.
-        let (slowest, fastest, room): (f64, f64, f64) = match (float, api == Api::Scenes) {
-            (Float::F64, true) => (-420.0, 420.0, 900.0),
-            (Float::F64, false) => (-1000.0, 504.0, 900.0),
-            (Float::F32, true) => (-40.0, 40.0, 100.0),
-            (Float::F32, false) => (-110.0, 56.0, 100.0),
-        };
+        // The size times the rate squared, in base-2 exponents: above `-below` and below
+        // `above` (past the float's smallest subnormal below, except for the scenes).
+        let (slowest, fastest, below, above): (f64, f64, f64, f64) =
+            match (float, api == Api::Scenes) {
+                (Float::F64, true) => (-420.0, 420.0, 900.0, 900.0),
+                (Float::F64, false) => (-1000.0, 504.0, 1200.0, 900.0),
+                (Float::F32, true) => (-40.0, 40.0, 100.0, 100.0),
+                (Float::F32, false) => (-110.0, 56.0, 160.0, 100.0),
+            };
         let sizes = [longest.log2(), (longest * rescale.unwrap_or(1.0)).log2()];
         let slowest = sizes
             .iter()
-            .fold(slowest, |k, size| k.max(((-room - size) / 2.0).ceil()));
+            .fold(slowest, |k, size| k.max(((-below - size) / 2.0).ceil()));
         let fastest = sizes
             .iter()
-            .fold(fastest, |k, size| k.min(((room - size) / 2.0).floor()));
+            .fold(fastest, |k, size| k.min(((above - size) / 2.0).floor()));
         (slowest < fastest).then(|| side.range(slowest, fastest).round() as i32)
     }
 

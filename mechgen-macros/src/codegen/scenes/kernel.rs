@@ -370,8 +370,9 @@ impl Generator<'_> {
         let docs = docs_or(&scene.docs, &fallback);
         let slow_rates = if order >= Order::Rate {
             "\n\nThe input rate is taken as given, for speed: one whose square, times the \
-             shortest link over the longest, is not a normal number (below about 1e-145 rad/s \
-             in f64, 1e-15 in f32) gives rates and accelerations of lengths and points that \
+             shortest link over the longest or times the longest, is not a normal number \
+             (below about 1e-145 rad/s in f64, 1e-15 in f32; 2e-4 rad/s on a mechanism of \
+             1e-300 in f64) gives rates and accelerations of lengths and points that \
              underflow; the general `motion` counts time in units that keep it in range."
         } else {
             ""
