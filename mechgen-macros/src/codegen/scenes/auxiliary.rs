@@ -32,7 +32,6 @@ impl Generator<'_> {
             rates_threshold,
             rates_threshold_squared,
             rates_order,
-            paired_angles,
         } = kernel;
         // Fast and batch kernels pass a failure on as NaN, for the checked kernel to explain.
         let lanes = *mode != Mode::Checked;
@@ -167,11 +166,11 @@ impl Generator<'_> {
                     #call.map_err(|error| ::mechgen::__private::blame(#inputs, error))?
                 }
             }
-            // In a batch, the branch-free angle vectorises; so do a kernel's angles where it
-            // has two or more, two to a register (the four-bar's θ3 and θ4 cost fewer
-            // instructions so than by two arc sines); alone, an arc sine costs less (the
-            // slider-crank's θ3, by about a quarter of the kernel).
-            AuxKind::Angle { .. } if *mode == Mode::Lanes || (lanes && *paired_angles) => {
+            // In a batch, the branch-free angle vectorises; alone, an arc sine is faster: the
+            // four-bar's two angles by it, two to a register, cost 12 instructions fewer per
+            // call but 14% more time (its polynomial's chain of dependent operations is longer
+            // than the platform's arc sine's).
+            AuxKind::Angle { .. } if *mode == Mode::Lanes => {
                 let (y, x) = (&args[0], &args[1]);
                 quote!(::mechgen::fast::unit_angle(#y, #x))
             }
@@ -200,9 +199,6 @@ pub(super) struct KernelKind {
     pub(super) rates_threshold_squared: TokenStream,
     /// The highest order the kernel's rates are for.
     pub(super) rates_order: Ident,
-    /// Whether the kernel computes two angles or more, which a fast kernel then takes from
-    /// the branch-free polynomial, in pairs of lanes.
-    pub(super) paired_angles: bool,
 }
 
 /// What an auxiliary value is computed from, in a kernel of `mode`.

@@ -118,17 +118,12 @@ impl Generator<'_> {
                     format_ident!("Velocity"),
                 )
             };
-        let angle_count = needed
-            .iter()
-            .filter(|&&k| matches!(straight.aux[k], AuxKind::Angle { .. }))
-            .count();
         let kind = KernelKind {
             inputs: inputs.clone(),
             mode,
             rates_threshold,
             rates_threshold_squared,
             rates_order,
-            paired_angles: angle_count >= 2,
         };
         // Statements of stage k, then auxiliary value k; an angle that only an output reads
         // comes last (see `outputs_only`).
