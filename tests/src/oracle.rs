@@ -1795,14 +1795,14 @@ pub fn weighted_error(
     angles: &[bool],
     got: &[f64],
     want: &[Big],
-    scale: f64,
+    scale: &Big,
 ) -> f64 {
     if got.iter().any(|g| !g.is_finite()) {
         return f64::INFINITY;
     }
     // Weighted and divided at 256 bits, then rounded: a difference below f64's range (an
-    // angular acceleration of 1e-400 returned as 0) times a column of 1e300 is not zero.
-    let by = Big::from_f64(if scale.is_finite() { scale } else { 1.0 });
+    // angular acceleration of 1e-400 returned as 0) times a column of 1e300 is not zero, and
+    // a scale beyond it (a rod of 1e300 turning at 1e30 rad/s) is not infinite.
     got.iter()
         .zip(want)
         .zip(&truth.columns)
@@ -1812,10 +1812,13 @@ pub fn weighted_error(
             if angle {
                 d = d.wrapped();
             }
-            if scale > 0.0 && scale.is_finite() && c.is_finite() {
-                (d.abs() * Big::from_f64(*c) / &by).to_f64().abs()
+            if scale.is_zero() {
+                // Nothing moves: any difference is infinitely wrong.
+                if d.is_zero() { 0.0 } else { f64::INFINITY }
+            } else if c.is_finite() {
+                (d.abs() * Big::from_f64(*c) / scale).to_f64().abs()
             } else {
-                (d.abs().to_f64() * c).abs() / scale
+                (d.abs() / scale).to_f64().abs() * c
             }
         })
         .fold(0.0, f64::max)
@@ -1823,28 +1826,39 @@ pub fn weighted_error(
 
 /// The weighted error of a position (angles modulo 2π).
 pub fn position_error(model: &Model, truth: &Truth, got: &[f64]) -> f64 {
-    weighted_error(truth, &model.angles, got, truth.q(), model.size)
+    weighted_error(
+        truth,
+        &model.angles,
+        got,
+        truth.q(),
+        &Big::from_f64(model.size),
+    )
 }
 
 /// The size rates at `level` are measured against: the larger of the size times the input's
 /// rate (level 1, velocities) or its rate squared plus its acceleration (level 2), and the
-/// true rates' weighted size (alone at level 0). The size multiplies first, so that a squared
-/// rate that underflows in f64 by itself (1e-200 rad/s on a mechanism of 1e300) still counts.
-pub fn rate_size(truth: &Truth, rates: &[Big], size: f64, level: usize) -> f64 {
-    let (w, a) = (truth.omega.abs(), truth.alpha.abs());
+/// true rates' weighted size (alone at level 0). At 256 bits, whose exponent range no
+/// mechanism leaves: a squared rate that underflows in f64 by itself (1e-200 rad/s on a
+/// mechanism of 1e300) still counts, and a size times a squared rate beyond f64's range (1e30
+/// rad/s on the same) is a number, not an infinity that would excuse any error.
+pub fn rate_size(truth: &Truth, rates: &[Big], size: f64, level: usize) -> Big {
+    let (w, a) = (
+        Big::from_f64(truth.omega.abs()),
+        Big::from_f64(truth.alpha.abs()),
+    );
+    let size = Big::from_f64(size);
     let floor = match level {
-        1 => size * w,
-        2 => size * w * w + size * a,
-        _ => 0.0,
+        1 => &size * &w,
+        2 => &size * &w * &w + &size * &a,
+        _ => Big::zero(),
     };
-    // Weighted at 256 bits: an angle's rate below f64's range times a long column is not 0.
     rates.iter().zip(&truth.columns).fold(floor, |m, (r, c)| {
         let weighted = if c.is_finite() {
-            (r * Big::from_f64(*c)).to_f64()
+            (r * Big::from_f64(*c)).abs()
         } else {
-            r.to_f64() * c
+            Big::from_f64(f64::MAX).square()
         };
-        m.max(weighted.abs())
+        m.max(weighted)
     })
 }
 
@@ -3013,7 +3027,7 @@ pub mod judge {
                 let rate_scale = rate_size(truth, want, size, level as usize);
                 let bound = FACTOR * self.eps * kappa.powi(level + 1) * rho.powi(level)
                     + self.range_floor(level);
-                let error = weighted_error(truth, &vec![false; self.n()], got, want, rate_scale);
+                let error = weighted_error(truth, &vec![false; self.n()], got, want, &rate_scale);
                 if error > bound {
                     let what = if level == 1 {
                         "velocity error beyond 16·ε·κ²·ρ"
@@ -3054,14 +3068,14 @@ pub mod judge {
                 &no_angles,
                 &got[1],
                 tv,
-                rate_size(truth, tv, size, 1),
+                &rate_size(truth, tv, size, 1),
             );
             let acceleration = weighted_error(
                 truth,
                 &no_angles,
                 &got[2],
                 ta,
-                rate_size(truth, ta, size, 2),
+                &rate_size(truth, ta, size, 2),
             );
             for (what, error, bound) in [
                 ("position", position, stated[0]),
@@ -3217,51 +3231,80 @@ pub mod judge {
 
         /// A tracked point's bound at `level`: each vector's error is its length times its
         /// angle's allowed error, and its rates' errors follow by the chain rule (first order),
-        /// plus rounding of the sum.
-        fn point_bound(&self, terms: &[Term], level: usize, kappa: f64) -> f64 {
-            let Some(t) = &self.truth else {
-                return f64::INFINITY;
-            };
+        /// plus rounding of the sum. At 256 bits, like the error it bounds: a huge mechanism
+        /// turning fast has a point acceleration beyond f64's range, which an f64 bound would
+        /// make infinite, passing anything. `None` (anything passes) where the oracle has no
+        /// rates, or the allowed errors are beyond f64.
+        fn point_bound(&self, terms: &[Term], level: usize, kappa: f64) -> Option<Big> {
+            let t = self.truth.as_ref()?;
             let (Some(tv), Some(ta)) = (&t.velocity, &t.acceleration) else {
-                return f64::INFINITY;
+                return None;
             };
             let size = self.size();
             let rho = t.aspect(size);
             let n = self.n();
-            let scale_v = rate_size(t, tv, size, 1);
-            let scale_a = rate_size(t, ta, size, 2);
-            let allowed = |j: usize, level: i32, scale: f64| {
-                FACTOR * self.eps * kappa.powi(level + 1) * rho.powi(level) * scale / t.columns[j]
+            let scales = [
+                Big::from_f64(size),
+                rate_size(t, tv, size, 1),
+                rate_size(t, ta, size, 2),
+            ];
+            // The allowed error of unknown `j`'s angle at `level`; `None` where κ or ρ is
+            // beyond f64 (a singular truth), which allows anything.
+            let allowed = |j: usize, level: usize| {
+                let coefficient =
+                    FACTOR * self.eps * kappa.powi(level as i32 + 1) * rho.powi(level as i32)
+                        / t.columns[j];
+                coefficient
+                    .is_finite()
+                    .then(|| Big::from_f64(coefficient) * &scales[level])
             };
-            let mut bound = 0.0;
+            let factor = Big::from_f64(FACTOR * self.eps);
+            let two = Big::from_f64(2.0);
+            let mut bound = Big::zero();
             for term in terms {
                 let r = match &term.magnitude {
-                    Magnitude::Fixed(r) => r.abs().to_f64(),
+                    Magnitude::Fixed(r) => r.abs(),
                     Magnitude::Unknown(_) => panic!("points of fixed lengths only"),
                 };
                 let (d0, d1, d2, w, a) = match term.angle {
                     Some(Var::Unknown(j)) if j < n => (
-                        allowed(j, 0, size),
-                        allowed(j, 1, scale_v),
-                        allowed(j, 2, scale_a),
-                        tv[j].to_f64().abs(),
-                        ta[j].to_f64().abs(),
+                        allowed(j, 0)?,
+                        allowed(j, 1)?,
+                        allowed(j, 2)?,
+                        tv[j].abs(),
+                        ta[j].abs(),
                     ),
-                    Some(Var::Input) => (0.0, 0.0, 0.0, t.omega.abs(), t.alpha.abs()),
-                    _ => (0.0, 0.0, 0.0, 0.0, 0.0),
+                    Some(Var::Input) => (
+                        Big::zero(),
+                        Big::zero(),
+                        Big::zero(),
+                        Big::from_f64(t.omega.abs()),
+                        Big::from_f64(t.alpha.abs()),
+                    ),
+                    _ => (
+                        Big::zero(),
+                        Big::zero(),
+                        Big::zero(),
+                        Big::zero(),
+                        Big::zero(),
+                    ),
                 };
-                // Rounding of this vector at this level. The length multiplies first, so that
-                // a squared rate that underflows by itself in f64 still counts.
-                let spin = r * a + r * w * w;
-                let floor = FACTOR * self.eps * [r, r * w, spin][level];
-                bound += floor
+                // Rounding of this vector at this level.
+                let spin = &r * &a + &r * &w * &w;
+                let rounded = match level {
+                    0 => r.clone(),
+                    1 => &r * &w,
+                    _ => spin.clone(),
+                };
+                bound = bound
+                    + &factor * rounded
                     + match level {
-                        0 => r * d0,
-                        1 => r * d1 + r * w * d0,
-                        _ => r * d2 + 2.0 * r * w * d1 + spin * d0,
+                        0 => &r * d0,
+                        1 => &r * d1 + &r * &w * d0,
+                        _ => &r * d2 + &two * &r * &w * d1 + spin * d0,
                     };
             }
-            bound
+            Some(bound)
         }
 
         /// Judges a scene's outputs.
@@ -3301,7 +3344,7 @@ pub mod judge {
                             continue;
                         }
                         let (want, scale) = match level {
-                            0 => (t.q()[*index].clone(), self.size()),
+                            0 => (t.q()[*index].clone(), Big::from_f64(self.size())),
                             1 => {
                                 let w = t.velocity.as_ref().expect("rates");
                                 (w[*index].clone(), rate_size(t, w, self.size(), 1))
@@ -3315,7 +3358,12 @@ pub mod judge {
                         if *level == 0 && self.model.angles[*index] {
                             d = d.wrapped();
                         }
-                        let error = d.abs().to_f64() * t.columns[*index] / scale;
+                        let column = t.columns[*index];
+                        let error = if column.is_finite() {
+                            (d.abs() * Big::from_f64(column) / &scale).to_f64()
+                        } else {
+                            (d.abs() / &scale).to_f64() * column
+                        };
                         let bound = if *level == 0 { POSITION_FACTOR } else { FACTOR }
                             * self.eps
                             * kappa.powi(*level as i32 + 1)
@@ -3349,9 +3397,12 @@ pub mod judge {
                             Big::from_f64(value.0) - &want.re,
                             Big::from_f64(value.1) - &want.im,
                         );
-                        let error = d.norm().to_f64();
-                        let bound = self.point_bound(terms, *level, kappa);
+                        let error = d.norm();
+                        let Some(bound) = self.point_bound(terms, *level, kappa) else {
+                            continue;
+                        };
                         if error > bound {
+                            let (error, bound) = (error.to_f64(), bound.to_f64());
                             let what = [
                                 "point position beyond its bound",
                                 "point velocity beyond its bound",
@@ -3701,11 +3752,11 @@ pub mod judge {
                 let speed = t
                     .velocity
                     .as_ref()
-                    .map_or(0.0, |w| rate_size(t, w, size, 0));
+                    .map_or(0.0, |w| rate_size(t, w, size, 0).to_f64());
                 let acceleration = t
                     .acceleration
                     .as_ref()
-                    .map_or(0.0, |w| rate_size(t, w, size, 0));
+                    .map_or(0.0, |w| rate_size(t, w, size, 0).to_f64());
                 // A point's acceleration sums every link's `|r|·(ω² + |α|)`.
                 let spin = |w: f64, a: f64| (w * w + a.abs()).max(w.abs());
                 let mut fastest = spin(t.omega, t.alpha);
@@ -4317,13 +4368,14 @@ pub mod draw {
     /// `Σω² + Σ|α|`) and slow enough for `ω²` to underflow on a mechanism of 1e300; for the
     /// scene kernels up to 420 or 40, rates whose squares times a ratio of lengths of 1e8 are
     /// still normal numbers, as they require (README, **Rates**). The size times the rate
-    /// squared, at the size drawn and at the size rescaled to, stays below 2^900 (2^100 in
-    /// f32), so that the judge's bounds, in f64, are numbers, and above 2^-1200 (2^-160),
-    /// past the float's smallest subnormal: tiny mechanisms turn slowly too, their rates of
-    /// lengths and angles' accelerations below the float's range, which the contract then
-    /// says (`Inaccurate`); huge ones turning fast are the regression tests'
-    /// (`tests/tests/edges_solvers.rs`). The scene kernels' within 2^±900 (2^±100), their
-    /// domain (README, **Rates**: the size times the rate squared a normal number too).
+    /// squared, at the size drawn and at the size rescaled to, stays within 2^-1200 to
+    /// 2^1100 (2^-160 to 2^150 in f32), past the float's range on both sides: tiny
+    /// mechanisms turn slowly, their rates of lengths and angles' accelerations below the
+    /// float's range, which the contract then says (`Inaccurate`); huge ones turn fast, their
+    /// lengths' accelerations and points' beyond it (`NonFinite`), their angles' within it,
+    /// judged against rate sizes the judge holds at 256 bits ([`super::rate_size`]). The
+    /// scene kernels' within 2^±900 (2^±100), their domain (README, **Rates**: the size
+    /// times the rate squared a normal number too).
     /// `Some` for one case in seven at extreme scales, drawn from a stream of its own, so
     /// that every other draw stays as it was: a case number the README or a regression test
     /// names is the same mechanism, input, branch and guess, its rates (unused by `position`
@@ -4357,9 +4409,9 @@ pub mod draw {
         let (slowest, fastest, below, above): (f64, f64, f64, f64) =
             match (float, api == Api::Scenes) {
                 (Float::F64, true) => (-420.0, 420.0, 900.0, 900.0),
-                (Float::F64, false) => (-1000.0, 504.0, 1200.0, 900.0),
+                (Float::F64, false) => (-1000.0, 504.0, 1200.0, 1100.0),
                 (Float::F32, true) => (-40.0, 40.0, 100.0, 100.0),
-                (Float::F32, false) => (-110.0, 56.0, 160.0, 100.0),
+                (Float::F32, false) => (-110.0, 56.0, 160.0, 150.0),
             };
         let sizes = [longest.log2(), (longest * rescale.unwrap_or(1.0)).log2()];
         let slowest = sizes

@@ -336,7 +336,7 @@ fn a_slider_crank_off_the_ground_line_gets_its_velocity_to_the_estimate_from_new
         &[false, false],
         &motion.velocity.to_array(),
         &want,
-        size,
+        &size,
     );
     assert!(
         error <= motion.accuracy.velocity,
@@ -463,6 +463,30 @@ fn the_judge_catches_what_it_must() {
         error > judge::FACTOR * f64::EPSILON * truth.condition,
         "{error:e}"
     );
+    // The same four-bar 2^1000 times larger turning at 2^40 rad/s: its size times ω² (2^1088)
+    // is beyond f64's range, and a velocity 1e-10 off is still wrong. (With the rate sizes in
+    // f64, infinite there, any velocity passed.)
+    let huge = Params(
+        p.0.iter()
+            .map(|(name, length)| (name.clone(), length * 2f64.powi(1000)))
+            .collect(),
+    );
+    let omega = 2f64.powi(40);
+    let outcome = closed_form(Kind::FourBar, &huge, 1.0, &[Branch::Open], omega, 0.5).unwrap();
+    let truth = outcome.truth.unwrap();
+    let size = outcome.model.size;
+    for (level, rates) in [(1, truth.velocity.clone()), (2, truth.acceleration.clone())] {
+        let rates = rates.unwrap();
+        let scale = mechgen_tests::oracle::rate_size(&truth, &rates, size, level);
+        let right: Vec<f64> = rates.iter().map(|r| r.to_f64()).collect();
+        let wrong = [right[0] * (1.0 + 1e-10), right[1]];
+        let [right_error, wrong_error] = [&right[..], &wrong[..]].map(|got| {
+            mechgen_tests::oracle::weighted_error(&truth, &[false, false], got, &rates, &scale)
+        });
+        let bound = judge::FACTOR * f64::EPSILON * truth.condition.powi(level as i32 + 1);
+        assert!(right_error < bound, "level {level}: {right_error:e}");
+        assert!(wrong_error > bound, "level {level}: {wrong_error:e}");
+    }
     // A wrong error: CannotAssemble well inside the range is a finding.
     let case = mechgen_tests::oracle::Case {
         kind: Kind::FourBar,
@@ -496,6 +520,7 @@ fn the_judge_catches_what_it_must() {
 fn the_extreme_rate_draw_reaches_tiny_mechanisms_turning_slowly() {
     let family = draw::family("everything").expect("a family");
     let (mut tiny_and_slow_f64, mut tiny_and_slow_f32) = (0, 0);
+    let (mut huge_and_fast_f64, mut huge_and_fast_f32) = (0, 0);
     for seed in 0..6_000u64 {
         let case = draw::case(&family, &mut Rng(seed));
         if case.omega == 0.0 {
@@ -510,15 +535,27 @@ fn the_extreme_rate_draw_reaches_tiny_mechanisms_turning_slowly() {
             Float::F64 => f64::from(f64::MIN_EXP - 1),
             Float::F32 => f64::from(f32::MIN_EXP - 1),
         };
-        if exponent < smallest && matches!(case.api, Api::Motion | Api::MotionNear) {
-            match case.float {
-                Float::F64 => tiny_and_slow_f64 += 1,
-                Float::F32 => tiny_and_slow_f32 += 1,
-            }
+        let largest = match case.float {
+            Float::F64 => f64::from(f64::MAX_EXP),
+            Float::F32 => f64::from(f32::MAX_EXP),
+        };
+        if !matches!(case.api, Api::Motion | Api::MotionNear) {
+            continue;
+        }
+        match (case.float, exponent < smallest, exponent > largest) {
+            (Float::F64, true, _) => tiny_and_slow_f64 += 1,
+            (Float::F32, true, _) => tiny_and_slow_f32 += 1,
+            (Float::F64, _, true) => huge_and_fast_f64 += 1,
+            (Float::F32, _, true) => huge_and_fast_f32 += 1,
+            _ => {}
         }
     }
     assert!(
         tiny_and_slow_f64 >= 3 && tiny_and_slow_f32 >= 3,
         "{tiny_and_slow_f64} f64 and {tiny_and_slow_f32} f32 cases"
+    );
+    assert!(
+        huge_and_fast_f64 >= 3 && huge_and_fast_f32 >= 3,
+        "{huge_and_fast_f64} f64 and {huge_and_fast_f32} f32 huge cases turning fast"
     );
 }
