@@ -209,17 +209,25 @@ impl<T: Real> FourBar<T> {
     }
 
     /// This linkage with its dimensions (`l1`, `l2`, `l3`, `l4`, `a`, `delta`) moved by
-    /// `errors`, if they still make one.
+    /// `errors`, if they still make one. A coupler point's distance moved below zero (a point
+    /// at the crank pin, `a = 0 ± t`) is the same point at the opposite angle: `−a` at
+    /// `δ + π`, exactly, rather than no linkage.
     fn perturbed(&self, errors: [T; 6]) -> Option<Self> {
         let (a, delta) = self.coupler_point();
         let [l1, l2, l3, l4] = self.lengths();
+        let (a, delta) = (a + errors[4], delta + errors[5]);
+        let (a, delta) = if a < T::zero() {
+            (-a, delta + T::constant(core::f64::consts::PI))
+        } else {
+            (a, delta)
+        };
         FourBar::new(
             l1 + errors[0],
             l2 + errors[1],
             l3 + errors[2],
             l4 + errors[3],
         )
-        .and_then(|l| l.with_coupler_point(a + errors[4], delta + errors[5]))
+        .and_then(|l| l.with_coupler_point(a, delta))
         .ok()
     }
 }
@@ -229,8 +237,8 @@ struct Accumulated<T> {
     theta4: T,
     point: Vec2<T>,
     sampled: Sampled<T>,
-    output_squares: T,
-    point_squares: T,
+    output_squares: SumOfSquares<T>,
+    point_squares: SumOfSquares<T>,
 }
 
 impl<T: Real> Accumulated<T> {
@@ -241,8 +249,8 @@ impl<T: Real> Accumulated<T> {
             theta4: q.theta4,
             point,
             sampled: Sampled::default(),
-            output_squares: T::zero(),
-            point_squares: T::zero(),
+            output_squares: SumOfSquares::default(),
+            point_squares: SumOfSquares::default(),
         })
     }
 
@@ -264,17 +272,57 @@ impl<T: Real> Accumulated<T> {
         s.assembled += 1;
         s.output_largest = s.output_largest.max(output.abs());
         s.coupler_point_largest = s.coupler_point_largest.max(moved);
-        self.output_squares = self.output_squares + output * output;
-        self.point_squares = self.point_squares + moved * moved;
+        self.output_squares.add(output);
+        self.point_squares.add(moved);
     }
 
     fn finish(self) -> Sampled<T> {
         let n = T::from(self.sampled.assembled.max(1)).unwrap_or_else(T::one);
         Sampled {
-            output_rms: (self.output_squares / n).sqrt(),
-            coupler_point_rms: (self.point_squares / n).sqrt(),
+            output_rms: self.output_squares.root_mean(n),
+            coupler_point_rms: self.point_squares.root_mean(n),
             ..self.sampled
         }
+    }
+}
+
+/// A sum of squares kept as `scale²·sum`, `scale` the largest magnitude added so far (as
+/// LAPACK's `nrm2` keeps it): no square overflows or underflows, whatever the linkage's size
+/// (a point moved by 1e-302 on a linkage of 1e-300, or by 1e298 on one of 1e300).
+#[derive(Clone, Copy, Debug)]
+struct SumOfSquares<T> {
+    scale: T,
+    sum: T,
+}
+
+impl<T: Real> Default for SumOfSquares<T> {
+    fn default() -> Self {
+        SumOfSquares {
+            scale: T::zero(),
+            sum: T::zero(),
+        }
+    }
+}
+
+impl<T: Real> SumOfSquares<T> {
+    fn add(&mut self, value: T) {
+        let magnitude = value.abs();
+        if magnitude == T::zero() {
+            return;
+        }
+        if magnitude > self.scale {
+            let ratio = self.scale / magnitude;
+            self.sum = T::one() + self.sum * ratio * ratio;
+            self.scale = magnitude;
+        } else {
+            let ratio = magnitude / self.scale;
+            self.sum = self.sum + ratio * ratio;
+        }
+    }
+
+    /// `√(Σ x² / n)`.
+    fn root_mean(&self, n: T) -> T {
+        self.scale * (self.sum / n).sqrt()
     }
 }
 
@@ -488,23 +536,99 @@ mod tests {
         assert!(signs.contains(&1.0) && signs.contains(&-1.0), "{signs:?}");
     }
 
-    /// Found by mutation testing: corners that make no linkage (here a coupler point at a
-    /// negative distance, half of them) are counted as failed, the rest as assembled; only
-    /// the dimensions with a tolerance are varied.
+    /// Found by mutation testing: corners that make no linkage (here a crank angle 0.04°
+    /// inside the nominal linkage's limit, which some corners' limits fall short of) are
+    /// counted as failed, the rest as assembled; only the dimensions with a tolerance are
+    /// varied.
     #[test]
     fn corners_that_make_no_linkage_are_counted_apart() {
-        let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
-        let theta2 = 60f64.to_radians();
+        let linkage = FourBar::new(100.0, 70.0, 40.0, 50.0).unwrap();
+        let theta2 = 60.9f64.to_radians();
         let sampled = linkage
             .corners(theta2, Branch::Open, &FourBarTolerances::lengths(0.1))
             .unwrap();
-        assert_eq!((sampled.assembled, sampled.failed), (16, 16));
+        assert_eq!(sampled.assembled + sampled.failed, 32);
+        assert!(sampled.failed > 0 && sampled.assembled > 0, "{sampled:?}");
         assert!(sampled.output_largest > 0.0 && sampled.coupler_point_largest > 0.0);
         let exact = FourBarTolerances::default();
         let sampled = linkage.corners(theta2, Branch::Open, &exact).unwrap();
         assert_eq!((sampled.assembled, sampled.failed), (1, 0));
         assert_eq!(sampled.output_largest, 0.0);
         assert_eq!(sampled.coupler_point_largest, 0.0);
+    }
+
+    /// A coupler point at the crank pin (distance 0 ± t) is a linkage at either end of its
+    /// tolerance: the point `t` from the pin along the coupler, or `t` the other way (a
+    /// negative distance, which is the same point at the opposite angle), not half the box
+    /// lost as linkages that cannot be built.
+    #[test]
+    fn a_coupler_point_at_the_crank_pin_moves_by_its_distance_tolerance() {
+        let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+        let theta2 = 60f64.to_radians();
+        let tolerances = FourBarTolerances {
+            distance: 0.1,
+            ..FourBarTolerances::default()
+        };
+        let corners = linkage.corners(theta2, Branch::Open, &tolerances).unwrap();
+        assert_eq!((corners.assembled, corners.failed), (2, 0));
+        assert!(
+            (corners.coupler_point_largest - 0.1).abs() < 1e-12,
+            "{corners:?}"
+        );
+        assert_eq!(corners.output_largest, 0.0);
+        let sampled = linkage
+            .monte_carlo(
+                theta2,
+                Branch::Open,
+                &FourBarTolerances::lengths(0.1),
+                1000,
+                3,
+            )
+            .unwrap();
+        assert_eq!((sampled.assembled, sampled.failed), (1000, 0));
+    }
+
+    /// The root mean squares neither overflow nor underflow: a point moved by about 1e-302
+    /// on a linkage of 1e-300, and by 1e298 on one of 1e300, as on one of 1 scaled.
+    #[test]
+    fn root_mean_squares_hold_at_every_scale() {
+        let tolerances = FourBarTolerances::lengths(0.01);
+        let theta2 = 1.0;
+        let at = |scale: f64| {
+            let linkage = FourBar::new(1.8 * scale, 0.8 * scale, 2.0 * scale, 1.5 * scale)
+                .and_then(|l| l.with_coupler_point(1.0 * scale, 0.5))
+                .unwrap();
+            let t = FourBarTolerances {
+                ground: tolerances.ground * scale,
+                crank: tolerances.crank * scale,
+                coupler: tolerances.coupler * scale,
+                rocker: tolerances.rocker * scale,
+                distance: tolerances.distance * scale,
+                angle: 0.0,
+            };
+            linkage
+                .monte_carlo(theta2, Branch::Open, &t, 200, 5)
+                .unwrap()
+        };
+        let one = at(1.0);
+        for scale in [1e-300, 1e300] {
+            let scaled = at(scale);
+            let relative = |got: f64, want: f64| (got / want - 1.0).abs();
+            assert!(
+                relative(scaled.output_rms, one.output_rms) < 1e-9,
+                "{scaled:?}"
+            );
+            assert!(
+                relative(scaled.coupler_point_rms / scale, one.coupler_point_rms) < 1e-9,
+                "{scaled:?} {one:?}"
+            );
+        }
+        let mut squares = SumOfSquares::default();
+        for x in [3e-200, 0.0, -4e-200] {
+            squares.add(x);
+        }
+        assert!((squares.root_mean(2.0) / (12.5f64.sqrt() * 1e-200) - 1.0).abs() < 1e-15);
+        assert_eq!(SumOfSquares::<f64>::default().root_mean(1.0), 0.0);
     }
 
     /// Found by mutation testing: Monte Carlo is the nonlinear model at the seeded draws,

@@ -1639,6 +1639,86 @@ fn path_synthesis_is_honest_at_any_scale() {
     );
 }
 
+/// Where the nonlinear model cannot stand beside first order, the report says so: 0.04°
+/// inside a limit, some linkages within the tolerances do not assemble (counted), and first
+/// order's worst case is half again the worst corner's (flagged). A coupler point at the
+/// crank pin loses no corner to a negative distance. Every crank angle of the turn has a row,
+/// labelled to the step's decimals.
+#[test]
+fn tolerance_says_where_first_order_and_the_nonlinear_model_part() {
+    let report = stdout_of(&[
+        "tolerance",
+        "four-bar",
+        "100",
+        "70",
+        "40",
+        "50",
+        "--step",
+        "20.3",
+        "--samples",
+        "200",
+    ]);
+    assert!(
+        report.contains(
+            "Some linkages within the tolerances do not assemble (the nonlinear columns are \
+             over those that do) at: 60.9° (16 of 32 corners, "
+        ),
+        "{report}"
+    );
+    assert!(
+        report.contains("First order and the worst corner differ by more than 10%")
+            && report.contains("at: 60.9° (θ4: 5.1422° against 2.7880°)"),
+        "{report}"
+    );
+    // Far from the limits: every corner assembles, and first order holds.
+    let report = stdout_of(&[
+        "tolerance",
+        "four-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "--step",
+        "200",
+        "--samples",
+        "100",
+    ]);
+    assert!(
+        !report.contains("do not assemble") && !report.contains("differ by"),
+        "{report}"
+    );
+    let rows: Vec<&str> = report
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| θ2"))
+        .collect();
+    assert_eq!(rows.len(), 2, "{report}");
+    assert!(
+        rows[0].starts_with("| 0.0 |") && rows[1].starts_with("| 200.0 |"),
+        "{report}"
+    );
+    let report = stdout_of(&[
+        "tolerance",
+        "four-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "--step",
+        "0.05",
+        "--samples",
+        "1",
+    ]);
+    let labels: Vec<&str> = report
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| θ2"))
+        .map(|l| l.split(" | ").next().unwrap())
+        .collect();
+    assert_eq!(labels.len(), 7200);
+    assert_eq!(labels[..3], ["| 0.00", "| 0.05", "| 0.10"]);
+    let distinct: std::collections::BTreeSet<&&str> = labels.iter().collect();
+    assert_eq!(distinct.len(), labels.len());
+}
+
 /// A tolerance analysis' step is a positive number of degrees up to a turn, checked before
 /// anything is printed, as the sweep checks its own.
 #[test]
@@ -1677,7 +1757,7 @@ fn tolerance_refuses_a_step_beyond_a_turn_before_printing() {
         .filter(|l| l.starts_with("| 0.0 |"))
         .collect();
     assert_eq!(rows.len(), 1, "{report}");
-    assert!(report.contains("at θ2 = 0°"), "{report}");
+    assert!(report.contains("at θ2 = 0.0°"), "{report}");
 }
 
 /// Tolerances must be small against what they apply to (a tenth of it), and a figure that
@@ -1711,27 +1791,44 @@ fn tolerance_refuses_large_tolerances_and_overflowed_figures() {
         &["--angle-tolerance", "6"],
         "--angle-tolerance ±6° is not small: it must be under a tenth of a radian (5.73°)",
     );
-    run(
-        &[
+    // Just under the rule, and a coupler point near the float's largest (whose squared
+    // deviations would overflow, were they squared as they are): a report, every figure
+    // finite.
+    for extra in [
+        ["--tolerance", "7.9", "--step", "90", "--samples", "100"],
+        [
             "--coupler-point",
-            "1e308,0",
+            "1.79e308,0",
             "--step",
             "90",
             "--samples",
             "10",
         ],
-        "the coupler point's Monte Carlo rms at θ2 = 0° overflowed (it is not finite)",
+    ] {
+        let args: Vec<&str> = example.iter().chain(&extra).copied().collect();
+        let report = stdout_of(&args);
+        assert!(
+            !report.contains("inf") && !report.contains("NaN"),
+            "{report}"
+        );
+    }
+    // Too small to resolve: the nominal and perturbed solutions' difference would be
+    // rounding.
+    run(
+        &["--tolerance", "1e-300"],
+        "--tolerance ±1e-300 mm is too small against the ground (180 mm) for the nonlinear \
+         model to resolve in f64: each ± tolerance must be zero (exact) or at least a \
+         billionth of the length it applies to",
     );
-    // Just under the rule: a report, every figure finite.
-    let args: Vec<&str> = example
-        .iter()
-        .chain(&["--tolerance", "7.9", "--step", "90", "--samples", "100"])
-        .copied()
-        .collect();
-    let report = stdout_of(&args);
-    assert!(
-        !report.contains("inf") && !report.contains("NaN"),
-        "{report}"
+    run(
+        &["--angle-tolerance", "1e-12"],
+        "--angle-tolerance ±1e-12° is too small",
+    );
+    // Too long: the crank angles times the Monte Carlo linkages.
+    run(
+        &["--step", "0.0036", "--samples", "10000000"],
+        "100000 crank angles times 10000000 Monte Carlo linkages is more than 100000000 \
+         linkages in all",
     );
 }
 

@@ -62,10 +62,23 @@ pub struct Args {
     pub svg: Option<PathBuf>,
 }
 
-/// The most crank angles and Monte Carlo linkages a run takes, so that a huge argument is
-/// refused at once rather than run for hours.
+/// The most crank angles and Monte Carlo linkages a run takes, each and together (some 2.5 s
+/// per 10⁷ linkages), so that a huge argument is refused at once rather than run for hours.
 const MOST_STEPS: f64 = 100_000.0;
 const MOST_SAMPLES: usize = 10_000_000;
+const MOST_LINKAGES: f64 = 1e8;
+
+/// How large a tolerance must be against what it applies to, where it is not zero: the
+/// nonlinear columns subtract the nominal linkage's solution from each perturbed one's, both
+/// rounded to the float's 16 digits, so a tolerance below a billionth of its length would
+/// leave them fewer than the 5 digits printed (and one below 1e-16 of it, nothing at all:
+/// the perturbed length rounds to the nominal one).
+const SMALLEST_FRACTION: f64 = 1e-9;
+
+/// How far first order and the nonlinear model's worst corner may differ before a row is
+/// flagged: first order holds while the tolerances are small against the distance to a
+/// toggle, and where they are not, its worst case is no bound.
+const FIRST_ORDER_AGREEMENT: f64 = 0.1;
 
 /// How small a tolerance must be against what it applies to: first order holds for small
 /// errors, and the tolerance box's corners and the Monte Carlo linkages must still be
@@ -102,6 +115,15 @@ fn check_small(args: &Args, links: [f64; 4], lengths: [f64; 4]) -> Result<(), St
         .map(|((name, link), tolerance)| (flag, tolerance, name, link))
         .chain([("--tolerance", args.tolerance, "shortest link", shortest)]);
     for (flag, tolerance, name, link) in checks {
+        if tolerance != 0.0 && tolerance < SMALLEST_FRACTION * link {
+            return Err(format!(
+                "{flag} ±{} mm is too small against the {name} ({} mm) for the nonlinear \
+                 model to resolve in f64: each ± tolerance must be zero (exact) or at least a \
+                 billionth of the length it applies to",
+                tidy(tolerance),
+                tidy(link)
+            ));
+        }
         if tolerance >= LARGEST_FRACTION * link {
             return Err(format!(
                 "{flag} ±{} mm is not small against the {name} ({} mm): each ± tolerance \
@@ -112,7 +134,15 @@ fn check_small(args: &Args, links: [f64; 4], lengths: [f64; 4]) -> Result<(), St
             ));
         }
     }
-    if args.angle_tolerance.to_radians() >= LARGEST_FRACTION {
+    let angle = args.angle_tolerance.to_radians();
+    if angle != 0.0 && angle < SMALLEST_FRACTION {
+        return Err(format!(
+            "--angle-tolerance ±{}° is too small for the nonlinear model to resolve in f64: \
+             it must be zero (exact) or at least a billionth of a radian",
+            tidy(args.angle_tolerance)
+        ));
+    }
+    if angle >= LARGEST_FRACTION {
         return Err(format!(
             "--angle-tolerance ±{}° is not small: it must be under a tenth of a radian ({}°)",
             tidy(args.angle_tolerance),
@@ -180,6 +210,15 @@ pub fn run(args: &Args) -> Result<(), String> {
     if args.samples > MOST_SAMPLES {
         return Err(format!("--samples takes at most {MOST_SAMPLES}"));
     }
+    let steps = crank_angles(args.step);
+    if steps as f64 * args.samples as f64 > MOST_LINKAGES {
+        return Err(format!(
+            "{steps} crank angles times {} Monte Carlo linkages is more than {} linkages in \
+             all (some 2.5 s per 10⁷): take a larger --step or fewer --samples",
+            args.samples,
+            tidy(MOST_LINKAGES)
+        ));
+    }
     let branch = match args.branch {
         BranchName::Open => Branch::Open,
         BranchName::Crossed => Branch::Crossed,
@@ -187,11 +226,15 @@ pub fn run(args: &Args) -> Result<(), String> {
 
     // Every row before any is printed, so that a figure that overflowed is an error before
     // the report starts, never a row of it.
-    let steps = (360.0 / args.step).floor() as usize;
+    let decimals = step_decimals(args.step);
     let bar = progress::bar(steps as u64);
     let started = Instant::now();
     let mut rows = Vec::new();
     let mut skipped = Vec::new();
+    // Crank angles where some linkages within the tolerances do not assemble (the nonlinear
+    // columns are over those that do), and where first order and the worst corner differ.
+    let mut short = Vec::new();
+    let mut disagree = Vec::new();
     for k in 0..steps {
         progress::advance(&bar, started, k as u64);
         let degrees = k as f64 * args.step;
@@ -201,6 +244,25 @@ pub fn run(args: &Args) -> Result<(), String> {
             let corners = linkage.corners(theta2, branch, &tolerances)?;
             let sampled =
                 linkage.monte_carlo(theta2, branch, &tolerances, args.samples, args.seed)?;
+            if corners.failed > 0 || sampled.failed > 0 {
+                short.push(format!(
+                    "{}° ({} of {} corners, {} of {} Monte Carlo linkages)",
+                    fixed(degrees, decimals),
+                    corners.failed,
+                    corners.failed + corners.assembled,
+                    sampled.failed,
+                    args.samples
+                ));
+            }
+            let [first, corner] = [linear.output.worst_case, corners.output_largest];
+            if (corner - first).abs() > FIRST_ORDER_AGREEMENT * first.max(corner) {
+                disagree.push(format!(
+                    "{}° (θ4: {}° against {}°)",
+                    fixed(degrees, decimals),
+                    output::figure(first.to_degrees()),
+                    output::figure(corner.to_degrees())
+                ));
+            }
             Ok([
                 linear.output.worst_case.to_degrees(),
                 corners.output_largest.to_degrees(),
@@ -218,14 +280,18 @@ pub fn run(args: &Args) -> Result<(), String> {
                     bar.finish_and_clear();
                     return Err(format!(
                         "{} at θ2 = {}° overflowed (it is not finite): the dimensions or \
-                         tolerances are too large for the analysis to square them",
+                         tolerances are too large for the analysis",
                         COLUMNS[column],
-                        tidy(degrees)
+                        fixed(degrees, decimals)
                     ));
                 }
                 rows.push((degrees, values));
             }
-            Err(error) => skipped.push(format!("{}° ({})", tidy(degrees), output::error(&error))),
+            Err(error) => skipped.push(format!(
+                "{}° ({})",
+                fixed(degrees, decimals),
+                output::error(&error)
+            )),
         }
     }
     bar.finish_and_clear();
@@ -277,18 +343,34 @@ pub fn run(args: &Args) -> Result<(), String> {
     for (degrees, values) in &rows {
         say!(
             "| {} | {} |",
-            fixed(*degrees, 1),
+            fixed(*degrees, decimals),
             values.map(|v| format!("{v:.4e}")).join(" | ")
         );
     }
     say!("");
     if !skipped.is_empty() {
-        say!("Not analysed: {}.", skipped.join(", "));
+        say!("Not analysed: {}.", listed(&skipped));
+    }
+    if !short.is_empty() {
+        say!(
+            "Some linkages within the tolerances do not assemble (the nonlinear columns are \
+             over those that do) at: {}.",
+            listed(&short)
+        );
+    }
+    if !disagree.is_empty() {
+        say!(
+            "First order and the worst corner differ by more than {}% (the tolerances are not \
+             small against the distance to a toggle or a limit, and first order is no bound \
+             there) at: {}.",
+            tidy(100.0 * FIRST_ORDER_AGREEMENT),
+            listed(&disagree)
+        );
     }
     say!(
         "Largest first-order worst case of θ4: ±{}° at θ2 = {}°; of the coupler point: {} mm.",
         output::figure(worst.1[0]),
-        tidy(worst.0),
+        fixed(worst.0, decimals),
         output::figure(rows.iter().map(|r| r.1[4]).fold(0.0, f64::max))
     );
     if let Some(path) = &args.svg {
@@ -327,4 +409,56 @@ pub fn run(args: &Args) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// How many crank angles a turn in steps of `step` degrees has: every `k·step` short of 360°
+/// (0°, 200° for a step of 200; up to 359.8° for 0.7), a rounding short of a turn counted as
+/// the turn (10⁵ for 0.0036, not 10⁵ + 1).
+fn crank_angles(step: f64) -> usize {
+    (360.0 / step * (1.0 - 1e-12)).ceil().max(1.0) as usize
+}
+
+/// The decimals that tell every crank angle of the turn apart: the step's own (to 6 places;
+/// at least 1).
+fn step_decimals(step: f64) -> usize {
+    (1..=6)
+        .find(|&d| {
+            let scaled = step * 10f64.powi(d as i32);
+            (scaled - scaled.round()).abs() < 1e-6 * scaled.max(1.0)
+        })
+        .unwrap_or(6)
+}
+
+/// At most ten of `items`, joined, and how many more.
+fn listed(items: &[String]) -> String {
+    const SHOWN: usize = 10;
+    let mut text = items[..items.len().min(SHOWN)].join(", ");
+    if items.len() > SHOWN {
+        text.push_str(&format!(" and {} more", items.len() - SHOWN));
+    }
+    text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_turn_has_every_crank_angle_short_of_360_degrees() {
+        assert_eq!(crank_angles(10.0), 36);
+        assert_eq!(crank_angles(200.0), 2);
+        assert_eq!(crank_angles(0.7), 515);
+        assert_eq!(crank_angles(360.0), 1);
+        assert_eq!(crank_angles(0.0036), 100_000);
+        assert_eq!(crank_angles(7.0), 52);
+    }
+
+    #[test]
+    fn crank_angles_print_with_the_steps_decimals() {
+        assert_eq!(step_decimals(10.0), 1);
+        assert_eq!(step_decimals(0.05), 2);
+        assert_eq!(step_decimals(0.0036), 4);
+        assert_eq!(step_decimals(20.3), 1);
+        assert_eq!(step_decimals(1.0 / 3.0), 6);
+    }
 }
