@@ -1554,13 +1554,123 @@ fn circle_targets(scale: f64) -> (String, String) {
     (x.join(","), y.join(","))
 }
 
-/// The rms error a synthesis reports.
+/// `synthesise` refuses what would make its error meaningless (a precision point or target
+/// given twice, two answers for one crank angle) and what would run for many minutes (path
+/// generation without timing past its budget), states its errors' units, and gives
+/// Freudenstein's closed form at any ground, with the branch it meets the points on.
+#[test]
+fn synthesise_refuses_repeated_points_and_states_its_units() {
+    for (args, message) in [
+        (
+            &["function", "--crank", "30,390,60", "--rocker", "60,60,95"][..],
+            "a precision point is given twice",
+        ),
+        (
+            &["function", "--crank", "30,30,60", "--rocker", "60,70,95"][..],
+            "a crank angle is given two rocker angles",
+        ),
+        (
+            &[
+                "path",
+                "--x",
+                "0,10,20,30,40",
+                "--y",
+                "5,8,4,0,2",
+                "--timing",
+                "0,30,30,30,120",
+            ][..],
+            "two targets are given the same crank angle",
+        ),
+        (
+            &[
+                "path",
+                "--x",
+                "0,0,0,0,0,0,0,0,10",
+                "--y",
+                "0,0,0,0,0,0,0,0,5",
+            ][..],
+            "a target is given twice",
+        ),
+    ] {
+        let args: Vec<&str> = ["synthesise"].iter().chain(args).copied().collect();
+        fails_with(&args, message);
+    }
+    // Forty targets without timing: refused at once, with what would fit.
+    let (x, y): (Vec<String>, Vec<String>) = (0..40)
+        .map(|k| {
+            let t = f64::from(k) * 0.15;
+            (
+                format!("{:.4}", 50.0 * t.cos()),
+                format!("{:.4}", 30.0 * t.sin()),
+            )
+        })
+        .unzip();
+    fails_with(
+        &[
+            "synthesise",
+            "path",
+            "--x",
+            &x.join(","),
+            "--y",
+            &y.join(","),
+        ],
+        "40 targets with 64 random starts on each branch would take many minutes; give \
+         --timing, fewer targets, or --restarts 11 or fewer (or one --branch)",
+    );
+    let path = stdout_of(&[
+        "synthesise",
+        "path",
+        "--x",
+        "0,10,20,30,40",
+        "--y",
+        "5,8,4,0,2",
+        "--timing",
+        "0,30,60,90,120",
+    ]);
+    assert!(
+        path.contains("rms error (the coupler point's distance from each target) ")
+            && path.contains(" mm, largest "),
+        "{path}"
+    );
+    for ground in ["1e300", "1e-30"] {
+        let report = stdout_of(&[
+            "synthesise",
+            "function",
+            "--crank",
+            "30,45,60",
+            "--rocker",
+            "60,75,95",
+            "--ground",
+            ground,
+        ]);
+        assert!(
+            report.contains("rms error ") && report.contains("°, largest "),
+            "{report}"
+        );
+        assert!(
+            report.contains("Freudenstein's closed form of the three points: crank 6.7547e")
+                && report.contains("mm, on the open branch"),
+            "{report}"
+        );
+    }
+}
+
+/// The rms error a synthesis reports (degrees, or mm), its unit and any words before it
+/// dropped.
 fn rms_error(report: &str) -> f64 {
     let after = report
-        .split("rms error ")
+        .split("rms error")
         .nth(1)
         .unwrap_or_else(|| panic!("no rms error in:\n{report}"));
-    after.split(',').next().unwrap().parse().unwrap()
+    let after = after
+        .split(')')
+        .nth(1)
+        .filter(|_| after.starts_with(" ("))
+        .unwrap_or(after);
+    let figure = after.trim_start().split([',', ' ', '°']).next().unwrap();
+    figure
+        .parse()
+        .unwrap_or_else(|_| panic!("no number in {figure:?} of:\n{report}"))
 }
 
 /// Path generation fits the same at any scale (its errors are not squared into overflow near

@@ -86,10 +86,11 @@ pub struct Synthesis {
     /// For path generation, the crank pivot O2 and the ground line's angle in the targets'
     /// frame; for function generation, the origin and 0.
     pub placement: (Vec2<f64>, f64),
-    /// The root-mean-square error at the targets (radians for function generation, lengths
-    /// for path generation).
+    /// The root-mean-square error at the targets: for function generation the rocker angle's,
+    /// radians; for path generation the coupler point's distance from each target, in the
+    /// targets' units.
     pub rms_error: f64,
-    /// The largest error at a target.
+    /// The largest error at a target (radians, or a distance).
     pub largest_error: f64,
     /// How many starts converged.
     pub converged: usize,
@@ -189,12 +190,21 @@ pub fn freudenstein_least_squares(ground: f64, phi: &[f64], psi: &[f64]) -> Opti
     lengths_from_freudenstein(ground, k1, k2, k3)
 }
 
-/// The lengths `[d, a, b, c]` of Freudenstein's `K1`, `K2`, `K3`, if they make a linkage.
+/// The lengths `[d, a, b, c]` of Freudenstein's `K1`, `K2`, `K3`, if they make a linkage:
+/// found for a ground of 1 and scaled, so that no square overflows or underflows at any
+/// ground (1e300 or 1e-300), and `None` only where the linkage itself is not one or not
+/// representable.
 fn lengths_from_freudenstein(ground: f64, k1: f64, k2: f64, k3: f64) -> Option<[f64; 4]> {
-    let (a, c) = (ground / k1, ground / k2);
-    let b_squared = a * a + c * c + ground * ground - 2.0 * a * c * k3;
-    (a > 0.0 && c > 0.0 && b_squared > 0.0 && b_squared.is_finite())
-        .then(|| [ground, a, b_squared.sqrt(), c])
+    let (a, c) = (1.0 / k1, 1.0 / k2);
+    let b_squared = a * a + c * c + 1.0 - 2.0 * a * c * k3;
+    let unit = [1.0, a, b_squared.sqrt(), c];
+    let lengths = unit.map(|l| l * ground);
+    (a > 0.0
+        && c > 0.0
+        && b_squared > 0.0
+        && b_squared.is_finite()
+        && lengths.iter().all(|l| l.is_finite() && *l > 0.0))
+    .then_some(lengths)
 }
 
 /// `x` with `a·x = b`, by Cramer's rule; `None` where `a` is singular to rounding.
@@ -255,6 +265,15 @@ pub fn function_generation(
         return Err(SynthesisError::BadTargets(
             "the ground length must be positive and every angle finite",
         ));
+    }
+    if let Some((i, j)) = coinciding(phi) {
+        return Err(SynthesisError::BadTargets(if same_angle(psi[i], psi[j]) {
+            "a precision point is given twice (two crank angles the same, to within 1e-9 rad \
+             and whole turns, with the same rocker angle): give each once"
+        } else {
+            "a crank angle is given two rocker angles (the same to within 1e-9 rad and whole \
+             turns): no four-bar on one branch meets both"
+        }));
     }
     let classical = freudenstein_least_squares(ground, phi, psi).map(|[_, a, b, c]| [a, b, c]);
     let starts = starts(options, classical.into_iter().collect(), |random| {
@@ -342,6 +361,32 @@ pub fn path_generation(
     }
     let n = targets.len();
     let (centre, spread) = centre_and_spread(targets);
+    let near = COINCIDENT * spread;
+    match timing {
+        Some(timing) => {
+            if let Some((i, j)) = coinciding(timing) {
+                let (p, q) = (targets[i], targets[j]);
+                return Err(SynthesisError::BadTargets(
+                    if (p.x - q.x).hypot(p.y - q.y) <= near {
+                        "a target is given twice at the same crank angle (to within 1e-9 rad \
+                         and whole turns): give each once"
+                    } else {
+                        "two targets are given the same crank angle (to within 1e-9 rad and \
+                         whole turns): no four-bar on one branch has its coupler point at both"
+                    },
+                ));
+            }
+        }
+        None => {
+            if coinciding_points(targets, near).is_some() {
+                return Err(SynthesisError::BadTargets(
+                    "a target is given twice (two within a billionth of the targets' spread): \
+                     path generation without prescribed crank angles needs nine or more \
+                     distinct targets; give each once",
+                ));
+            }
+        }
+    }
     // Coincident targets still start somewhere: at the smallest positive spread.
     let spread = spread.max(f64::MIN_POSITIVE);
     let starts = starts(options, Vec::new(), |random| {
@@ -360,9 +405,66 @@ pub fn path_generation(
         finished.then_some(())?;
         let x = &solved.x;
         let inputs = (0..n).map(|i| solved.input(i)).collect();
-        Some((linkage, (Vec2 { x: x[0], y: x[1] }, x[2]), errors, inputs))
+        // Each target's error is its distance from the coupler point (the residuals are
+        // the two components).
+        let distances = errors.chunks(2).map(|d| d[0].hypot(d[1])).collect();
+        Some((
+            linkage,
+            (Vec2 { x: x[0], y: x[1] }, x[2]),
+            distances,
+            inputs,
+        ))
     };
     solved_with_restarts(starts, 0, solve, options)
+}
+
+/// How close two angles (radians, whole turns aside) or two targets (a fraction of the
+/// targets' spread) may be before they count as the same: a billionth, far closer than any
+/// precision point is set, far above rounding.
+const COINCIDENT: f64 = 1e-9;
+
+/// Whether two angles are the same to within [`COINCIDENT`] radians, whole turns aside.
+fn same_angle(a: f64, b: f64) -> bool {
+    let tau = core::f64::consts::TAU;
+    let d = (a - b).rem_euclid(tau);
+    d.min(tau - d) <= COINCIDENT
+}
+
+/// The indices of two of `angles` that are the same (see [`same_angle`]), if any: sorted
+/// round the turn, so that only neighbours (and the last with the first) need comparing.
+fn coinciding(angles: &[f64]) -> Option<(usize, usize)> {
+    let tau = core::f64::consts::TAU;
+    let mut order: Vec<(f64, usize)> = angles
+        .iter()
+        .enumerate()
+        .map(|(i, a)| (a.rem_euclid(tau), i))
+        .collect();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let pairs = order.windows(2).map(|w| (w[0], w[1]));
+    let around = order.last().zip(order.first()).map(|(l, f)| (*l, *f));
+    pairs
+        .chain(around.filter(|_| order.len() > 1))
+        .find(|((a, _), (b, _))| same_angle(*a, *b))
+        .map(|((_, i), (_, j))| (i.min(j), i.max(j)))
+}
+
+/// The indices of two `targets` within `near` of each other, if any: sorted by x, each
+/// compared only with those after it whose x is within `near`.
+fn coinciding_points(targets: &[Vec2<f64>], near: f64) -> Option<(usize, usize)> {
+    let mut order: Vec<usize> = (0..targets.len()).collect();
+    order.sort_by(|&a, &b| targets[a].x.total_cmp(&targets[b].x));
+    for (k, &i) in order.iter().enumerate() {
+        for &j in &order[k + 1..] {
+            let (p, q) = (targets[i], targets[j]);
+            if q.x - p.x > near {
+                break;
+            }
+            if (p.x - q.x).hypot(p.y - q.y) <= near {
+                return Some((i.min(j), i.max(j)));
+            }
+        }
+    }
+    None
 }
 
 /// The targets' centroid, and their largest distance from it (0 where they all coincide):

@@ -1017,3 +1017,109 @@ fn the_first_start_alone_where_it_is_good_enough_every_start_otherwise() {
     assert_eq!(run(Some(0.0), None), (4, std::vec![0, 1, 2, 3]));
     assert_eq!(run(None, Some(0.01)), (4, std::vec![1, 2, 3]));
 }
+
+/// Precision points given twice (the same crank angle, a whole turn apart or not) are
+/// refused, as are two answers for one crank angle on one branch: neither leaves a fit that
+/// means what its error says (two distinct points and eight copies "fit" exactly).
+#[test]
+fn repeated_and_contradictory_precision_points_are_refused() {
+    let quick = Options {
+        restarts: 1,
+        ..Options::default()
+    };
+    let tau = core::f64::consts::TAU;
+    let phi = [0.5, 0.5 + tau, 1.0];
+    let psi = outputs(&phi);
+    let twice = refused(function_generation(180.0, &phi, &psi, &quick));
+    assert!(
+        twice.starts_with("a precision point is given twice"),
+        "{twice}"
+    );
+    let mut other = psi.clone();
+    other[1] += 0.1;
+    let two = refused(function_generation(180.0, &phi, &other, &quick));
+    assert!(
+        two.starts_with("a crank angle is given two rocker angles"),
+        "{two}"
+    );
+    // Distinct by more than a billionth of a radian: a fit.
+    let apart = [0.5, 0.5 + 1e-6, 1.0, 2.0];
+    assert!(function_generation(180.0, &apart, &outputs(&apart), &quick).is_ok());
+
+    let timing: Vec<f64> = (0..6).map(f64::from).collect();
+    let mut targets: Vec<Vec2<f64>> = timing.iter().map(|&t| target(t)).collect();
+    let mut same = timing.clone();
+    same[4] = same[2] - tau;
+    let contradicted = refused(path_generation(&targets, Some(&same), &quick));
+    assert!(contradicted.starts_with("two targets are given the same crank angle"));
+    targets[4] = targets[2];
+    let repeated = refused(path_generation(&targets, Some(&same), &quick));
+    assert!(repeated.starts_with("a target is given twice at the same crank angle"));
+    let mut copies = std::vec![Vec2 { x: 0.0, y: 0.0 }; 8];
+    copies.push(Vec2 { x: 10.0, y: 5.0 });
+    let untimed = refused(path_generation(&copies, None, &quick));
+    assert!(untimed.starts_with("a target is given twice"), "{untimed}");
+}
+
+/// Path generation's errors are each target's distance from the coupler point (not its x and
+/// y apart): the largest is the farthest target's, and the rms theirs.
+#[test]
+fn path_errors_are_distances_from_the_targets() {
+    // Targets a four-bar cannot meet exactly: a zigzag at its crank angles.
+    let timing: Vec<f64> = (0..5).map(|k| f64::from(k) * 0.5).collect();
+    let targets: Vec<Vec2<f64>> = [
+        (0.0, 5.0),
+        (10.0, 8.0),
+        (20.0, 4.0),
+        (30.0, 0.0),
+        (40.0, 2.0),
+    ]
+    .iter()
+    .map(|&(x, y)| Vec2 { x, y })
+    .collect();
+    let found = path_generation(&targets, Some(&timing), &Options::default()).unwrap();
+    let (pivot, angle) = found.placement;
+    let (s, c) = angle.sin_cos();
+    let distances: Vec<f64> = timing
+        .iter()
+        .zip(&targets)
+        .map(|(&t, p)| {
+            let q = found
+                .linkage
+                .assemble(t, Branch::Open)
+                .or_else(|_| found.linkage.assemble(t, Branch::Crossed));
+            let point = found.linkage.points(t, &q.unwrap()).unwrap().coupler_point;
+            let placed = Vec2 {
+                x: pivot.x + c * point.x - s * point.y,
+                y: pivot.y + s * point.x + c * point.y,
+            };
+            (placed.x - p.x).hypot(placed.y - p.y)
+        })
+        .collect();
+    let largest = distances.iter().fold(0.0f64, |m, d| m.max(*d));
+    assert!(largest > 1e-3, "{distances:?}");
+    assert!(
+        (found.largest_error / largest - 1.0).abs() < 1e-6,
+        "{found:?} {distances:?}"
+    );
+    assert!(
+        (found.rms_error / rms(&distances) - 1.0).abs() < 1e-6,
+        "{found:?}"
+    );
+}
+
+/// Freudenstein's closed form scales with the ground: the same linkage at 1e300 and 1e-300
+/// as at 1, times the ground (not "no linkage" for a square that overflowed or underflowed).
+#[test]
+fn freudensteins_closed_form_holds_at_every_scale() {
+    let phi = [0.3, 1.2, 2.0];
+    let outputs = outputs(&phi);
+    let psi = [outputs[0], outputs[1], outputs[2]];
+    let unit = freudenstein(1.0, phi, psi).unwrap();
+    for ground in [1e300, 1e-300, 1e-30, 1e30] {
+        let scaled = freudenstein(ground, phi, psi).unwrap();
+        for (s, u) in scaled.iter().zip(unit) {
+            assert!((s / ground / u - 1.0).abs() < 1e-12, "{ground}: {scaled:?}");
+        }
+    }
+}

@@ -60,10 +60,13 @@ fn padded((low, high): (f64, f64)) -> (f64, f64) {
     (low - pad, high + pad)
 }
 
-/// A tick label: few digits, no trailing zeros, exponent form for the very large or small.
-fn tick(value: f64) -> String {
+/// A tick label on an axis spanning `span`: few digits, no trailing zeros, exponent form for
+/// the very large or small, and 0 for a value within a billionth of the span of it (the
+/// plotting library's tick at zero, rounded from far larger steps: `5.95e284` on an axis
+/// of 1e300).
+fn tick(value: f64, span: f64) -> String {
     let magnitude = value.abs();
-    if value == 0.0 {
+    if value == 0.0 || magnitude <= 1e-9 * span.abs() {
         "0".into()
     } else if !(1e-3..1e6).contains(&magnitude) {
         format!("{value:.2e}")
@@ -138,8 +141,8 @@ where
         .axis_desc_style(("sans-serif", 13))
         .bold_line_style(BLACK.mix(0.12))
         .light_line_style(BLACK.mix(0.04))
-        .x_label_formatter(&|x| tick(*x))
-        .y_label_formatter(&|y| tick(*y))
+        .x_label_formatter(&|x| tick(*x, x1 - x0))
+        .y_label_formatter(&|y| tick(*y, y1 - y0))
         .draw()
         .map_err(drawing)?;
     if let Some((low, high)) = chart.band {

@@ -94,8 +94,10 @@ pub struct Common {
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub transmission: Option<Vec<f64>>,
     /// Random starts on each branch tried, run in parallel on every core: at most 1000 (path
-    /// generation without --timing takes tens of seconds for that many). A run past a second
-    /// shows a spinner on standard error, on a terminal.
+    /// generation without --timing takes tens of seconds for that many at nine targets, and
+    /// its cost grows as the cube of the targets: past nine, the starts times (targets/9)³
+    /// may be at most 2000 over the branches tried). A run past a second shows a spinner on
+    /// standard error, on a terminal.
     #[arg(long, default_value_t = 64, allow_hyphen_values = true)]
     pub restarts: usize,
     /// The random starts' seed: the same seed, the same linkage.
@@ -180,19 +182,20 @@ fn function(args: &FunctionArgs) -> Result<(), String> {
             synthesis::function_generation(args.ground, &phi, &psi, options)
         })
     })?;
-    report(&found, &options);
+    report(&found, &options, Fitted::Function);
     if phi.len() == 3 {
         match synthesis::freudenstein(
             args.ground,
             [phi[0], phi[1], phi[2]],
             [psi[0], psi[1], psi[2]],
         ) {
-            Some([_, a, b, c]) => say!(
+            Some([d, a, b, c]) => say!(
                 "Freudenstein's closed form of the three points: crank {}, coupler {}, rocker {} \
-                 mm",
-                fixed(a, 4),
-                fixed(b, 4),
-                fixed(c, 4)
+                 mm{}",
+                length(a),
+                length(b),
+                length(c),
+                closed_form_branches(d, a, b, c, &args.crank, &phi, &psi)
             ),
             None => say!("Freudenstein's closed form of the three points gives no linkage."),
         }
@@ -282,13 +285,16 @@ fn path(args: &PathArgs) -> Result<(), String> {
         .as_ref()
         .map(|t| t.iter().map(|&d| angle::radians(d)).collect());
     let each = args.common.each_options()?;
+    if timing.is_none() {
+        untimed_within_budget(targets.len(), &each)?;
+    }
     let (found, options) = searching(&each, || {
         better(each.clone(), |options| {
             synthesis::path_generation(&unit, timing.as_deref(), options)
                 .and_then(|found| frame.put_back(found))
         })
     })?;
-    report(&found, &options);
+    report(&found, &options, Fitted::Path);
     let (pivot, angle) = found.placement;
     say!(
         "placed with its crank pivot at ({}, {}) mm and its ground line at {}°",
@@ -404,6 +410,40 @@ impl Frame {
     }
 }
 
+/// Path generation without timing solves for every target's crank angle too: each start's
+/// least squares has `9 + n` unknowns and `2n` residuals, and costs about `n³` (13 ms a start
+/// on one core at 20 targets, 86 ms at 40, 340 ms at 60). The starts over every branch
+/// tried, times `(n/9)³` past nine targets, may be at most 2000, what 1000 restarts on each
+/// branch cost at nine (tens of seconds): a run that would take many minutes is refused at
+/// once, with what would fit.
+fn untimed_within_budget(targets: usize, each: &[Options]) -> Result<(), String> {
+    const BUDGET: f64 = 2000.0;
+    let starts: usize = each.iter().map(|o| o.restarts).sum();
+    let weight = (targets as f64 / 9.0).powi(3).max(1.0);
+    if starts as f64 * weight <= BUDGET {
+        return Ok(());
+    }
+    let branches = each.len().max(1);
+    let fits = ((BUDGET / weight) as usize) / branches;
+    Err(format!(
+        "path generation without --timing finds every target's crank angle too, at a cost \
+         growing as the cube of the targets: {targets} targets with {} random starts on {} \
+         would take many minutes; give --timing, fewer targets, or --restarts {} or fewer{}",
+        starts / branches,
+        if branches == 1 {
+            "one branch"
+        } else {
+            "each branch"
+        },
+        fits,
+        if branches > 1 {
+            " (or one --branch)"
+        } else {
+            ""
+        }
+    ))
+}
+
 /// `search`'s result, with a spinner on a terminal past a second: the restarts run inside
 /// the library, which cannot report them one by one.
 fn searching<T>(each: &[Options], search: impl FnOnce() -> T) -> T {
@@ -452,7 +492,7 @@ fn better(
 }
 
 /// The linkage found and how well it meets its targets.
-fn report(found: &Synthesis, options: &Options) {
+fn report(found: &Synthesis, options: &Options, task: Fitted) {
     say!(
         "{} branch",
         if options.branch == Branch::Open {
@@ -465,20 +505,96 @@ fn report(found: &Synthesis, options: &Options) {
     let (a, delta) = found.linkage.coupler_point();
     say!(
         "Four-bar ground {} crank {} coupler {} rocker {} mm, coupler point {} mm at {}°",
-        output::figure(l1),
-        output::figure(l2),
-        output::figure(l3),
-        output::figure(l4),
-        output::figure(a),
-        fixed(delta.to_degrees(), 4)
+        length(l1),
+        length(l2),
+        length(l3),
+        length(l4),
+        length(a),
+        output::degrees(delta, 4)
     );
+    let (what, unit, scale) = match task {
+        Fitted::Function => ("", "°", f64::to_degrees as fn(f64) -> f64),
+        Fitted::Path => (
+            " (the coupler point's distance from each target)",
+            " mm",
+            (|e| e) as fn(f64) -> f64,
+        ),
+    };
     say!(
-        "rms error {:.3e}, largest {:.3e}; {} starts converged, {} met the constraints",
-        found.rms_error,
-        found.largest_error,
+        "rms error{what} {:.3e}{unit}, largest {:.3e}{unit}; {} starts converged, {} met the \
+         constraints",
+        scale(found.rms_error),
+        scale(found.largest_error),
         found.converged,
         found.feasible
     );
+}
+
+/// What a synthesis fitted, for its errors' units.
+#[derive(Clone, Copy)]
+enum Fitted {
+    /// Rocker angles (the errors in radians, printed in degrees).
+    Function,
+    /// Coupler points (the errors distances).
+    Path,
+}
+
+/// Where Freudenstein's closed form meets its three points: its equation holds on either
+/// branch (it is the loop's, squared), so the linkage may meet them only by changing
+/// assembly between them, which no linkage does while it moves.
+fn closed_form_branches(
+    d: f64,
+    a: f64,
+    b: f64,
+    c: f64,
+    crank_degrees: &[f64],
+    phi: &[f64],
+    psi: &[f64],
+) -> String {
+    let Ok(linkage) = FourBar::new(d, a, b, c) else {
+        return ", which is no four-bar".into();
+    };
+    let meets = |branch: Branch, phi: f64, psi: f64| {
+        linkage
+            .assemble(phi, branch)
+            .is_ok_and(|q| wrapped(q.theta4 - psi).abs() <= 1e-6)
+    };
+    let on = |branch: Branch| phi.iter().zip(psi).all(|(&f, &s)| meets(branch, f, s));
+    if on(Branch::Open) {
+        return ", on the open branch".into();
+    }
+    if on(Branch::Crossed) {
+        return ", on the crossed branch".into();
+    }
+    let each: Vec<String> = crank_degrees
+        .iter()
+        .zip(phi.iter().zip(psi))
+        .map(|(degrees, (&f, &s))| {
+            let branch = if meets(Branch::Open, f, s) {
+                "open"
+            } else if meets(Branch::Crossed, f, s) {
+                "crossed"
+            } else {
+                "neither"
+            };
+            format!("{branch} at {}°", tidy(*degrees))
+        })
+        .collect();
+    format!(
+        ", which meets them only on different branches ({}): no one assembly does",
+        each.join(", ")
+    )
+}
+
+/// A synthesised length: to 4 decimals from a tenth up (at least 5 significant digits),
+/// else in exponent form to 5 significant digits, so that a fit made at any scale can be
+/// reproduced from what is printed.
+fn length(value: f64) -> String {
+    if value == 0.0 || (0.1..1e9).contains(&value.abs()) {
+        fixed(value, 4)
+    } else {
+        format!("{value:.4e}")
+    }
 }
 
 fn wrapped(angle: f64) -> f64 {
@@ -494,4 +610,72 @@ fn write(path: &PathBuf, drawing: &str) -> Result<(), String> {
         eprintln!("wrote {}", path.display());
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Example 1 at three crank angles, the last on the crossed branch: Freudenstein's
+    /// closed form gives Example 1 back (its equation holds on either branch), and the report
+    /// says it meets the points only by changing assembly.
+    #[test]
+    fn a_closed_form_met_on_two_branches_says_so() {
+        let example = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+        let crank = [20.0, 70.0, 120.0];
+        let phi = crank.map(f64::to_radians);
+        let branches = [Branch::Open, Branch::Open, Branch::Crossed];
+        let psi: Vec<f64> = phi
+            .iter()
+            .zip(branches)
+            .map(|(&p, b)| example.assemble(p, b).unwrap().theta4)
+            .collect();
+        let [d, a, b, c] = synthesis::freudenstein(180.0, phi, [psi[0], psi[1], psi[2]]).unwrap();
+        assert!((a - 80.0).abs() < 1e-9 && (b - 200.0).abs() < 1e-9 && (c - 150.0).abs() < 1e-9);
+        assert_eq!(
+            closed_form_branches(d, a, b, c, &crank, &phi, &psi),
+            ", which meets them only on different branches (open at 20°, open at 70°, crossed \
+             at 120°): no one assembly does"
+        );
+        let open: Vec<f64> = phi
+            .iter()
+            .map(|&p| example.assemble(p, Branch::Open).unwrap().theta4)
+            .collect();
+        assert_eq!(
+            closed_form_branches(d, a, b, c, &crank, &phi, &open),
+            ", on the open branch"
+        );
+    }
+
+    #[test]
+    fn lengths_print_five_significant_digits_at_any_scale() {
+        assert_eq!(length(180.0), "180.0000");
+        assert_eq!(length(0.0018), "1.8000e-3");
+        assert_eq!(length(0.25), "0.2500");
+        assert_eq!(length(0.0), "0.0000");
+        assert_eq!(length(6.7547e299), "6.7547e299");
+    }
+
+    #[test]
+    fn untimed_path_generation_is_held_to_its_budget() {
+        let each = |restarts: usize, branches: usize| {
+            vec![
+                Options {
+                    restarts,
+                    ..Options::default()
+                };
+                branches
+            ]
+        };
+        assert!(untimed_within_budget(9, &each(1000, 2)).is_ok());
+        assert!(untimed_within_budget(20, &each(64, 2)).is_ok());
+        let refused = untimed_within_budget(40, &each(64, 2)).unwrap_err();
+        assert!(
+            refused.contains("40 targets with 64 random starts on each branch")
+                && refused.contains("--restarts 11 or fewer (or one --branch)"),
+            "{refused}"
+        );
+        assert!(untimed_within_budget(100, &each(1, 1)).is_ok());
+        assert!(untimed_within_budget(1000, &each(1, 1)).is_err());
+    }
 }
