@@ -1934,6 +1934,20 @@ fn tolerance_refuses_large_tolerances_and_overflowed_figures() {
         &["--angle-tolerance", "1e-12"],
         "--angle-tolerance ±1e-12° is too small",
     );
+    // Links below the float's normal range: their derivatives overflow.
+    refused_before_any_output(
+        &[
+            "tolerance",
+            "four-bar",
+            "1e-310",
+            "4e-311",
+            "1.2e-310",
+            "8e-311",
+            "--tolerance",
+            "1e-312",
+        ],
+        "a link of 1e-310 mm is below the float's normal range (2.2e-308)",
+    );
     // Too long: the crank angles times the Monte Carlo linkages.
     run(
         &["--step", "0.0036", "--samples", "10000000"],
