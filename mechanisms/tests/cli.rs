@@ -1934,7 +1934,8 @@ fn tolerance_refuses_large_tolerances_and_overflowed_figures() {
         &["--angle-tolerance", "1e-12"],
         "--angle-tolerance ±1e-12° is too small",
     );
-    // Links below the float's normal range: their derivatives overflow.
+    // Links below the float's normal range: refused as every command refuses them (they
+    // keep fewer bits than a float has, and their derivatives would overflow).
     refused_before_any_output(
         &[
             "tolerance",
@@ -1946,7 +1947,7 @@ fn tolerance_refuses_large_tolerances_and_overflowed_figures() {
             "--tolerance",
             "1e-312",
         ],
-        "a link of 1e-310 mm is below the float's normal range (2.2e-308)",
+        "the ground 1e-310 is below the float's normal range (2.2e-308)",
     );
     // Too long: the crank angles times the Monte Carlo linkages.
     run(

@@ -38,6 +38,46 @@ fn a_closed_pipe_ends_the_program_quietly_with_success() {
     assert_eq!(stderr, "");
 }
 
+/// A closed standard error (`mechanisms … 2>&1 | head -0`) is no panic: an error still
+/// exits 1, a notice nobody can read is dropped.
+#[test]
+fn a_closed_standard_error_is_no_panic() {
+    for (args, code) in [
+        (&["analyse", "four-bar", "0", "1", "1", "1"][..], 1),
+        (
+            &[
+                "tolerance",
+                "four-bar",
+                "180",
+                "80",
+                "200",
+                "150",
+                "--step",
+                "90",
+                "--svg",
+            ][..],
+            0,
+        ),
+    ] {
+        let out_dir = scratch("stderr");
+        std::fs::create_dir_all(&out_dir).unwrap();
+        let mut args: Vec<String> = args.iter().map(|a| a.to_string()).collect();
+        if args.last().is_some_and(|a| a == "--svg") {
+            args.push(out_dir.join("t.svg").to_str().unwrap().to_string());
+        }
+        let mut child = program()
+            .args(&args)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stderr.take());
+        let status = child.wait().unwrap();
+        std::fs::remove_dir_all(&out_dir).ok();
+        assert_eq!(status.code(), Some(code), "{args:?}");
+    }
+}
+
 /// The child's peak resident memory in kB, read from `/usr/bin/time -v` where there is one,
 /// else from the highest `VmHWM` its `/proc/<pid>/status` showed while it ran.
 #[cfg(target_os = "linux")]

@@ -116,6 +116,17 @@ impl Mechanism {
     /// Checks the count of dimensions given.
     pub fn check(self, given: &[f64]) -> Result<(), String> {
         let names = self.dimensions();
+        if let Some((name, value)) = names
+            .iter()
+            .zip(given)
+            .find(|(_, v)| **v != 0.0 && v.abs() < f64::MIN_POSITIVE)
+        {
+            return Err(format!(
+                "the {name} {} is below the float's normal range (2.2e-308), where a number \
+                 keeps fewer than its 53 bits: it would be computed as another dimension",
+                output::tidy(*value)
+            ));
+        }
         if given.len() == names.len() {
             Ok(())
         } else {
@@ -171,7 +182,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
-            eprintln!("error: {message}");
+            output::tell!("error: {message}");
             ExitCode::FAILURE
         }
     }

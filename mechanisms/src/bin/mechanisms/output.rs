@@ -15,6 +15,22 @@ macro_rules! say {
 }
 pub(crate) use say;
 
+/// `eprintln!` for the program's notices and errors, which does not panic where standard
+/// error is gone (a closed pipe: `mechanisms … 2>&1 | head -0`): a notice nobody can read is
+/// dropped, and the exit status still says what happened.
+macro_rules! tell {
+    ($($arg:tt)*) => {
+        $crate::output::tell_line(::std::format_args!($($arg)*))
+    };
+}
+pub(crate) use tell;
+
+/// Writes one line to standard error, if it can (see [`tell!`]).
+pub fn tell_line(line: std::fmt::Arguments) {
+    let mut err = io::stderr().lock();
+    let _ = err.write_fmt(line).and_then(|()| err.write_all(b"\n"));
+}
+
 /// Writes one line to standard output (see [`say!`]).
 pub fn say_line(line: std::fmt::Arguments) {
     let mut out = io::stdout().lock();
@@ -29,7 +45,7 @@ pub fn gone(error: io::Error) -> ! {
     if error.kind() == io::ErrorKind::BrokenPipe {
         std::process::exit(0);
     }
-    eprintln!("error: cannot write to standard output: {error}");
+    tell!("error: cannot write to standard output: {error}");
     std::process::exit(1);
 }
 

@@ -607,7 +607,7 @@ fn write(path: &PathBuf, drawing: &str) -> Result<(), String> {
         say!("{drawing}");
     } else {
         fs::write(path, drawing).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        eprintln!("wrote {}", path.display());
+        output::tell!("wrote {}", path.display());
     }
     Ok(())
 }

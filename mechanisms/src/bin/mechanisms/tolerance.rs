@@ -163,16 +163,6 @@ pub fn run(args: &Args) -> Result<(), String> {
     let &[ground, crank, coupler, rocker] = args.dimensions.as_slice() else {
         unreachable!("checked: four dimensions");
     };
-    if let Some(short) = [ground, crank, coupler, rocker]
-        .into_iter()
-        .find(|l| l.abs() < f64::MIN_POSITIVE)
-    {
-        return Err(format!(
-            "a link of {} mm is below the float's normal range (2.2e-308): θ4's derivatives \
-             with respect to the lengths, about one over a length, overflow there",
-            tidy(short)
-        ));
-    }
     let (distance, angle_degrees) = match args.coupler_point.as_deref() {
         None => (0.0, 0.0),
         Some(&[distance, angle]) => (distance, angle),
@@ -415,7 +405,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         } else {
             fs::write(path, drawing)
                 .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            eprintln!("wrote {}", path.display());
+            output::tell!("wrote {}", path.display());
         }
     }
     Ok(())

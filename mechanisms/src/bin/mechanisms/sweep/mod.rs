@@ -347,7 +347,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             .iter()
             .any(|t| matches!(t, Target::Stdout))
         {
-            eprintln!("{text}");
+            crate::output::tell!("{text}");
         } else {
             say!("{text}");
         }
