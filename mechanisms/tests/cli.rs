@@ -1829,6 +1829,40 @@ fn tolerance_says_where_first_order_and_the_nonlinear_model_part() {
     assert_eq!(distinct.len(), labels.len());
 }
 
+/// A Watt six-bar whose second pivot is 1e200 mm away cannot be assembled, and says so (its
+/// short links' squares underflowed in the second loop, and it said "singular"); dimensions
+/// below the float's normal range are refused, whatever the command.
+#[test]
+fn far_pivots_cannot_assemble_and_subnormal_dimensions_are_refused() {
+    for pivot in ["1e160", "1e200", "1e300"] {
+        fails_with(
+            &[
+                "analyse",
+                "watt-six-bar",
+                "180",
+                "80",
+                "200",
+                "150",
+                "100",
+                "45.8366",
+                "220",
+                "160",
+                pivot,
+                "0",
+            ],
+            "the Watt six-bar cannot be assembled at 60°",
+        );
+    }
+    for command in ["analyse", "sweep"] {
+        fails_with(
+            &[
+                command, "four-bar", "1e-321", "4e-322", "1.2e-321", "8e-322",
+            ],
+            "the ground 1e-321 is below the float's normal range (2.2e-308)",
+        );
+    }
+}
+
 /// A tolerance analysis' step is a positive number of degrees up to a turn, checked before
 /// anything is printed, as the sweep checks its own.
 #[test]

@@ -57,9 +57,51 @@ fn times<T: Real>(a: Vec2<T>, b: Vec2<T>) -> Vec2<T> {
 }
 
 /// `|a|` by a plain square root, for vectors already brought to a unit scale
-/// ([`to_unit_scale`]), whose squares cannot overflow or lose digits to underflow.
+/// ([`to_unit_scale`]), whose squares cannot overflow; where one might be below the float's
+/// normal range (a vector some 1e-154 of the unit scale), the caller asks [`tiny_length`].
 fn length<T: Real>(a: Vec2<T>) -> T {
     dot(a, a).sqrt()
+}
+
+/// `|a|` of a vector whose square is below the float's normal range, where it has lost digits
+/// or all of them (a loop whose links differ by 1e170, a Watt six-bar's second pivot 1e170
+/// away, squares its short links to zero): from the vector scaled to unit size by a power of
+/// two, and back (exact both ways, but where the length itself is subnormal). Zero for the
+/// zero vector.
+#[cold]
+#[inline(never)]
+fn tiny_length<T: Real>(a: Vec2<T>) -> T {
+    let largest = largest_component(&[a]);
+    if largest == T::zero() {
+        return T::zero();
+    }
+    let s = normaliser(largest);
+    dot(scaled(a, s), scaled(a, s)).sqrt() / s
+}
+
+/// The lengths of `vectors` at unit scale, none of them zero: by plain square roots where
+/// every square is a normal number (one comparison of the smallest, which also says none is
+/// zero), else each by [`tiny_length`], out of line. Errors: a zero vector.
+#[inline]
+fn nonzero_lengths<T: Real, const N: usize>(vectors: [Vec2<T>; N]) -> Result<[T; N], Failure> {
+    let squares = vectors.map(|v| dot(v, v));
+    let smallest = squares.iter().fold(T::infinity(), |m, s| m.min(*s));
+    if smallest >= T::min_positive_value() {
+        Ok(squares.map(T::sqrt))
+    } else {
+        tiny_lengths(vectors)
+    }
+}
+
+/// [`nonzero_lengths`] where a square is below the float's normal range.
+#[cold]
+#[inline(never)]
+fn tiny_lengths<T: Real, const N: usize>(vectors: [Vec2<T>; N]) -> Result<[T; N], Failure> {
+    let lengths = vectors.map(tiny_length);
+    if lengths.iter().any(|l| *l == T::zero()) {
+        return Err(Failure::Degenerate);
+    }
+    Ok(lengths)
 }
 
 fn scaled<T: Real>(a: Vec2<T>, s: T) -> Vec2<T> {
@@ -266,10 +308,7 @@ pub fn length_and_own_direction<T: Real>(
     let (u, norm) = direction_and_length(w1)?;
     let s = to_unit_scale(&[k, w0])?;
     let (k, w0) = (scaled(k, s), scaled(w0, s));
-    let radius = length(k);
-    if radius == T::zero() {
-        return Err(Failure::Degenerate);
-    }
+    let [radius] = nonzero_lengths([k])?;
     let (along, point) = line_meets_circle(w0, u, radius, sign)?;
     let direction = turn(scaled(k, -T::one()), point)?;
     closes(
@@ -336,10 +375,7 @@ pub fn length_and_other_direction<T: Real>(
     let (u, norm) = direction_and_length(v)?;
     let s = to_unit_scale(&[k, w0])?;
     let (k, w0) = (scaled(k, s), scaled(w0, s));
-    let radius = length(w0);
-    if radius == T::zero() {
-        return Err(Failure::Degenerate);
-    }
+    let [radius] = nonzero_lengths([w0])?;
     let (along, point) = line_meets_circle(k, u, radius, sign)?;
     let direction = turn(scaled(point, -T::one()), w0)?;
     closes(
@@ -396,11 +432,7 @@ pub fn two_directions<T: Real>(
     let s = to_unit_scale(&[k, w1, w2])?;
     let (k, w1, w2) = (scaled(k, s), scaled(w1, s), scaled(w2, s));
     let chord = scaled(k, -T::one());
-    let span = length(chord);
-    let (r1, r2) = (length(w1), length(w2));
-    if span == T::zero() || r1 == T::zero() || r2 == T::zero() {
-        return Err(Failure::Degenerate);
-    }
+    let [span, r1, r2] = nonzero_lengths([chord, w1, w2])?;
     // The triangle of sides r1, r2 and the chord, by Kahan's formula for its area, which
     // keeps every digit of a thin triangle: with the sides sorted a ≥ b ≥ c,
     // 16·area² = (a + (b + c))·(c − (a − b))·(c + (a − b))·(a + (b − c)), where only
@@ -408,6 +440,11 @@ pub fn two_directions<T: Real>(
     let (a, b, c) = sorted_descending(r1, r2, span);
     let gap = gap_closes(c - (a - b), a)?;
     let sixteen_area_squared = (a + (b + c)) * gap * (c + (a - b)) * (a + (b - c));
+    // A triangle whose short side is some 1e-154 of the others (or a tangency, flat), out
+    // of line, where the same arithmetic gives the same bits.
+    if !(sixteen_area_squared >= T::min_positive_value()) {
+        return thin_triangle(k, w1, w2, sign);
+    }
     // The height of P1's tip over the chord is 2·area/span, on the branch's side.
     let height = sign * sixteen_area_squared.sqrt() / (span + span);
     // Its foot along the chord from each end: (r1² − r2² + span²)/(2·span) with the
@@ -420,6 +457,39 @@ pub fn two_directions<T: Real>(
     let p1 = scaled(unit, along1) + scaled(normal, height);
     let p2 = scaled(unit, along2) - scaled(normal, height);
     let (direction1, direction2) = (turn(p1, w1)?, turn(p2, w2)?);
+    closes(
+        k + times(direction1, w1) + times(direction2, w2),
+        sum_of([span, r1, r2]),
+    )?;
+    Ok((direction1, direction2))
+}
+
+/// [`two_directions`] for a triangle whose short side is some 1e-154 of the others (a short
+/// link across a chord as long as the other link), where the area's two small factors
+/// multiply below the float's normal range, and a short link's tip over the chord times the
+/// link would underflow: the area's root from each factor apart, and each turn from its two
+/// vectors at their own unit scales. The same arithmetic otherwise.
+#[cold]
+#[inline(never)]
+fn thin_triangle<T: Real>(
+    k: Vec2<T>,
+    w1: Vec2<T>,
+    w2: Vec2<T>,
+    sign: T,
+) -> Result<(Vec2<T>, Vec2<T>), Failure> {
+    let [span, r1, r2] = nonzero_lengths([scaled(k, -T::one()), w1, w2])?;
+    let (a, b, c) = sorted_descending(r1, r2, span);
+    let gap = gap_closes(c - (a - b), a)?;
+    let sixteen_area = ((a + (b + c)) * (a + (b - c))).sqrt() * gap.sqrt() * (c + (a - b)).sqrt();
+    let height = sign * sixteen_area / (span + span);
+    let along1 = ((r1 - r2) * (r1 + r2) / span + span) * T::constant(0.5);
+    let along2 = ((r2 - r1) * (r1 + r2) / span + span) * T::constant(0.5);
+    let unit = scaled(k, -T::one() / span);
+    let normal = Vec2::new(-unit.y, unit.x);
+    let p1 = scaled(unit, along1) + scaled(normal, height);
+    let p2 = scaled(unit, along2) - scaled(normal, height);
+    let turned = |to: Vec2<T>, from: Vec2<T>| turn(at_unit_scale(to), at_unit_scale(from));
+    let (direction1, direction2) = (turned(p1, w1)?, turned(p2, w2)?);
     closes(
         k + times(direction1, w1) + times(direction2, w2),
         sum_of([span, r1, r2]),
@@ -555,6 +625,50 @@ mod tests {
             assert_eq!(sorted_descending(x, y, z), (3.0, 2.0, 1.0));
         }
         assert_eq!(sorted_descending(2.0, 2.0, 1.0), (2.0, 2.0, 1.0));
+    }
+
+    /// A loop whose vectors differ by more than the float's normal range can square: the
+    /// short ones' lengths from the vectors scaled up, not from squares that lost their
+    /// digits or underflowed to zero (a Watt six-bar whose second pivot is 1e170 away was
+    /// `Singular`, its short links of length zero, where it cannot assemble).
+    #[test]
+    fn lengths_in_a_loop_of_vastly_different_vectors() {
+        assert_eq!(
+            nonzero_lengths([
+                v(3e-170, 4e-170),
+                v(-3e-160, 4e-160),
+                v(0.0, -1e-200),
+                v(3.0, 4.0)
+            ]),
+            Ok([5e-170, 5e-160, 1e-200, 5.0])
+        );
+        assert_eq!(nonzero_lengths([v(3.0, 4.0), v(0.0, 0.5)]), Ok([5.0, 0.5]));
+        assert_eq!(
+            nonzero_lengths::<f64, 2>([v(0.0, 0.0), v(1.0, 0.0)]),
+            Err(Failure::Degenerate)
+        );
+        assert_eq!(tiny_length(v(f64::MIN_POSITIVE, 0.0)), f64::MIN_POSITIVE);
+        // Two short links 1e-170 of the chord: they cannot reach across it.
+        assert_eq!(
+            two_angles(v(1.0, 0.0), v(2e-170, 0.0), v(-1e-170, 0.0), 1.0).map(|_| ()),
+            Err(Failure::CannotClose)
+        );
+        // A slide's line 1 from the pivot and a rod 1e-170 long: it cannot reach the line.
+        assert_eq!(
+            length_and_other_direction(v(0.0, 1.0), v(1.0, 0.0), v(1e-170, 0.0), 1.0).map(|_| ()),
+            Err(Failure::CannotClose)
+        );
+        assert_eq!(
+            length_and_own_direction(v(1e-170, 0.0), v(0.0, 1.0), v(1.0, 0.0), 1.0).map(|_| ()),
+            Err(Failure::CannotClose)
+        );
+        // A long link as long as the chord and a short one: they close, thin as it is.
+        let (_, _, d1, d2) = two_angles(v(-1.0, 0.0), v(1e-170, 0.0), v(1.0, 0.0), 1.0).unwrap();
+        let closure = v(-1.0, 0.0) + times(d1, v(1e-170, 0.0)) + times(d2, v(1.0, 0.0));
+        assert!(
+            closure.x.abs() < 1e-15 && closure.y.abs() < 1e-15,
+            "{closure:?}"
+        );
     }
 
     #[test]
