@@ -442,7 +442,7 @@ pub fn two_directions<T: Real>(
     let sixteen_area_squared = (a + (b + c)) * gap * (c + (a - b)) * (a + (b - c));
     // A triangle whose short side is some 1e-154 of the others (or a tangency, flat), out
     // of line, where the same arithmetic gives the same bits.
-    if !(sixteen_area_squared >= T::min_positive_value()) {
+    if sixteen_area_squared < T::min_positive_value() {
         return thin_triangle(k, w1, w2, sign);
     }
     // The height of P1's tip over the chord is 2·area/span, on the branch's side.
