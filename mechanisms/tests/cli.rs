@@ -1829,6 +1829,63 @@ fn tolerance_says_where_first_order_and_the_nonlinear_model_part() {
     assert_eq!(distinct.len(), labels.len());
 }
 
+/// Every value prints to the digits its stated accuracy leaves, no more: near a toggle the
+/// rates and the mechanical advantage lose digits (the review's: ω3 printed −183512.4111
+/// where it is −183512.4172; the advantage −455397513.1023 where it is −455397458.18), a
+/// value that is rounding prints as zero within its error (a robot's velocity of 4e284 at
+/// 1e300 mm whose truth is 0), and an advantage whose driven rate is rounding (a
+/// slider-crank with its rod as long as its crank, on the branch where the slider stands
+/// still) is undetermined, not −1.4e14.
+#[test]
+fn values_print_only_the_digits_their_accuracy_leaves() {
+    let near = stdout_of(&[
+        "analyse",
+        "four-bar",
+        "100",
+        "80",
+        "60",
+        "110",
+        "--at",
+        "141.3751671",
+    ]);
+    let row = |report: &str, label: &str| -> String {
+        report
+            .lines()
+            .find(|l| l.trim_start().starts_with(label))
+            .unwrap_or_else(|| panic!("no {label} in:\n{report}"))
+            .to_string()
+    };
+    assert!(row(&near, "ω3 (rad/s)").contains("-1.8351e5"), "{near}");
+    assert!(row(&near, "ω4 (rad/s)").contains("1.0010e5"), "{near}");
+    let toggle = stdout_of(&[
+        "analyse",
+        "four-bar",
+        "100",
+        "40",
+        "120",
+        "80",
+        "--at",
+        "24.1468479",
+    ]);
+    assert!(
+        row(&toggle, "mechanical advantage").contains("-4.55e8"),
+        "{toggle}"
+    );
+    let still = stdout_of(&["analyse", "slider-crank", "40", "40", "0", "--at", "60"]);
+    assert!(
+        row(&still, "mech. advantage").ends_with("undetermined"),
+        "{still}"
+    );
+    let huge = stdout_of(&["robot", "1e300", "2e300", "2e300", "1e300", "1e300"]);
+    assert!(
+        huge.contains("velocity = (0 (±1e288), -1.0000e300) mm/s"),
+        "{huge}"
+    );
+    // Example 1 keeps its four decimals.
+    let example = stdout_of(&[]);
+    assert!(row(&example, "ω4 (rad/s)").contains("4.2923"), "{example}");
+}
+
 /// A Watt six-bar whose second pivot is 1e200 mm away cannot be assembled, and says so (its
 /// short links' squares underflowed in the second loop, and it said "singular"); dimensions
 /// below the float's normal range are refused, whatever the command.

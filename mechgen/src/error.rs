@@ -34,7 +34,9 @@ pub enum Error<T> {
     },
     /// A rate or acceleration whose estimated error (see [`crate::Accuracy`]) exceeds the
     /// accuracy a result must have: near a toggle or change point, where the position is
-    /// itself known only to `κ·ε`, its rates have fewer correct digits than required.
+    /// itself known only to `κ·ε`, its rates have fewer correct digits than required; so do a
+    /// link's angle where the link is shorter than `√ε` of the mechanism, and results that
+    /// leave the float's range (an angular acceleration of 1e-400 rad/s²).
     Inaccurate {
         /// The first derivative order whose estimate is too large.
         order: crate::Order,
@@ -81,7 +83,8 @@ impl<T: fmt::Display> fmt::Display for Error<T> {
             } => write!(
                 f,
                 "the {} would be off by up to {estimate} relative (more than the {required} \
-                 required): the mechanism is too near a toggle or change point",
+                 required): too near a toggle or change point, with a link too short against \
+                 the mechanism, or with rates whose results leave the float's range",
                 match order {
                     crate::Order::Position => "position",
                     crate::Order::Velocity => "velocity",
@@ -156,7 +159,8 @@ mod tests {
                     required: 0.25,
                 },
                 "the velocity would be off by up to 0.5 relative (more than the 0.25 required): \
-                 the mechanism is too near a toggle or change point",
+                 too near a toggle or change point, with a link too short against the \
+                 mechanism, or with rates whose results leave the float's range",
             ),
             (
                 Error::OtherBranch,

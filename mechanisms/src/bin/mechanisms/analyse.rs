@@ -147,11 +147,12 @@ pub fn run(args: &Args) -> Result<(), String> {
 }
 
 /// What could be computed on one branch, order by order, or why not: a later order fails
-/// where an earlier one did.
+/// where an earlier one did; and what each value may be off by.
 struct Solved<U> {
     position: Result<U, Error<f64>>,
     velocity: Result<U, Error<f64>>,
     acceleration: Result<U, Error<f64>>,
+    errors: Errors,
 }
 
 impl<U> Solved<U> {
@@ -159,16 +160,112 @@ impl<U> Solved<U> {
         position: Result<U, Error<f64>>,
         velocity: impl Fn(&U) -> Result<U, Error<f64>>,
         acceleration: impl Fn(&U, &U) -> Result<U, Error<f64>>,
+        errors: impl Fn(&U, Option<&U>, Option<&U>) -> Errors,
     ) -> Self {
         let velocity = position.as_ref().map_err(|e| *e).and_then(&velocity);
         let acceleration = match (&position, &velocity) {
             (Ok(q), Ok(v)) => acceleration(q, v),
             (Err(e), _) | (_, Err(e)) => Err(*e),
         };
+        let errors = position.as_ref().map_or_else(
+            |_| Errors::default(),
+            |q| errors(q, velocity.as_ref().ok(), acceleration.as_ref().ok()),
+        );
         Solved {
             position,
             velocity,
             acceleration,
+            errors,
+        }
+    }
+}
+
+/// What each value of a branch's column may be off by, absolute, per order (position,
+/// velocity, acceleration) and unknown, so that it is printed to those digits alone
+/// ([`output::within`]): the runtime's accuracy estimate at the position
+/// (`mechgen::Accuracy::estimate`, or `estimate_at` for a Newton position) from its condition
+/// and aspect, relative to the sizes the contract measures by (the mechanism's size; times
+/// the input's rate, or its square and acceleration, or the unknowns' rates weighted by their
+/// columns where larger), over each unknown's column, doubled for the sizes' approximation.
+#[derive(Clone, Debug, Default)]
+struct Errors {
+    orders: [Vec<f64>; 3],
+}
+
+impl Errors {
+    /// Unknown `j`'s error at `order` (0 position, 1 velocity, 2 acceleration); unbounded
+    /// where nothing is known.
+    fn at(&self, order: usize, j: usize) -> f64 {
+        self.orders[order].get(j).copied().unwrap_or(f64::INFINITY)
+    }
+}
+
+/// A mechanism as [`Errors`] needs it: its lengths (whose sum is its size), which unknowns
+/// are angles, whether its positions come from Newton, and the input's rate and
+/// acceleration.
+struct Sizes {
+    lengths: Vec<f64>,
+    angles: &'static [bool],
+    newton: bool,
+    rate: f64,
+    accel: f64,
+}
+
+impl Sizes {
+    /// The errors at a position with this `condition` and Jacobian, given the rates and
+    /// accelerations solved there (where they were).
+    fn errors<const N: usize>(
+        &self,
+        condition: f64,
+        jacobian: [[f64; N]; N],
+        rates: Option<[f64; N]>,
+        accelerations: Option<[f64; N]>,
+    ) -> Errors {
+        // In units of the longest length, so that nothing overflows for lengths near the
+        // float's largest (a size of 4e308 is no number).
+        let unit = self.lengths.iter().fold(0.0f64, |m, l| m.max(l.abs()));
+        let size = self.lengths.iter().map(|l| l.abs() / unit).sum::<f64>();
+        let columns: [f64; N] = core::array::from_fn(|j| {
+            jacobian
+                .iter()
+                .map(|row| (row[j] / unit) * (row[j] / unit))
+                .sum::<f64>()
+                .sqrt()
+        });
+        let shortest = columns
+            .iter()
+            .zip(self.angles)
+            .filter(|(_, angle)| **angle)
+            .fold(f64::INFINITY, |m, (c, _)| m.min(*c));
+        let aspect = (size / shortest).max(1.0);
+        let accuracy = if self.newton {
+            Accuracy::estimate_at(condition, aspect, 0.0)
+        } else {
+            Accuracy::estimate(condition, aspect)
+        };
+        let weighted = |values: Option<[f64; N]>| {
+            values.map_or(0.0, |values| {
+                values
+                    .iter()
+                    .zip(&columns)
+                    .fold(0.0f64, |m, (v, c)| m.max(v.abs() * c))
+            })
+        };
+        let scales = [
+            size,
+            (size * self.rate.abs()).max(weighted(rates)),
+            (size * (self.rate * self.rate + self.accel.abs())).max(weighted(accelerations)),
+        ];
+        let relative = [accuracy.position, accuracy.velocity, accuracy.acceleration];
+        // A length's column is a direction (in these units, 1/unit long): its error is in
+        // the length's own units; an angle's is radians.
+        Errors {
+            orders: core::array::from_fn(|k| {
+                columns
+                    .iter()
+                    .map(|c| 2.0 * relative[k] * scales[k] / c)
+                    .collect()
+            }),
         }
     }
 }
@@ -182,8 +279,9 @@ enum Needs {
 }
 
 /// A report row: its label, what it needs, and its text from the position and the rate or
-/// acceleration it needs (the position again for a position row).
-type Row<'a, U> = (&'a str, Needs, &'a dyn Fn(&U, &U) -> String);
+/// acceleration it needs (the position again for a position row), and what each may be off
+/// by.
+type Row<'a, U> = (&'a str, Needs, &'a dyn Fn(&U, &U, &Errors) -> String);
 
 /// A value to 4 places; a very large one in exponent form.
 fn value(v: f64) -> String {
@@ -196,9 +294,24 @@ fn value(v: f64) -> String {
     }
 }
 
-/// An angle in degrees, in [0, 360), to 4 places.
-fn angle(radians: f64) -> String {
-    output::degrees(radians, 4)
+/// A mechanical advantage to the digits its driven rate's error leaves (its relative error
+/// is the rate's); `undetermined` where that error is as large as the rate, whose sign and
+/// size the advantage is made of.
+fn advantage_within(
+    ma: Result<MechanicalAdvantage<f64>, Error<f64>>,
+    driven_rate: f64,
+    driven_error: f64,
+) -> String {
+    match ma {
+        Ok(MechanicalAdvantage::Finite(_)) if !(driven_error < driven_rate.abs()) => {
+            "undetermined".into()
+        }
+        Ok(MechanicalAdvantage::Finite(v)) => {
+            let relative = driven_error / (driven_rate.abs() - driven_error);
+            output::within(v, v.abs() * relative)
+        }
+        other => advantage(other),
+    }
 }
 
 /// Why a result is missing, in a table cell, and the reasons met, for the notes below.
@@ -228,13 +341,16 @@ fn notes(met: &BTreeSet<&'static str>) {
             ),
             "inaccurate" => say!(
                 "  inaccurate e: the estimated relative error e is more than the {:.0e} \
-                 (velocity) or {:.0e} (acceleration) required, this near a toggle or change point",
+                 (velocity) or {:.0e} (acceleration) required: too near a toggle or change \
+                 point, with a link too short against the mechanism, or with rates whose \
+                 results leave the float's range (a rate of 1e-200 rad/s squares to 1e-400)",
                 required.velocity,
                 required.acceleration
             ),
             "undetermined" => say!(
-                "  undetermined: a link of zero length here, whose direction and rates are \
-                 not determined"
+                "  undetermined: a link shorter than √ε (1.5e-8) of the mechanism, whose \
+                 angle's rates f64 cannot determine, or an input rate lost below the \
+                 float's range"
             ),
             "cannot assemble" => {
                 say!("  cannot assemble: the links do not close on that branch at this input")
@@ -260,7 +376,7 @@ fn table<U>(rows: &[Row<U>], columns: &[(String, &Solved<U>)]) {
                 Needs::Acceleration => &solved.acceleration,
             };
             match (&solved.position, other) {
-                (Ok(q), Ok(x)) => text(q, x),
+                (Ok(q), Ok(x)) => text(q, x, &solved.errors),
                 (Err(e), _) | (_, Err(e)) => reason(e, &mut met),
             }
         };
@@ -362,11 +478,26 @@ fn cannot(what: &str, input_deg: f64, reach: String) -> String {
 fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
     let [l1, l2, l3, l4] = linkage.lengths();
     let theta2 = angle::radians(args.at);
+    let sizes = Sizes {
+        lengths: vec![l1, l2, l3, l4],
+        angles: &[true, true],
+        newton: false,
+        rate: args.rate,
+        accel: args.accel,
+    };
     let solve = |branch| {
         Solved::new(
             linkage.assemble(theta2, branch),
             |q| linkage.velocity(theta2, q, args.rate),
             |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
+            |q, v, a| {
+                sizes.errors(
+                    linkage.condition(theta2, q),
+                    linkage.jacobian(theta2, q),
+                    v.map(|v| v.to_array()),
+                    a.map(|a| a.to_array()),
+                )
+            },
         )
     };
     let (open, crossed) = (solve(Branch::Open), solve(Branch::Crossed));
@@ -400,21 +531,36 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
         value((l2 * cosine - l1).hypot(l2 * sine))
     );
     let rows: [Row<FourBarUnknowns<f64>>; 8] = [
-        ("θ3 (°)", Needs::Position, &|q, _| angle(q.theta3)),
-        ("θ4 (°)", Needs::Position, &|q, _| angle(q.theta4)),
-        ("transmission angle γ (°)", Needs::Position, &|q, _| {
-            value(linkage.transmission_angle(q).to_degrees())
+        ("θ3 (°)", Needs::Position, &|q, _, e| {
+            output::degrees_within(q.theta3, e.at(0, 0))
         }),
-        ("ω3 (rad/s)", Needs::Velocity, &|_, v| value(v.theta3)),
-        ("ω4 (rad/s)", Needs::Velocity, &|_, v| value(v.theta4)),
-        ("α3 (rad/s²)", Needs::Acceleration, &|_, a| {
-            value(a.theta3)
+        ("θ4 (°)", Needs::Position, &|q, _, e| {
+            output::degrees_within(q.theta4, e.at(0, 1))
         }),
-        ("α4 (rad/s²)", Needs::Acceleration, &|_, a| {
-            value(a.theta4)
+        ("transmission angle γ (°)", Needs::Position, &|q, _, e| {
+            output::within(
+                linkage.transmission_angle(q).to_degrees(),
+                (e.at(0, 0) + e.at(0, 1)).to_degrees(),
+            )
         }),
-        ("mechanical advantage T4/T2", Needs::Velocity, &|q, _| {
-            advantage(linkage.mechanical_advantage(theta2, q))
+        ("ω3 (rad/s)", Needs::Velocity, &|_, v, e| {
+            output::within(v.theta3, e.at(1, 0))
+        }),
+        ("ω4 (rad/s)", Needs::Velocity, &|_, v, e| {
+            output::within(v.theta4, e.at(1, 1))
+        }),
+        ("α3 (rad/s²)", Needs::Acceleration, &|_, a, e| {
+            output::within(a.theta3, e.at(2, 0))
+        }),
+        ("α4 (rad/s²)", Needs::Acceleration, &|_, a, e| {
+            output::within(a.theta4, e.at(2, 1))
+        }),
+        ("mechanical advantage T4/T2", Needs::Velocity, &|q, v, e| {
+            advantage_within(
+                linkage.mechanical_advantage(theta2, q),
+                v.theta4,
+                e.at(1, 1),
+            )
         }),
     ];
     table(&rows, &branches(&open, &crossed));
@@ -489,11 +635,26 @@ fn trace(args: &Args, linkage: &FourBar<f64>, theta2: f64) {
 fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
     let [l2, l3, c] = linkage.dimensions();
     let theta2 = angle::radians(args.at);
+    let sizes = Sizes {
+        lengths: vec![l2, l3, c],
+        angles: &[true, false],
+        newton: false,
+        rate: args.rate,
+        accel: args.accel,
+    };
     let solve = |branch| {
         Solved::new(
             linkage.assemble(theta2, branch),
             |q| linkage.velocity(theta2, q, args.rate),
             |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
+            |q, v, a| {
+                sizes.errors(
+                    linkage.condition(theta2, q),
+                    linkage.jacobian(theta2, q),
+                    v.map(|v| v.to_array()),
+                    a.map(|a| a.to_array()),
+                )
+            },
         )
     };
     let (open, crossed) = (solve(Branch::Open), solve(Branch::Crossed));
@@ -505,11 +666,15 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
     );
     match (linkage.stroke(), linkage.time_ratio()) {
         (Some(stroke), Some(ratio)) => {
-            say!("The crank turns fully; stroke {stroke:.4} mm, time ratio {ratio:.4}")
+            say!(
+                "The crank turns fully; stroke {} mm, time ratio {ratio:.4}",
+                output::figure(stroke)
+            )
         }
         (Some(stroke), None) => say!(
             "The crank turns fully, through a change point where the rod stands perpendicular \
-             to the slide (l3 − l2 = |c|); stroke {stroke:.4} mm, no inner dead centre"
+             to the slide (l3 − l2 = |c|); stroke {} mm, no inner dead centre",
+            output::figure(stroke)
         ),
         (None, _) if linkage.crank_turns_fully() => {
             say!("The crank turns fully; its stroke is too long to compute")
@@ -530,19 +695,32 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
         tidy(args.accel)
     );
     let rows: [Row<mechanisms::SliderCrankUnknowns<f64>>; 8] = [
-        ("θ3 (°)", Needs::Position, &|q, _| angle(q.theta3)),
-        ("d (mm)", Needs::Position, &|q, _| value(q.d)),
-        ("transmission angle μ (°)", Needs::Position, &|q, _| {
-            value(linkage.transmission_angle(q).to_degrees())
+        ("θ3 (°)", Needs::Position, &|q, _, e| {
+            output::degrees_within(q.theta3, e.at(0, 0))
         }),
-        ("ω3 (rad/s)", Needs::Velocity, &|_, v| value(v.theta3)),
-        ("ḋ (mm/s)", Needs::Velocity, &|_, v| value(v.d)),
-        ("α3 (rad/s²)", Needs::Acceleration, &|_, a| {
-            value(a.theta3)
+        ("d (mm)", Needs::Position, &|q, _, e| {
+            output::within(q.d, e.at(0, 1))
         }),
-        ("d̈ (mm/s²)", Needs::Acceleration, &|_, a| value(a.d)),
-        ("mech. advantage F/T (1/mm)", Needs::Velocity, &|q, _| {
-            advantage(linkage.mechanical_advantage(theta2, q))
+        ("transmission angle μ (°)", Needs::Position, &|q, _, e| {
+            output::within(
+                linkage.transmission_angle(q).to_degrees(),
+                e.at(0, 0).to_degrees(),
+            )
+        }),
+        ("ω3 (rad/s)", Needs::Velocity, &|_, v, e| {
+            output::within(v.theta3, e.at(1, 0))
+        }),
+        ("ḋ (mm/s)", Needs::Velocity, &|_, v, e| {
+            output::within(v.d, e.at(1, 1))
+        }),
+        ("α3 (rad/s²)", Needs::Acceleration, &|_, a, e| {
+            output::within(a.theta3, e.at(2, 0))
+        }),
+        ("d̈ (mm/s²)", Needs::Acceleration, &|_, a, e| {
+            output::within(a.d, e.at(2, 1))
+        }),
+        ("mech. advantage F/T (1/mm)", Needs::Velocity, &|q, v, e| {
+            advantage_within(linkage.mechanical_advantage(theta2, q), v.d, e.at(1, 1))
         }),
     ];
     table(&rows, &branches(&open, &crossed));
@@ -552,11 +730,26 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
 fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String> {
     let [l1, l2, c, gamma] = linkage.dimensions();
     let theta2 = angle::radians(args.at);
+    let sizes = Sizes {
+        lengths: vec![l1, l2, c],
+        angles: &[true, false],
+        newton: false,
+        rate: args.rate,
+        accel: args.accel,
+    };
     let solve = |branch| {
         Solved::new(
             linkage.assemble(theta2, branch),
             |q| linkage.velocity(theta2, q, args.rate),
             |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
+            |q, v, a| {
+                sizes.errors(
+                    linkage.condition(theta2, q),
+                    linkage.jacobian(theta2, q),
+                    v.map(|v| v.to_array()),
+                    a.map(|a| a.to_array()),
+                )
+            },
         )
     };
     let (open, crossed) = (solve(Branch::Open), solve(Branch::Crossed));
@@ -581,16 +774,30 @@ fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String
         tidy(args.accel)
     );
     let rows: [Row<mechanisms::InvertedSliderCrankUnknowns<f64>>; 7] = [
-        ("θ4 (°)", Needs::Position, &|q, _| angle(q.theta4)),
-        ("b (mm)", Needs::Position, &|q, _| value(q.b)),
-        ("ω4 (rad/s)", Needs::Velocity, &|_, v| value(v.theta4)),
-        ("ḃ (mm/s)", Needs::Velocity, &|_, v| value(v.b)),
-        ("α4 (rad/s²)", Needs::Acceleration, &|_, a| {
-            value(a.theta4)
+        ("θ4 (°)", Needs::Position, &|q, _, e| {
+            output::degrees_within(q.theta4, e.at(0, 0))
         }),
-        ("b̈ (mm/s²)", Needs::Acceleration, &|_, a| value(a.b)),
-        ("mechanical advantage T4/T2", Needs::Velocity, &|q, _| {
-            advantage(linkage.mechanical_advantage(theta2, q))
+        ("b (mm)", Needs::Position, &|q, _, e| {
+            output::within(q.b, e.at(0, 1))
+        }),
+        ("ω4 (rad/s)", Needs::Velocity, &|_, v, e| {
+            output::within(v.theta4, e.at(1, 0))
+        }),
+        ("ḃ (mm/s)", Needs::Velocity, &|_, v, e| {
+            output::within(v.b, e.at(1, 1))
+        }),
+        ("α4 (rad/s²)", Needs::Acceleration, &|_, a, e| {
+            output::within(a.theta4, e.at(2, 0))
+        }),
+        ("b̈ (mm/s²)", Needs::Acceleration, &|_, a, e| {
+            output::within(a.b, e.at(2, 1))
+        }),
+        ("mechanical advantage T4/T2", Needs::Velocity, &|q, v, e| {
+            advantage_within(
+                linkage.mechanical_advantage(theta2, q),
+                v.theta4,
+                e.at(1, 0),
+            )
         }),
     ];
     table(&rows, &branches(&open, &crossed));
@@ -628,22 +835,48 @@ fn jansen(args: &Args) -> Result<(), String> {
         tidy(args.rate),
         tidy(args.accel)
     );
-    say!("  foot position      ({:.4}, {:.4}) mm", p.foot.x, p.foot.y);
-    say!(
-        "  foot velocity      ({:.4}, {:.4}) mm/s",
-        v.foot.x,
-        v.foot.y
-    );
-    say!(
-        "  foot acceleration  ({:.4}, {:.4}) mm/s²",
-        a.foot.x,
-        a.foot.y
-    );
+    // The foot hangs from every unknown angle in turn, each off by at most its order's
+    // error relative to the sizes the motion's accuracy is stated against (the leg's size,
+    // the sum of its lengths, times the crank's rate, or its square and acceleration, or the
+    // unknowns' rates weighted by the size, more than their columns): the foot by that many
+    // times over, doubled.
+    let size: f64 = [
+        38.0, 41.5, 39.3, 40.1, 55.8, 39.4, 36.7, 65.7, 49.0, 50.0, 61.9, 7.8, 15.0,
+    ]
+    .iter()
+    .sum();
+    let weighted = |values: &[f64]| -> f64 { values.iter().map(|x| x.abs()).sum::<f64>() * size };
+    let scales = [
+        size,
+        size * args.rate.abs() + weighted(&m.velocity.to_array()),
+        size * (args.rate * args.rate + args.accel.abs()) + weighted(&m.acceleration.to_array()),
+    ];
+    let accuracy = [
+        m.accuracy.position,
+        m.accuracy.velocity,
+        m.accuracy.acceleration,
+    ];
+    let unknowns = m.position.to_array().len() as f64;
+    let error = |k: usize| 2.0 * unknowns * accuracy[k] * scales[k];
+    for (k, (what, unit, value)) in [
+        ("position    ", "mm", p.foot),
+        ("velocity    ", "mm/s", v.foot),
+        ("acceleration", "mm/s²", a.foot),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        say!(
+            "  foot {what} ({}, {}) {unit}",
+            output::within(value.x, error(k)),
+            output::within(value.y, error(k))
+        );
+    }
     Ok(())
 }
 
 /// A [`Row`] that owns its label and text.
-type OwnedRow<U> = (String, Needs, Box<dyn Fn(&U, &U) -> String>);
+type OwnedRow<U> = (String, Needs, Box<dyn Fn(&U, &U, &Errors) -> String>);
 
 /// The four angles, rates and accelerations of a six-bar's unknowns, as table rows.
 fn six_bar_rows<U: 'static>(array: fn(&U) -> [f64; 4]) -> Vec<OwnedRow<U>> {
@@ -652,24 +885,36 @@ fn six_bar_rows<U: 'static>(array: fn(&U) -> [f64; 4]) -> Vec<OwnedRow<U>> {
         rows.push((
             format!("θ{n} (°)"),
             Needs::Position,
-            Box::new(move |q, _| angle(array(q)[k])),
+            Box::new(move |q, _, e| output::degrees_within(array(q)[k], e.at(0, k))),
         ));
     }
     for (k, n) in [3, 4, 5, 6].into_iter().enumerate() {
         rows.push((
             format!("ω{n} (rad/s)"),
             Needs::Velocity,
-            Box::new(move |_, v| value(array(v)[k])),
+            Box::new(move |_, v, e| output::within(array(v)[k], e.at(1, k))),
         ));
     }
     for (k, n) in [3, 4, 5, 6].into_iter().enumerate() {
         rows.push((
             format!("α{n} (rad/s²)"),
             Needs::Acceleration,
-            Box::new(move |_, a| value(array(a)[k])),
+            Box::new(move |_, a, e| output::within(array(a)[k], e.at(2, k))),
         ));
     }
     rows
+}
+
+/// A six-bar's lengths from its ten dimensions as the program takes them: every length and
+/// the pivot's distance, but the angle at `angle` (degrees).
+fn six_bar_lengths(d: &[f64], angle: usize) -> Vec<f64> {
+    d[..8]
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| *k != angle)
+        .map(|(_, l)| *l)
+        .chain([d[8].hypot(d[9])])
+        .collect()
 }
 
 /// A Watt six-bar: each of the four branch pairs (one branch per loop), in closed form.
@@ -682,6 +927,13 @@ fn watt(args: &Args, linkage: mechanisms::WattSixBar<f64>) -> Result<(), String>
         [Branch::Crossed, Branch::Open],
         [Branch::Crossed, Branch::Crossed],
     ];
+    let sizes = Sizes {
+        lengths: six_bar_lengths(d, 5),
+        angles: &[true; 4],
+        newton: false,
+        rate: args.rate,
+        accel: args.accel,
+    };
     let solved: Vec<Solved<WattSixBarUnknowns<f64>>> = pairs
         .iter()
         .map(|&pair| {
@@ -689,6 +941,14 @@ fn watt(args: &Args, linkage: mechanisms::WattSixBar<f64>) -> Result<(), String>
                 linkage.assemble(theta2, pair),
                 |q| linkage.velocity(theta2, q, args.rate),
                 |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
+                |q, v, a| {
+                    sizes.errors(
+                        linkage.condition(theta2, q),
+                        linkage.jacobian(theta2, q),
+                        v.map(|v| v.to_array()),
+                        a.map(|a| a.to_array()),
+                    )
+                },
             )
         })
         .collect();
@@ -770,6 +1030,13 @@ fn stephenson(args: &Args, linkage: StephensonSixBar<f64>) -> Result<(), String>
             "assemblies"
         }
     );
+    let sizes = Sizes {
+        lengths: six_bar_lengths(d, 5),
+        angles: &[true; 4],
+        newton: true,
+        rate: args.rate,
+        accel: args.accel,
+    };
     let solved: Vec<Solved<StephensonSixBarUnknowns<f64>>> = found
         .iter()
         .map(|&q| {
@@ -777,6 +1044,14 @@ fn stephenson(args: &Args, linkage: StephensonSixBar<f64>) -> Result<(), String>
                 Ok(q),
                 |q| linkage.velocity(theta2, q, args.rate),
                 |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
+                |q, v, a| {
+                    sizes.errors(
+                        linkage.condition(theta2, q),
+                        linkage.jacobian(theta2, q),
+                        v.map(|v| v.to_array()),
+                        a.map(|a| a.to_array()),
+                    )
+                },
             )
         })
         .collect();

@@ -176,9 +176,99 @@ pub fn degrees(radians: f64, decimals: usize) -> String {
     }
 }
 
+/// `value` to the digits its error `bound` (absolute, in its units) leaves, so that no
+/// printed digit is noise: as [`figure`] writes it (4 decimals, or 5 significant digits in
+/// exponent form below 1e-3 and from 1e9) where the bound is below the last of those, else
+/// to the last digit whose half unit covers the bound (`-183512.4`, `-4.5540e8`); zero
+/// where the bound is as large as the value itself (`0 (±b)` where the bound shows at 4
+/// decimals), and `undetermined` for an unbounded error.
+pub fn within(value: f64, bound: f64) -> String {
+    if !value.is_finite() {
+        return "not finite".into();
+    }
+    if bound.is_nan() || bound.is_infinite() {
+        return "undetermined".into();
+    }
+    let bound = bound.max(0.0);
+    let magnitude = value.abs();
+    if magnitude <= bound && bound > 0.0 {
+        // Zero to the 4 decimals printed, or to the bound where that is coarser.
+        return if bound < 0.5e-4 {
+            fixed(0.0, 4)
+        } else {
+            format!("0 (±{})", significant(bound, 1))
+        };
+    }
+    let moderate = magnitude == 0.0 || (1e-3..1e9).contains(&magnitude);
+    if moderate && bound < 0.5e-4 {
+        return fixed(value, 4);
+    }
+    if moderate && bound < 0.5 {
+        // The most decimals whose last digit's half unit still covers the bound.
+        let decimals = (-(2.0 * bound).log10()).floor().clamp(0.0, 4.0) as usize;
+        return fixed(value, decimals);
+    }
+    if bound == 0.0 {
+        return figure(value);
+    }
+    // Significant digits: the last one's half unit covers the bound; 1 to 5.
+    let exponent = magnitude.log10().floor();
+    let digits = (exponent + 1.0 - (2.0 * bound).log10())
+        .floor()
+        .clamp(1.0, 5.0) as usize;
+    format!("{value:.precision$e}", precision = digits - 1)
+}
+
+/// An angle (radians) in degrees in [0, 360), to the decimals its error `bound` (radians)
+/// leaves, at most 4 (see [`within`]).
+pub fn degrees_within(radians: f64, bound: f64) -> String {
+    if !radians.is_finite() {
+        return "not finite".into();
+    }
+    let bound = bound.to_degrees();
+    if bound.is_nan() || bound.is_infinite() || bound >= 90.0 {
+        return "undetermined".into();
+    }
+    let decimals = if bound < 0.5e-4 {
+        4
+    } else {
+        (-(2.0 * bound).log10()).floor().clamp(0.0, 4.0) as usize
+    };
+    degrees(radians, decimals)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// No digit past what the error leaves: the review's near-toggle rate (true −183512.4172,
+    /// printed −183512.4111: off by 6e-3) and mechanical advantage (true −455397458, off by 60), a robot's
+    /// velocity at 1e300 that is rounding (4.46e284 where the truth is 0, within 1e286), and
+    /// ordinary values as before.
+    #[test]
+    fn values_print_to_the_digits_their_errors_leave() {
+        assert_eq!(within(-183512.4111, 6e-3), "-183512.4");
+        assert_eq!(within(-183512.4111, 4e-3), "-183512.41");
+        assert_eq!(within(-183512.4111, 0.04), "-183512.4");
+        assert_eq!(within(-455397513.1023, 60.0), "-4.5540e8");
+        assert_eq!(within(-1.8420e13, 5.5e9), "-1.84e13");
+        assert_eq!(within(4.4611e284, 1e286), "0 (±1e286)");
+        assert_eq!(within(-1.0000e300, 1e286), "-1.0000e300");
+        assert_eq!(within(259.8076211, 1e-12), "259.8076");
+        assert_eq!(within(-6.3949e-14, 1e-12), "0.0000");
+        assert_eq!(within(-6.3949e-4, 1e-3), "0 (±0.001)");
+        assert_eq!(within(0.0, 1e-12), "0.0000");
+        assert_eq!(within(1.5e-7, 1e-20), "1.5000e-7");
+        assert_eq!(within(1.0, f64::INFINITY), "undetermined");
+        assert_eq!(within(f64::NAN, 1.0), "not finite");
+        assert_eq!(within(12.5, 0.0), "12.5000");
+        assert_eq!(degrees_within(0.5, 1e-12), "28.6479");
+        assert_eq!(degrees_within(8.7e-5, 5e-6), "0.005");
+        assert_eq!(degrees_within(8.7e-5, 1e-4), "0.0");
+        assert_eq!(degrees_within(-8.7e-5, 2e-5), "0.00");
+        assert_eq!(degrees_within(-8.7e-5, 2e-6), "359.995");
+        assert_eq!(degrees_within(-8.7e-5, 2e-3), "0");
+    }
 
     #[test]
     fn tidy_numbers_drop_binary_noise_and_long_digit_runs() {

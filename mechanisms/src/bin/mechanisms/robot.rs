@@ -75,16 +75,17 @@ pub fn run(args: &Args) -> Result<(), String> {
     let robot = FiveBar::new(l1, l2, l3, l4, l5).map_err(refused)?;
     say!(
         "five-bar robot: cranks {} and {} mm, distal links {} and {} mm, motors {} mm apart",
-        fixed(l1, 3),
-        fixed(l4, 3),
-        fixed(l2, 3),
-        fixed(l3, 3),
-        fixed(l5, 3)
+        output::tidy(l1),
+        output::tidy(l4),
+        output::tidy(l2),
+        output::tidy(l3),
+        output::tidy(l5)
     );
     match &args.point {
         Some(point) => inverse(&robot, pair("point", point)?),
         None => forward(
             &robot,
+            [l1, l2, l3, l4, l5],
             pair("cranks", &args.cranks)?.map(angle::radians),
             pair("rates", &args.rates)?,
             pair("accels", &args.accels)?,
@@ -95,6 +96,7 @@ pub fn run(args: &Args) -> Result<(), String> {
 /// Both working modes at the cranks' angles.
 fn forward(
     robot: &FiveBar<f64>,
+    lengths: [f64; 5],
     [t1, t4]: [f64; 2],
     [w1, w4]: [f64; 2],
     [a1, a4]: [f64; 2],
@@ -103,10 +105,10 @@ fn forward(
         "cranks at {}° and {}°, turning at {} and {} rad/s, accelerating at {} and {} rad/s²",
         fixed(t1.to_degrees(), 4),
         fixed(t4.to_degrees(), 4),
-        fixed(w1, 4),
-        fixed(w4, 4),
-        fixed(a1, 4),
-        fixed(a4, 4)
+        output::figure(w1),
+        output::figure(w4),
+        output::figure(a1),
+        output::figure(a4)
     );
     for (branch, name) in [
         (
@@ -118,22 +120,64 @@ fn forward(
         say!("");
         say!("{name}:");
         match robot.motion(t1, t4, branch, w1, w4, a1, a4) {
-            Ok(motion) => posture(robot, [t1, t4], [w1, w4], [a1, a4], &motion)?,
+            Ok(motion) => posture(robot, lengths, [t1, t4], [w1, w4], [a1, a4], &motion)?,
+            // The position (and the velocity) may stand where the acceleration cannot (rates
+            // whose squares leave the float's range): each order as far as it goes.
+            Err(error @ (Error::Inaccurate { .. } | Error::NonFinite { .. })) => {
+                partial(robot, [t1, t4], [w1, w4], branch, error)?
+            }
             Err(error) => say!("  {}", explained(error)),
         }
     }
     Ok(())
 }
 
+/// What the end effector's position, velocity and acceleration may each be off by, from
+/// the accuracy the motion states (`mechgen::Motion::accuracy`, relative to the sizes the
+/// contract measures by: the robot's size, times the input rates or their squares and
+/// accelerations, or the unknowns' weighted rates where larger). The point hangs from two
+/// unknown angles, each off by its order's error over its link, moving the point by that
+/// error at most: twice the order's error, doubled again for the sizes' approximation.
+fn point_errors(
+    [l1, l2, l3, l4, l5]: [f64; 5],
+    [w1, w4]: [f64; 2],
+    [a1, a4]: [f64; 2],
+    motion: &mechgen::Motion<FiveBarUnknowns<f64>, f64>,
+) -> [f64; 3] {
+    let size = l1 + l2 + l3 + l4 + l5;
+    let (v, a) = (&motion.velocity, &motion.acceleration);
+    let links = [l2, l3];
+    let speeds = [v.theta2, v.theta3];
+    let spins = [a.theta2, a.theta3];
+    let weighted =
+        |values: [f64; 2]| -> f64 { values.iter().zip(links).map(|(x, l)| x.abs() * l).sum() };
+    let scales = [
+        size,
+        size * (w1.abs() + w4.abs()) + weighted(speeds),
+        size * (w1 * w1 + w4 * w4 + a1.abs() + a4.abs())
+            + weighted(spins)
+            + weighted(speeds.map(|w| w * w)),
+    ];
+    let accuracy = motion.accuracy;
+    let relative = [accuracy.position, accuracy.velocity, accuracy.acceleration];
+    core::array::from_fn(|k| 4.0 * relative[k] * scales[k])
+}
+
 /// One posture's end effector, its motion and its distance from singularities.
 fn posture(
     robot: &FiveBar<f64>,
+    lengths: [f64; 5],
     [t1, t4]: [f64; 2],
     [w1, w4]: [f64; 2],
     [a1, a4]: [f64; 2],
     motion: &mechgen::Motion<FiveBarUnknowns<f64>, f64>,
 ) -> Result<(), String> {
     let (q, v, a) = (&motion.position, &motion.velocity, &motion.acceleration);
+    let [position_error, velocity_error, acceleration_error] =
+        point_errors(lengths, [w1, w4], [a1, a4], motion);
+    // Each distal angle off by the position's error over its link (the size's share).
+    let size: f64 = lengths.iter().sum();
+    let angle_error = |link: f64| 2.0 * motion.accuracy.position * size / link;
     let p = robot
         .points(t1, t4, q)
         .map_err(|e| output::error(&e))?
@@ -148,25 +192,81 @@ fn posture(
         .end_effector;
     say!(
         "  distal links at θ2 = {}°, θ3 = {}°",
+        signed_degrees(q.theta2, angle_error(lengths[1])),
+        signed_degrees(q.theta3, angle_error(lengths[2]))
+    );
+    say!(
+        "  end effector P = ({}, {}) mm",
+        output::within(p.x, position_error),
+        output::within(p.y, position_error)
+    );
+    say!(
+        "  velocity = ({}, {}) mm/s",
+        output::within(p_dot.x, velocity_error),
+        output::within(p_dot.y, velocity_error)
+    );
+    say!(
+        "  acceleration = ({}, {}) mm/s²",
+        output::within(p_ddot.x, acceleration_error),
+        output::within(p_ddot.y, acceleration_error)
+    );
+    let near = robot.singularities(t1, t4, q);
+    say!(
+        "  singularities (1 far, 0 at one): parallel {}, serial left {}, serial right {}",
+        fixed(near.parallel, 4),
+        fixed(near.serial[0], 4),
+        fixed(near.serial[1], 4)
+    );
+    Ok(())
+}
+
+/// A posture whose motion as a whole failed for a rate or acceleration: its position, its
+/// velocity if that can be had, and why the rest cannot.
+fn partial(
+    robot: &FiveBar<f64>,
+    [t1, t4]: [f64; 2],
+    [w1, w4]: [f64; 2],
+    branch: Branch,
+    failure: Error<f64>,
+) -> Result<(), String> {
+    let q = match robot.assemble(t1, t4, branch) {
+        Ok(q) => q,
+        Err(error) => {
+            say!("  {}", explained(error));
+            return Ok(());
+        }
+    };
+    let p = robot
+        .points(t1, t4, &q)
+        .map_err(|e| output::error(&e))?
+        .end_effector;
+    say!(
+        "  distal links at θ2 = {}°, θ3 = {}°",
         fixed(q.theta2.to_degrees(), 4),
         fixed(q.theta3.to_degrees(), 4)
     );
     say!(
         "  end effector P = ({}, {}) mm",
-        fixed(p.x, 4),
-        fixed(p.y, 4)
+        output::figure(p.x),
+        output::figure(p.y)
     );
-    say!(
-        "  velocity = ({}, {}) mm/s",
-        fixed(p_dot.x, 4),
-        fixed(p_dot.y, 4)
-    );
-    say!(
-        "  acceleration = ({}, {}) mm/s²",
-        fixed(p_ddot.x, 4),
-        fixed(p_ddot.y, 4)
-    );
-    let near = robot.singularities(t1, t4, q);
+    let velocity = robot.velocity(t1, t4, &q, w1, w4).and_then(|v| {
+        robot
+            .point_velocities(t1, t4, &q, w1, w4, &v)
+            .map(|points| points.end_effector)
+    });
+    match velocity {
+        Ok(p_dot) => {
+            say!(
+                "  velocity = ({}, {}) mm/s",
+                output::figure(p_dot.x),
+                output::figure(p_dot.y)
+            );
+            say!("  acceleration: {}", explained(failure));
+        }
+        Err(error) => say!("  velocity and acceleration: {}", explained(error)),
+    }
+    let near = robot.singularities(t1, t4, &q);
     say!(
         "  singularities (1 far, 0 at one): parallel {}, serial left {}, serial right {}",
         fixed(near.parallel, 4),
@@ -179,7 +279,7 @@ fn posture(
 /// Each elbow choice's cranks for the point, and the working mode that reaches it.
 fn inverse(robot: &FiveBar<f64>, [x, y]: [f64; 2]) -> Result<(), String> {
     let p = Vec2 { x, y };
-    say!("point ({}, {}) mm", fixed(x, 4), fixed(y, 4));
+    say!("point ({}, {}) mm", output::figure(x), output::figure(y));
     if !robot.reaches(p) {
         say!("outside the workspace: beyond one leg's reach, or too near its motor");
         return Ok(());
@@ -226,5 +326,18 @@ fn explained(error: Error<f64>) -> String {
                 .to_string()
         }
         other => output::error(&other),
+    }
+}
+
+/// An angle in degrees in (−180°, 180°], as the distal links' are reported, to the decimals
+/// its error (radians) leaves, at most 4.
+fn signed_degrees(radians: f64, error: f64) -> String {
+    let text = output::degrees_within(radians, error);
+    match text.parse::<f64>() {
+        Ok(degrees) if degrees > 180.0 => {
+            let decimals = text.split('.').nth(1).map_or(0, str::len);
+            output::fixed(degrees - 360.0, decimals)
+        }
+        _ => text,
     }
 }
