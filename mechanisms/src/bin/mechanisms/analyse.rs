@@ -303,7 +303,10 @@ fn advantage_within(
     driven_error: f64,
 ) -> String {
     match ma {
-        Ok(MechanicalAdvantage::Finite(_)) if !(driven_error < driven_rate.abs()) => {
+        // Not less (a NaN error is not either).
+        Ok(MechanicalAdvantage::Finite(_))
+            if driven_error.partial_cmp(&driven_rate.abs()) != Some(core::cmp::Ordering::Less) =>
+        {
             "undetermined".into()
         }
         Ok(MechanicalAdvantage::Finite(v)) => {
