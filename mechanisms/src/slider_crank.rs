@@ -250,7 +250,9 @@ impl<T: Real> SliderCrank<T> {
 
     /// The ideal mechanical advantage at a position, slider force over crank torque:
     /// `F/T2 = ω2/ḋ` (per unit length), from the generated velocity. Unbounded at a dead
-    /// centre (`ḋ = 0`).
+    /// centre (`ḋ = 0` to rounding of the size times `ω2`: a slider's speed is a length's,
+    /// compared with the linkage's, so that a slider-crank of 1e-300 has its finite
+    /// advantage of some 1e300 per unit length, not "unbounded").
     ///
     /// ```
     /// use mechanisms::SliderCrank;
@@ -258,6 +260,14 @@ impl<T: Real> SliderCrank<T> {
     /// let linkage = SliderCrank::new(50.0, 150.0, 0.0)?;
     /// let q = linkage.assemble(0.0, Branch::Open)?;
     /// assert_eq!(linkage.mechanical_advantage(0.0, &q)?, MechanicalAdvantage::Unbounded);
+    /// // The same linkage 1e-302 times the size: an advantage 1e302 times larger.
+    /// let tiny = SliderCrank::new(50e-302f64, 150e-302, 0.0)?;
+    /// let (ordinary, small) = (linkage.assemble(1.0, Branch::Open)?, tiny.assemble(1.0, Branch::Open)?);
+    /// let [a, b] = [
+    ///     linkage.mechanical_advantage(1.0, &ordinary)?.finite().unwrap(),
+    ///     tiny.mechanical_advantage(1.0, &small)?.finite().unwrap(),
+    /// ];
+    /// assert!((b / a / 1e302 - 1.0).abs() < 1e-12);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn mechanical_advantage(
@@ -266,7 +276,20 @@ impl<T: Real> SliderCrank<T> {
         position: &SliderCrankUnknowns<T>,
     ) -> Result<MechanicalAdvantage<T>, Error<T>> {
         let rates = self.velocity(theta2, position, T::one())?;
-        MechanicalAdvantage::from_rates(T::one(), rates.d)
+        // `size/ḋ`, whose test of a stationary output is against the size, then per unit
+        // length again.
+        let size = self.l2.abs() + self.l3.abs() + self.c.abs();
+        Ok(match MechanicalAdvantage::from_rates(size, rates.d)? {
+            MechanicalAdvantage::Finite(ratio) => {
+                let per_length = ratio / size;
+                if per_length.is_finite() {
+                    MechanicalAdvantage::Finite(per_length)
+                } else {
+                    MechanicalAdvantage::Unbounded
+                }
+            }
+            unbounded => unbounded,
+        })
     }
 }
 

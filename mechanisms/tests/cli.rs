@@ -1833,9 +1833,10 @@ fn tolerance_says_where_first_order_and_the_nonlinear_model_part() {
 /// rates and the mechanical advantage lose digits (the review's: ω3 printed −183512.4111
 /// where it is −183512.4172; the advantage −455397513.1023 where it is −455397458.18), a
 /// value that is rounding prints as zero within its error (a robot's velocity of 4e284 at
-/// 1e300 mm whose truth is 0), and an advantage whose driven rate is rounding (a
-/// slider-crank with its rod as long as its crank, on the branch where the slider stands
-/// still) is undetermined, not −1.4e14.
+/// 1e300 mm whose truth is 0), and an advantage whose driven rate is rounding of the size
+/// (a slider-crank with its rod as long as its crank, on the branch where the slider stands
+/// still) is unbounded, not −1.4e14; a slider-crank of 1e-300 mm has its finite advantage
+/// of 1e300 per mm, not "unbounded".
 #[test]
 fn values_print_only_the_digits_their_accuracy_leaves() {
     let near = stdout_of(&[
@@ -1873,8 +1874,13 @@ fn values_print_only_the_digits_their_accuracy_leaves() {
     );
     let still = stdout_of(&["analyse", "slider-crank", "40", "40", "0", "--at", "60"]);
     assert!(
-        row(&still, "mech. advantage").ends_with("undetermined"),
+        row(&still, "mech. advantage").ends_with("unbounded"),
         "{still}"
+    );
+    let tiny = stdout_of(&["analyse", "slider-crank", "1e-300", "3e-300", "1e-300"]);
+    assert!(
+        row(&tiny, "mech. advantage").contains("-1.1853e300"),
+        "{tiny}"
     );
     let huge = stdout_of(&["robot", "1e300", "2e300", "2e300", "1e300", "1e300"]);
     assert!(

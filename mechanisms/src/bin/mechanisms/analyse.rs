@@ -225,12 +225,20 @@ impl Sizes {
         // float's largest (a size of 4e308 is no number).
         let unit = self.lengths.iter().fold(0.0f64, |m, l| m.max(l.abs()));
         let size = self.lengths.iter().map(|l| l.abs() / unit).sum::<f64>();
+        // Each column's norm scaled by its own largest entry (a length's column, a
+        // direction, is 1/unit long here: 1e300 for a linkage of 1e-300, whose square is no
+        // number).
         let columns: [f64; N] = core::array::from_fn(|j| {
-            jacobian
+            let largest = jacobian.iter().fold(0.0f64, |m, row| m.max(row[j].abs()));
+            if largest == 0.0 {
+                return 0.0;
+            }
+            let norm = jacobian
                 .iter()
-                .map(|row| (row[j] / unit) * (row[j] / unit))
+                .map(|row| (row[j] / largest) * (row[j] / largest))
                 .sum::<f64>()
-                .sqrt()
+                .sqrt();
+            largest / unit * norm
         });
         let shortest = columns
             .iter()
