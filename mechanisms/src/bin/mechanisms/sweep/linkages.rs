@@ -64,7 +64,7 @@ pub(super) fn four_bar(args: &Args) -> Result<Sweep<'_>, String> {
         pieces: four_bar_pieces(&linkage),
         change_points: four_bar_change_points(&linkage),
         sample: Box::new(move |input, flipped| {
-            let t = input.to_radians();
+            let t = crate::angle::radians(input);
             let on = if flipped { on.other() } else { on };
             let m = linkage.motion(t, on, rate, accel)?;
             let p = linkage.points(t, &m.position)?;
@@ -134,7 +134,7 @@ pub(super) fn slider_crank(args: &Args) -> Result<Sweep<'_>, String> {
         pieces: slider_crank_pieces(&linkage),
         change_points: slider_crank_change_points(&linkage),
         sample: Box::new(move |input, flipped| {
-            let t = input.to_radians();
+            let t = crate::angle::radians(input);
             let on = if flipped { on.other() } else { on };
             let m = linkage.motion(t, on, rate, accel)?;
             let p = linkage.points(t, &m.position)?;
@@ -190,7 +190,7 @@ pub(super) fn inverted(args: &Args) -> Result<Sweep<'_>, String> {
         pieces: inverted_pieces(&linkage),
         change_points: inverted_change_points(&linkage),
         sample: Box::new(move |input, flipped| {
-            let t = input.to_radians();
+            let t = crate::angle::radians(input);
             let on = if flipped { on.other() } else { on };
             let m = linkage.motion(t, on, rate, accel)?;
             let p = linkage.points(t, &m.position)?;
@@ -245,7 +245,7 @@ pub(super) fn jansen(args: &Args) -> Result<Sweep<'_>, String> {
         pieces: vec![Piece::full_turn()],
         change_points: Vec::new(),
         sample: Box::new(move |input, _| {
-            let t = input.to_radians();
+            let t = crate::angle::radians(input);
             let m = leg.motion(t, JansenLeg::<f64>::DRAWN, rate, accel)?;
             let p = leg.points(t, &m.position)?;
             let v = leg.point_velocities(t, &m.position, rate, &m.velocity)?;

@@ -78,7 +78,7 @@ pub(super) fn watt(args: &Args) -> Result<Sweep<'_>, String> {
         pieces,
         change_points: Vec::new(),
         sample: Box::new(move |input, _| {
-            let t = input.to_radians();
+            let t = crate::angle::radians(input);
             let m = linkage.motion(t, on, rate, accel)?;
             let p = linkage.points(t, &m.position)?;
             Ok(Sample {
@@ -161,7 +161,7 @@ pub(super) fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
     let dimensions = StephensonDimensions::new(d);
     let Some((start, position)) = (0..360).find_map(|degree| {
         let input = f64::from(degree);
-        six_bars::stephenson_assemblies(&linkage, &dimensions, input.to_radians())
+        six_bars::stephenson_assemblies(&linkage, &dimensions, crate::angle::radians(input))
             .first()
             .map(|q| (input, q.to_array()))
     }) else {
@@ -236,7 +236,7 @@ pub(super) fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
         pieces: vec![piece],
         change_points: Vec::new(),
         sample: Box::new(move |input, _| {
-            let t = input.to_radians();
+            let t = crate::angle::radians(input);
             let distance = t - last.0;
             let q = if distance == 0.0 {
                 last.1
