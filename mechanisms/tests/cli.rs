@@ -1892,6 +1892,37 @@ fn values_print_only_the_digits_their_accuracy_leaves() {
     assert!(row(&example, "ω4 (rad/s)").contains("4.2923"), "{example}");
 }
 
+/// 360° is 0°, in a sweep as everywhere: an inverted slider-crank's change point at 0° is
+/// singular at both ends of the turn (360° was 2π rounded, "inaccurate, error inf").
+#[test]
+fn a_sweep_ends_where_it_began() {
+    let scratch = Scratch::new("turn");
+    std::fs::create_dir_all(&scratch.0).unwrap();
+    let report = stdout_of(&[
+        "sweep",
+        "inverted-slider-crank",
+        "100",
+        "100",
+        "0",
+        "0",
+        "--step",
+        "0.5",
+        "--out-dir",
+        scratch.0.to_str().unwrap(),
+    ]);
+    assert!(report.contains("at 0° singular, 360° singular"), "{report}");
+    // Two outputs to one file: refused before anything is written.
+    let same = scratch.0.join("same.x");
+    let same = same.to_str().unwrap();
+    fails_with(
+        &[
+            "sweep", "four-bar", "100", "40", "120", "80", "--csv", same, "--svg", same,
+        ],
+        "--csv and --svg both write",
+    );
+    assert!(!std::path::Path::new(same).exists());
+}
+
 /// A Watt six-bar whose second pivot is 1e200 mm away cannot be assembled, and says so (its
 /// short links' squares underflowed in the second loop, and it said "singular"); dimensions
 /// below the float's normal range are refused, whatever the command.
