@@ -146,6 +146,27 @@ pub fn run(args: &Args) -> Result<(), String> {
     }
 }
 
+/// [`Solved::new`] for a generated mechanism at `theta2`: `position`, then the generated
+/// velocity and acceleration at the args' rates, and the errors from the generated condition
+/// and Jacobian (every generated mechanism names them alike).
+macro_rules! solved {
+    ($linkage:expr, $theta2:expr, $args:expr, $sizes:expr, $position:expr) => {
+        Solved::new(
+            $position,
+            |q| $linkage.velocity($theta2, q, $args.rate),
+            |q, v| $linkage.acceleration($theta2, q, $args.rate, v, $args.accel),
+            |q, v, a| {
+                $sizes.errors(
+                    $linkage.condition($theta2, q),
+                    $linkage.jacobian($theta2, q),
+                    v.map(|v| v.to_array()),
+                    a.map(|a| a.to_array()),
+                )
+            },
+        )
+    };
+}
+
 /// What could be computed on one branch, order by order, or why not: a later order fails
 /// where an earlier one did; and what each value may be off by.
 struct Solved<U> {
@@ -497,18 +518,12 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
         accel: args.accel,
     };
     let solve = |branch| {
-        Solved::new(
-            linkage.assemble(theta2, branch),
-            |q| linkage.velocity(theta2, q, args.rate),
-            |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
-            |q, v, a| {
-                sizes.errors(
-                    linkage.condition(theta2, q),
-                    linkage.jacobian(theta2, q),
-                    v.map(|v| v.to_array()),
-                    a.map(|a| a.to_array()),
-                )
-            },
+        solved!(
+            linkage,
+            theta2,
+            args,
+            sizes,
+            linkage.assemble(theta2, branch)
         )
     };
     let (open, crossed) = (solve(Branch::Open), solve(Branch::Crossed));
@@ -654,18 +669,12 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
         accel: args.accel,
     };
     let solve = |branch| {
-        Solved::new(
-            linkage.assemble(theta2, branch),
-            |q| linkage.velocity(theta2, q, args.rate),
-            |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
-            |q, v, a| {
-                sizes.errors(
-                    linkage.condition(theta2, q),
-                    linkage.jacobian(theta2, q),
-                    v.map(|v| v.to_array()),
-                    a.map(|a| a.to_array()),
-                )
-            },
+        solved!(
+            linkage,
+            theta2,
+            args,
+            sizes,
+            linkage.assemble(theta2, branch)
         )
     };
     let (open, crossed) = (solve(Branch::Open), solve(Branch::Crossed));
@@ -749,18 +758,12 @@ fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String
         accel: args.accel,
     };
     let solve = |branch| {
-        Solved::new(
-            linkage.assemble(theta2, branch),
-            |q| linkage.velocity(theta2, q, args.rate),
-            |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
-            |q, v, a| {
-                sizes.errors(
-                    linkage.condition(theta2, q),
-                    linkage.jacobian(theta2, q),
-                    v.map(|v| v.to_array()),
-                    a.map(|a| a.to_array()),
-                )
-            },
+        solved!(
+            linkage,
+            theta2,
+            args,
+            sizes,
+            linkage.assemble(theta2, branch)
         )
     };
     let (open, crossed) = (solve(Branch::Open), solve(Branch::Crossed));
@@ -947,21 +950,7 @@ fn watt(args: &Args, linkage: mechanisms::WattSixBar<f64>) -> Result<(), String>
     };
     let solved: Vec<Solved<WattSixBarUnknowns<f64>>> = pairs
         .iter()
-        .map(|&pair| {
-            Solved::new(
-                linkage.assemble(theta2, pair),
-                |q| linkage.velocity(theta2, q, args.rate),
-                |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
-                |q, v, a| {
-                    sizes.errors(
-                        linkage.condition(theta2, q),
-                        linkage.jacobian(theta2, q),
-                        v.map(|v| v.to_array()),
-                        a.map(|a| a.to_array()),
-                    )
-                },
-            )
-        })
+        .map(|&pair| solved!(linkage, theta2, args, sizes, linkage.assemble(theta2, pair)))
         .collect();
     say!(
         "{}",
@@ -1050,21 +1039,7 @@ fn stephenson(args: &Args, linkage: StephensonSixBar<f64>) -> Result<(), String>
     };
     let solved: Vec<Solved<StephensonSixBarUnknowns<f64>>> = found
         .iter()
-        .map(|&q| {
-            Solved::new(
-                Ok(q),
-                |q| linkage.velocity(theta2, q, args.rate),
-                |q, v| linkage.acceleration(theta2, q, args.rate, v, args.accel),
-                |q, v, a| {
-                    sizes.errors(
-                        linkage.condition(theta2, q),
-                        linkage.jacobian(theta2, q),
-                        v.map(|v| v.to_array()),
-                        a.map(|a| a.to_array()),
-                    )
-                },
-            )
-        })
+        .map(|&q| solved!(linkage, theta2, args, sizes, Ok(q)))
         .collect();
     let rows = six_bar_rows(|q: &StephensonSixBarUnknowns<f64>| q.to_array());
     let rows: Vec<Row<StephensonSixBarUnknowns<f64>>> = rows

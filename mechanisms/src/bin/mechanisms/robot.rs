@@ -210,13 +210,7 @@ fn posture(
         output::within(p_ddot.x, acceleration_error),
         output::within(p_ddot.y, acceleration_error)
     );
-    let near = robot.singularities(t1, t4, q);
-    say!(
-        "  singularities (1 far, 0 at one): parallel {}, serial left {}, serial right {}",
-        fixed(near.parallel, 4),
-        fixed(near.serial[0], 4),
-        fixed(near.serial[1], 4)
-    );
+    singularities(robot, [t1, t4], q);
     Ok(())
 }
 
@@ -266,14 +260,19 @@ fn partial(
         }
         Err(error) => say!("  velocity and acceleration: {}", explained(error)),
     }
-    let near = robot.singularities(t1, t4, &q);
+    singularities(robot, [t1, t4], &q);
+    Ok(())
+}
+
+/// How far a posture is from each singularity.
+fn singularities(robot: &FiveBar<f64>, [t1, t4]: [f64; 2], q: &FiveBarUnknowns<f64>) {
+    let near = robot.singularities(t1, t4, q);
     say!(
         "  singularities (1 far, 0 at one): parallel {}, serial left {}, serial right {}",
         fixed(near.parallel, 4),
         fixed(near.serial[0], 4),
         fixed(near.serial[1], 4)
     );
-    Ok(())
 }
 
 /// Each elbow choice's cranks for the point, and the working mode that reaches it.
