@@ -662,13 +662,60 @@ mod tests {
             length_and_own_direction(v(1e-170, 0.0), v(0.0, 1.0), v(1.0, 0.0), 1.0).map(|_| ()),
             Err(Failure::CannotClose)
         );
-        // A long link as long as the chord and a short one: they close, thin as it is.
-        let (_, _, d1, d2) = two_angles(v(-1.0, 0.0), v(1e-170, 0.0), v(1.0, 0.0), 1.0).unwrap();
-        let closure = v(-1.0, 0.0) + times(d1, v(1e-170, 0.0)) + times(d2, v(1.0, 0.0));
+        // A long link as long as the chord and a short one: they close, thin as it is. The
+        // short link stands across the chord, on the branch's side; the long one is turned
+        // off the chord by the short one's length, the other way.
+        for sign in [1.0, -1.0] {
+            let (_, _, d1, d2) =
+                two_angles(v(-1.0, 0.0), v(1e-170, 0.0), v(1.0, 0.0), sign).unwrap();
+            assert!(
+                (d1.x).abs() < 1e-15 && (d1.y - sign).abs() < 1e-15,
+                "{d1:?}"
+            );
+            assert!((d2.x - 1.0).abs() < 1e-15, "{d2:?}");
+            assert!((d2.y / (-sign * 1e-170) - 1.0).abs() < 1e-12, "{d2:?}");
+        }
+        // The same across a chord turned by 0.3 rad.
+        let (s, c) = 0.3f64.sin_cos();
+        let (_, _, d1, d2) = two_angles(v(-c, -s), v(1e-170, 0.0), v(1.0, 0.0), 1.0).unwrap();
         assert!(
-            closure.x.abs() < 1e-15 && closure.y.abs() < 1e-15,
-            "{closure:?}"
+            (d1.x + s).abs() < 1e-15 && (d1.y - c).abs() < 1e-15,
+            "{d1:?}"
         );
+        assert!(
+            (d2.x - c).abs() < 1e-15 && (d2.y - s).abs() < 1e-15,
+            "{d2:?}"
+        );
+    }
+
+    /// Tangencies, whose area is zero, take the thin triangle's path and come out exact: two
+    /// links stretched along the chord, and folded back along it.
+    #[test]
+    fn tangent_loops_close_along_their_chord() {
+        let (s, c) = 0.3f64.sin_cos();
+        let along = v(c, s);
+        let chord = |l: f64| v(-l * c, -l * s);
+        // Stretched: 1 + 2 = 3, both along the chord.
+        let (_, _, d1, d2) = two_angles(chord(3.0), v(1.0, 0.0), v(2.0, 0.0), 1.0).unwrap();
+        for d in [d1, d2] {
+            assert!(
+                (d.x - along.x).abs() < 1e-15 && (d.y - along.y).abs() < 1e-15,
+                "{d:?}"
+            );
+        }
+        // Folded: 3 forward, 2 back, 1 across.
+        let (_, _, d1, d2) = two_angles(chord(1.0), v(3.0, 0.0), v(2.0, 0.0), -1.0).unwrap();
+        assert!(
+            (d1.x - along.x).abs() < 1e-15 && (d1.y - along.y).abs() < 1e-15,
+            "{d1:?}"
+        );
+        assert!(
+            (d2.x + along.x).abs() < 1e-15 && (d2.y + along.y).abs() < 1e-15,
+            "{d2:?}"
+        );
+        // The other branch sign: a tangency has one solution.
+        let (_, _, e1, e2) = two_angles(chord(1.0), v(3.0, 0.0), v(2.0, 0.0), 1.0).unwrap();
+        assert_eq!((e1, e2), (d1, d2));
     }
 
     #[test]
