@@ -667,13 +667,26 @@ mod tests {
         // off the chord by the short one's length, the other way.
         for sign in [1.0, -1.0] {
             let (_, _, d1, d2) =
-                two_angles(v(-1.0, 0.0), v(1e-170, 0.0), v(1.0, 0.0), sign).unwrap();
+                two_angles(v(-1.5, 0.0), v(1e-170, 0.0), v(1.5, 0.0), sign).unwrap();
             assert!(
                 (d1.x).abs() < 1e-15 && (d1.y - sign).abs() < 1e-15,
                 "{d1:?}"
             );
             assert!((d2.x - 1.0).abs() < 1e-15, "{d2:?}");
-            assert!((d2.y / (-sign * 1e-170) - 1.0).abs() < 1e-12, "{d2:?}");
+            assert!(
+                (d2.y / (-sign * 1e-170 / 1.5) - 1.0).abs() < 1e-12,
+                "{d2:?}"
+            );
+        }
+        // Two equal long links folded over a chord 1e-170 long: they meet high above its
+        // middle, each leaning in by half the chord over its length.
+        for sign in [1.0, -1.0] {
+            let (_, _, d1, d2) =
+                two_angles(v(-1e-170, 0.0), v(1.5, 0.0), v(1.5, 0.0), sign).unwrap();
+            assert!((d1.x / (0.5e-170 / 1.5) - 1.0).abs() < 1e-12, "{d1:?}");
+            assert!((d1.y - sign).abs() < 1e-15, "{d1:?}");
+            assert!((d2.x / (0.5e-170 / 1.5) - 1.0).abs() < 1e-12, "{d2:?}");
+            assert!((d2.y + sign).abs() < 1e-15, "{d2:?}");
         }
         // The same across a chord turned by 0.3 rad.
         let (s, c) = 0.3f64.sin_cos();
