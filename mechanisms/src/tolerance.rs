@@ -588,6 +588,44 @@ mod tests {
         assert_eq!((sampled.assembled, sampled.failed), (1000, 0));
     }
 
+    /// A coupler point at the crank pin, off its angle from the coupler by 0.5 rad, with
+    /// every length toleranced: each corner's point is the perturbed linkage's crank pin plus
+    /// the signed distance along the coupler turned by 0.5 rad (a negative distance is the
+    /// point turned by π, not by some other angle), and the worst corner is the farthest.
+    #[test]
+    fn a_negative_distance_turns_the_point_by_a_half_turn() {
+        let (delta, t) = (0.5, 0.1);
+        let linkage = FourBar::new(180.0, 80.0, 200.0, 150.0)
+            .and_then(|l| l.with_coupler_point(0.0, delta))
+            .unwrap();
+        let theta2: f64 = 1.0;
+        let corners = linkage
+            .corners(theta2, Branch::Open, &FourBarTolerances::lengths(t))
+            .unwrap();
+        assert_eq!((corners.assembled, corners.failed), (32, 0));
+        let (s2, c2) = theta2.sin_cos();
+        let nominal = Vec2 {
+            x: 80.0 * c2,
+            y: 80.0 * s2,
+        };
+        let mut farthest = 0.0f64;
+        for corner in 0..32u32 {
+            let e: [f64; 5] = core::array::from_fn(|p| if corner & (1 << p) != 0 { -t } else { t });
+            let l = FourBar::new(180.0 + e[0], 80.0 + e[1], 200.0 + e[2], 150.0 + e[3]).unwrap();
+            let q = l.assemble(theta2, Branch::Open).unwrap();
+            let (s, c) = (q.theta3 + delta).sin_cos();
+            let point = Vec2 {
+                x: (80.0 + e[1]) * c2 + e[4] * c,
+                y: (80.0 + e[1]) * s2 + e[4] * s,
+            };
+            farthest = farthest.max((point.x - nominal.x).hypot(point.y - nominal.y));
+        }
+        assert!(
+            (corners.coupler_point_largest / farthest - 1.0).abs() < 1e-9,
+            "{corners:?} {farthest}"
+        );
+    }
+
     /// The root mean squares neither overflow nor underflow: a point moved by about 1e-302
     /// on a linkage of 1e-300, and by 1e298 on one of 1e300, as on one of 1 scaled.
     #[test]
