@@ -199,7 +199,16 @@ const CREEPING: u32 = 16;
 ///   [`Error::NoConvergence`]. Running out of iterations is decided the same way (a guess
 ///   that Kantorovich certifies reaches the floor in a handful of steps, so iterates still
 ///   outside every such ball after `max_iterations`, if that is at least 16, are pressing
-///   against a toggle as surely as stalled ones). `assembles()` is called only then.
+///   against a toggle as surely as stalled ones). `assembles()` is called only then;
+/// - where the closed forms cannot say, iterates that have turned an angle through more
+///   than a whole turn from the guess have run away from it (from a guess Kantorovich
+///   certifies they stay within twice its ball's radius, below 1 rad), as they do past a
+///   toggle: stagnation or the cap is then [`Error::CannotAssemble`].
+///
+/// Angles of the guess (the unknowns `keep_orientation` marks) beyond ±16 rad are first taken
+/// by whole turns to within `[−π, π]`: a float that large holds an angle only to its spacing,
+/// coarser than the rounding floor the tests read (a guess counting a thousand turns stalled
+/// above it, or stopped at an angle less accurate than stated).
 ///
 /// With `keep_orientation`, the Jacobian's orientation (the sign of its determinant) must be
 /// the same at the solution as at the guess, else [`Error::OtherBranch`]: for a single loop
@@ -228,9 +237,10 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         });
     }
     let kept: Orientation<N> = keep_orientation.into();
+    let angles = kept.angles();
     let rounding_floor = T::constant(16.0) * T::epsilon();
     let quarter = T::constant(0.25);
-    let mut x = guess;
+    let mut x = within_a_turn(guess, angles);
     let mut here = linearise(&x);
     // The residual as the tests read it: each loop's against its own rounding. Finite only
     // if every component is (the weights are positive), and zero only if each is. Carried
@@ -244,6 +254,8 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     // as for a guess that is already a solution) a default solve takes one more step, which
     // polishes the result rather than stopping short of what the float type allows.
     let mut previous_residual = T::infinity();
+    // How far each angle has turned from the guess, whole turns and all.
+    let mut travel = [T::zero(); N];
     loop {
         if !weighted.is_finite() || !here.scale.is_finite() {
             return Err(Error::NonFinite {
@@ -304,7 +316,9 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             return Err(match assembles() {
                 Some(true) => stalled,
                 Some(false) => Error::CannotAssemble { input },
-                None if iterations >= CREEPING && kantorovich(&here, condition()) > quarter => {
+                None if ran_away(&travel)
+                    || (iterations >= CREEPING && kantorovich(&here, condition()) > quarter) =>
+                {
                     Error::CannotAssemble { input }
                 }
                 None => stalled,
@@ -356,7 +370,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 return Err(match assembles() {
                     Some(true) => stalled,
                     Some(false) => Error::CannotAssemble { input },
-                    None if kantorovich(&here, condition()) > quarter => {
+                    None if ran_away(&travel) || kantorovich(&here, condition()) > quarter => {
                         Error::CannotAssemble { input }
                     }
                     None => stalled,
@@ -373,6 +387,11 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         here = there;
         weighted = there_weighted;
         iterations += 1;
+        for ((turned, d), &angle) in travel.iter_mut().zip(step).zip(&angles) {
+            if angle {
+                *turned = *turned - fraction * d;
+            }
+        }
     }
 }
 
@@ -394,7 +413,10 @@ pub fn same_sides<T: Real, const N: usize>(guess: [T; N], solution: [T; N]) -> b
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Orientation<const N: usize> {
     /// Any orientation at the solution.
-    Free,
+    Free {
+        /// Which unknowns are angles (the others lengths).
+        angles: [bool; N],
+    },
     /// The guess's orientation at the solution, unless the assemblies cannot be told apart.
     Kept {
         /// Which unknowns are angles (the others lengths).
@@ -407,12 +429,19 @@ impl<const N: usize> From<bool> for Orientation<N> {
         if keep {
             Orientation::Kept { angles: [true; N] }
         } else {
-            Orientation::Free
+            Orientation::Free { angles: [true; N] }
         }
     }
 }
 
 impl<const N: usize> Orientation<N> {
+    /// Which unknowns are angles.
+    fn angles(&self) -> [bool; N] {
+        match self {
+            Orientation::Free { angles } | Orientation::Kept { angles } => *angles,
+        }
+    }
+
     /// Whether an orientation kept can tell the assemblies apart at the evaluation `at` with
     /// rounding floor `floor` (the weighted residual's): not where a whole turn of some
     /// unknown angle moves every loop by less than the floor, for that angle is then
@@ -939,6 +968,41 @@ impl<T: Real> Default for Turning<T> {
 /// The largest step, in radians, through which [`rotate`] turns a sine and cosine.
 const TURN_LIMIT: f64 = 1.0 / 1024.0;
 
+/// The largest magnitude, in radians, of a guess's angle that Newton starts from as it is;
+/// beyond it, [`newton`] first takes the angle by whole turns to within `[−π, π]`. A float
+/// holds an angle only to its spacing: at 16, to `ε·16/2` (1.8e-15 rad in `f64`), which moves
+/// a vector by less than the rounding floor `16 ε Σ|r|` every test reads; at a few hundred (a
+/// guess that counts a linkage's turns) to more than that, so that Newton stalls above the
+/// floor, or stops at an angle less accurate than the one stated.
+pub(crate) const WHOLE_TURNS_BEYOND: f64 = 16.0;
+
+/// Whether some angle has turned through more than a whole turn from the guess (`travel`,
+/// whole turns and all): the iterates have run away from it, as they do from a guess near no
+/// root (past a toggle they spin through thousands of radians, to another assembly or to a
+/// stall where a float holds the angle too coarsely to reach the floor). From a guess
+/// Kantorovich certifies they never do: they stay within twice its ball's radius, which is
+/// below 1 rad (`1/(‖J⁻¹‖·L)`, `L` at least the Jacobian's smallest singular value).
+fn ran_away<T: Real, const N: usize>(travel: &[T; N]) -> bool {
+    let whole_turn = T::constant(core::f64::consts::TAU);
+    travel.iter().any(|turned| turned.abs() > whole_turn)
+}
+
+/// `x` with each angle (`angles`) beyond [`WHOLE_TURNS_BEYOND`] taken by whole turns to the
+/// angle in `[−π, π]` with the same sine and cosine (the platform's, whose argument reduction
+/// is exact at any magnitude; `θ − 2π·round(θ/2π)` is not, beyond 2^53 or so). A value that
+/// is not finite is left as it is.
+fn within_a_turn<T: Real, const N: usize>(x: [T; N], angles: [bool; N]) -> [T; N] {
+    let bound = T::constant(WHOLE_TURNS_BEYOND);
+    let mut x = x;
+    for (value, &angle) in x.iter_mut().zip(&angles) {
+        if angle && value.abs() > bound && value.is_finite() {
+            let (sin, cos) = value.sin_cos();
+            *value = sin.atan2(cos);
+        }
+    }
+    x
+}
+
 /// The sines and cosines of several unknown angles along a Newton iteration: each rotated as
 /// [`Turning`] rotates it (the same arithmetic, from the last fresh pair), and where any has
 /// moved more than 2⁻¹⁰ from its pair, fresh pairs of every angle from
@@ -1000,16 +1064,23 @@ impl<T: Real, const K: usize> Started<T, K> {
     /// The pairs at `angles`, fresh: as the safeguarded iteration's evaluation computes them
     /// (one angle's by [`Turning`], the platform's `sin_cos`; several by [`Turnings`]), so
     /// that either path makes the same iterates.
+    ///
+    /// An angle beyond [`WHOLE_TURNS_BEYOND`] gives NaN pairs: [`newton`] takes it by whole
+    /// turns first.
     #[inline(always)]
     pub fn at(angles: [T; K]) -> Self {
         let (sin, cos) = if K == 1 {
             let (mut sin, mut cos) = (angles, angles);
             for ((s, c), a) in sin.iter_mut().zip(&mut cos).zip(angles) {
-                (*s, *c) = a.sin_cos();
+                (*s, *c) = if a.abs() <= T::constant(WHOLE_TURNS_BEYOND) {
+                    a.sin_cos()
+                } else {
+                    (T::nan(), T::nan())
+                };
             }
             (sin, cos)
         } else {
-            fresh_sin_cos(angles)
+            started_sin_cos(angles)
         };
         Started {
             angle: angles,
@@ -1108,6 +1179,44 @@ fn fresh_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K]) {
     if !angles.iter().all(|a| a.abs() <= limit) {
         return platform_sin_cos(angles);
     }
+    let mut sines = angles;
+    let mut cosines = angles;
+    for ((s, c), a) in sines.iter_mut().zip(&mut cosines).zip(angles) {
+        (*s, *c) = crate::fast::sin_cos_lanes_within_limit(a);
+    }
+    (sines, cosines)
+}
+
+/// `angle` (within `[−π, π]`, a closed form's) moved by whole turns to within half a turn of
+/// `guess`, as Newton on every unknown would continue it from there; `angle` itself where the
+/// guess is beyond [`WHOLE_TURNS_BEYOND`], which [`newton`] takes by whole turns first (a
+/// guess that counts a thousand turns would hand them on to a solution it cannot hold to the
+/// accuracy stated). An offset under 3 rad from the guess (the common case) needs no whole
+/// turns taken off: `round` would give zero there.
+#[inline(always)]
+pub fn angle_near<T: Real>(angle: T, guess: T) -> T {
+    let offset = angle - guess;
+    if offset.abs() < T::constant(3.0) {
+        return guess + offset;
+    }
+    // Not beyond (a NaN guess, refused before any closed form is solved, is beyond).
+    if guess.abs() <= T::constant(WHOLE_TURNS_BEYOND) {
+        let turn = T::constant(core::f64::consts::TAU);
+        return guess + (offset - (offset / turn).round() * turn);
+    }
+    angle
+}
+
+/// [`fresh_sin_cos`] for [`Started::at`]: NaN pairs if some angle is beyond
+/// [`WHOLE_TURNS_BEYOND`] (or not finite), which [`newton`] takes by whole turns first.
+#[inline(never)]
+fn started_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K]) {
+    let bound = T::constant(WHOLE_TURNS_BEYOND);
+    // Not all within (NaN is not within either).
+    if !angles.iter().all(|a| a.abs() <= bound) {
+        return ([T::nan(); K], [T::nan(); K]);
+    }
+    // The bound is within `fast::sin_cos`'s limit: `fresh_sin_cos`'s lanes.
     let mut sines = angles;
     let mut cosines = angles;
     for ((s, c), a) in sines.iter_mut().zip(&mut cosines).zip(angles) {
@@ -1453,13 +1562,15 @@ mod tests {
         // or runs out of updates, short of a root.
         let apart = [10.0, 1.0, 2.0, 2.0];
         let two = NewtonOptions::new(0.0, 2);
-        let capped = newton(0.0, [0.3, 0.5], &two, true, || None, linkage(apart, 0.0));
+        // From near the closest approach (θ3 = 0, θ4 = π), where the iterates creep rather
+        // than run away.
+        let capped = newton(0.0, [0.2, 2.8], &two, true, || None, linkage(apart, 0.0));
         match capped {
             Err(Error::NoConvergence {
                 iterations: 2,
                 residual_norm,
             }) => assert!(
-                (residual_norm - 5.118575524573101).abs() < 1e-9,
+                (residual_norm - 5.007688608355575).abs() < 1e-9,
                 "{residual_norm}"
             ),
             other => panic!("{other:?}"),
@@ -1467,7 +1578,7 @@ mod tests {
         assert_eq!(
             newton(
                 0.0,
-                [0.3, 0.5],
+                [0.2, 2.8],
                 &two,
                 true,
                 || Some(false),
@@ -1518,7 +1629,9 @@ mod tests {
         assert_eq!(kantorovich(&creeping(&at(-1)), 1.0), 0.25);
         let solve = |k, cap| {
             let options = NewtonOptions::new(0.0, cap);
-            newton(0.5, at(k), &options, true, || None, creeping).map(|c| c.solved)
+            // Lengths, not angles: 2^16 is a place, not a number of turns.
+            let lengths = Orientation::Kept { angles: [false; 2] };
+            newton(0.5, at(k), &options, lengths, || None, creeping).map(|c| c.solved)
         };
         let stalled = |iterations, k| Error::NoConvergence {
             iterations,
@@ -1674,7 +1787,7 @@ mod tests {
         assert_eq!(
             newton(
                 0.0,
-                [0.3, 0.5],
+                [0.2, 2.8],
                 &options,
                 true,
                 || None,
@@ -1685,7 +1798,7 @@ mod tests {
         );
         match newton(
             0.0,
-            [0.3, 0.5],
+            [0.2, 2.8],
             &options,
             true,
             || Some(true),
@@ -1699,6 +1812,97 @@ mod tests {
             }
             other => panic!("{:?}", other.map(|c| c.solved)),
         }
+    }
+
+    /// Iterates that turn an angle through more than a whole turn from the guess have run
+    /// away from it (a certified guess's stay within 2 rad): where no closed form can say,
+    /// their stall, or the cap however low, is `CannotAssemble`.
+    #[test]
+    fn iterates_that_ran_a_whole_turn_from_the_guess_stall_at_a_toggle() {
+        // The linkage that cannot close, from a guess whose first step turns θ4 by more than a
+        // turn; from near its closest approach, the iterates creep and do not run away.
+        let apart = [10.0, 1.0, 2.0, 2.0];
+        let solve = |guess: [f64; 2], cap: u32, assembles: Option<bool>| {
+            newton(
+                0.0,
+                guess,
+                &NewtonOptions::new(0.0, cap),
+                true,
+                || assembles,
+                linkage(apart, 0.0),
+            )
+            .map(|c| c.solved)
+        };
+        let cannot = Err(Error::CannotAssemble { input: 0.0 });
+        assert_eq!(solve([0.3, 0.5], 2, None), cannot);
+        assert_eq!(solve([0.3, 0.5], 50, None), cannot);
+        // A closed form that says the guess's assembly closes decides, as ever.
+        assert!(matches!(
+            solve([0.3, 0.5], 2, Some(true)),
+            Err(Error::NoConvergence { iterations: 2, .. })
+        ));
+        assert!(matches!(
+            solve([0.2, 2.8], 2, None),
+            Err(Error::NoConvergence { iterations: 2, .. })
+        ));
+        // Travel counts turns: the same guess a turn up runs away just as far.
+        let up = [0.3 + core::f64::consts::TAU, 0.5 + core::f64::consts::TAU];
+        assert_eq!(solve(up, 2, None), cannot);
+        assert!(ran_away(&[0.0, 6.3]) && ran_away(&[-6.3, 0.0]));
+        assert!(!ran_away(&[6.2, -6.2]));
+    }
+
+    /// A guess that counts turns (a linkage that has turned a thousand times, its angles
+    /// carried along) solves as the same guess within a turn of zero: at 6283 rad a float
+    /// holds an angle only to 4.5e-13, and Newton stalled above its floor
+    /// (`NoConvergence`), or stopped at an angle less accurate than stated.
+    #[test]
+    fn newton_takes_angles_beyond_sixteen_radians_by_whole_turns() {
+        let theta2 = 60f64.to_radians();
+        let options = NewtonOptions::default();
+        let near = [0.4, 1.4];
+        let plain = newton(theta2, near, &options, true, || None, four_bar(theta2)).unwrap();
+        let exact = closed_form(theta2, near);
+        let [theta3, theta4] = plain.solved.value;
+        assert!((theta3 - exact[0]).abs() + (theta4 - exact[1]).abs() < 1e-14);
+        let tau = core::f64::consts::TAU;
+        for turns in [3.0, -3.0, 1e3, -1e3, 1e6, 1e12] {
+            let guess = near.map(|q| q + turns * tau);
+            let solved = newton(theta2, guess, &options, true, || None, four_bar(theta2))
+                .unwrap_or_else(|e| panic!("{turns} turns: {e:?}"));
+            for (q, e) in solved.solved.value.iter().zip(exact) {
+                assert!((q - e).abs() < 1e-14, "{turns} turns: {q} against {e}");
+            }
+            // The common path leaves such a guess to `newton`.
+            assert!(
+                newton_common(
+                    guess,
+                    &options,
+                    true,
+                    four_bar_started(theta2, guess),
+                    Some,
+                    || None
+                )
+                .is_none(),
+                "{turns} turns"
+            );
+        }
+        // Within 16 rad the angles are iterated as they are: the solution a turn up.
+        let guess = near.map(|q| q + 2.0 * tau);
+        let solved = newton(theta2, guess, &options, true, || None, four_bar(theta2)).unwrap();
+        for (q, e) in solved.solved.value.iter().zip(exact) {
+            assert!((q - 2.0 * tau - e).abs() < 1e-14, "{q} against {e}");
+        }
+        // Lengths are not angles: a length of 1e6 is left as it is.
+        assert_eq!(within_a_turn([1e6, 20.0], [false, true])[0], 1e6);
+        let [_, reduced] = within_a_turn([1e6, 20.0], [false, true]);
+        assert!((reduced - (20.0 - 3.0 * tau)).abs() < 1e-14, "{reduced}");
+        assert_eq!(within_a_turn([16.0, -16.0], [true; 2]), [16.0, -16.0]);
+        assert!(
+            within_a_turn([f64::NAN, f64::INFINITY], [true; 2])
+                .iter()
+                .all(|q| !q.is_finite())
+        );
     }
 
     #[test]
@@ -1762,13 +1966,16 @@ mod tests {
             }
             .tells_apart(&at, floor)
         );
-        assert!(!Orientation::Free.tells_apart(&at, 0.0));
+        assert!(!Orientation::Free { angles: [true; 2] }.tells_apart(&at, 0.0));
         let wider = Linearisation {
             weights: [4.0, 8.0],
             ..at
         };
         assert!(kept.tells_apart(&wider, floor));
-        assert_eq!(Orientation::<2>::from(false), Orientation::Free);
+        assert_eq!(
+            Orientation::<2>::from(false),
+            Orientation::Free { angles: [true; 2] }
+        );
     }
 
     #[test]

@@ -70,7 +70,9 @@ pub enum Stop<T> {
 /// doubling, after each accepted one); no piece is longer than one unit of the input (a
 /// radian: no piece spans a turn, whose ends alone cannot tell a full turn from a gap in the
 /// motion); a step of more than 2¹⁶ units is walked in pieces of `step/2¹⁶`, checked only for
-/// the branch and Newton's convergence. Only the requested inputs are yielded. So the
+/// the branch and Newton's convergence (past 96 refused pieces in one step, the sweep ends:
+/// [`Stop::Toggle`] with Newton's error, for from a predictor that far off Newton lands on
+/// either branch, or on none). Only the requested inputs are yielded. So the
 /// sweep follows the motion around sharp turns, never steps over inputs where the loops do
 /// not close, and stops where no piece down to `step·2⁻⁴⁰` (or the input's rounding) gets
 /// further. There it solves at inputs beyond, at distances growing fourfold from
@@ -125,6 +127,10 @@ const SMALLEST_PIECE: f64 = 1.0 / (1u64 << 40) as f64;
 /// A step is walked in pieces of at most one unit of the input, or this fraction of the step
 /// if that is longer (then without the smoothness check, to bound the work).
 const COARSE_PIECE: f64 = 1.0 / 65536.0;
+
+/// The most refused pieces a step walked in coarse pieces takes before it ends (enough to halve
+/// toward a toggle from a piece of 2^16 units down to 2^-40 of the step).
+const COARSE_REFUSALS: u32 = 96;
 
 /// How far the change over a piece may differ from the trapezoidal rule's, relative to the
 /// sizes of the change and of the two velocity terms.
@@ -245,6 +251,7 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         };
         let (mut x, mut q, mut m) = (from.input, from.position, slope);
         let mut piece = longest;
+        let mut coarse_refusals = 0;
         loop {
             let remaining = target - x;
             let (y, piece_used) = if piece.abs() >= remaining.abs() {
@@ -273,6 +280,28 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
                 Ok(_) => None,
                 Err(refusal) => Some(refusal),
             };
+            // A coarse piece (of a step beyond 2^16 units) starts Newton from a guess the
+            // predictor cannot place (a velocity times millions of units), which lands on
+            // either branch, or on none: refused pieces are halved (toward a toggle, which
+            // needs some forty halvings to be found), but past `COARSE_REFUSALS` of them the
+            // walk would crawl, halving and doubling, for longer than any sweep may. It ends
+            // there, saying what Newton said.
+            if coarse > T::one() && refusal.is_some() {
+                coarse_refusals += 1;
+                if let Some(refusal) = refusal
+                    .as_ref()
+                    .filter(|_| coarse_refusals > COARSE_REFUSALS)
+                {
+                    return Err(Stop::Toggle {
+                        last_input: from.input,
+                        next_input: target,
+                        error: match refusal {
+                            Refusal::OtherBranch => Error::OtherBranch,
+                            Refusal::Failed(error) => *error,
+                        },
+                    });
+                }
+            }
             let Some(refusal) = refusal.filter(|_| last_chance) else {
                 piece = shorter;
                 continue;
@@ -306,9 +335,9 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
     /// What lies beyond the singular point the walk is stuck at, just past `x` (within
     /// `piece`): solves (from the predictor) at distances growing fourfold from `√ε·|x|` (or
     /// `4·piece`, or `√ε`, if larger) to four times `reach` (and at least four of them), and
-    /// counts the answers that say: a position on the other branch (the motion goes on
-    /// there: a change point), or a failure other than a singular Jacobian (it goes on
-    /// nowhere: a toggle). The more frequent answer, with the nearest such failure, or `None`
+    /// counts the answers that say: a position on the other branch, from a guess the
+    /// predictor places near the motion (the motion goes on there: a change point), or a
+    /// failure other than a singular Jacobian (it goes on nowhere: a toggle). The more frequent answer, with the nearest such failure, or `None`
     /// if none says. Nearer than `√ε`, rounding lets Newton converge a hair past a toggle,
     /// and fail at a change point itself; farther, one answer alone could see past a narrow
     /// gap, hence the count.
@@ -328,8 +357,17 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         let (mut branches, mut failures) = (0u32, 0u32);
         let mut first_failure = None;
         while distance <= farthest {
+            // Where the predictor moves some unknown by more than its own size (and a unit:
+            // a radian, for an angle), its guess is no place on the motion: near a toggle,
+            // whose velocities grow without bound, it is thousands of radians off, and Newton
+            // from it lands on any assembly. Such a landing says nothing of a change point.
+            let placed = q
+                .iter()
+                .zip(m)
+                .all(|(q, m)| (m * distance).abs() <= T::one() + q.abs());
             match self.piece(x, q, m, x + sign * distance) {
-                Err(Refusal::OtherBranch) => branches += 1,
+                Err(Refusal::OtherBranch) if placed => branches += 1,
+                Err(Refusal::OtherBranch) => {}
                 Err(Refusal::Failed(Error::Singular { .. })) | Ok(_) => {}
                 Err(Refusal::Failed(error)) => {
                     failures += 1;
@@ -681,6 +719,54 @@ mod tests {
             }) => assert!(input > 1.0 + 1e-7 && input < 1.0 + 1e-5, "{input}"),
             other => panic!("{other:?}"),
         }
+    }
+
+    /// [`Circle`], but past its toggle Newton from a guess far off the motion lands on some
+    /// other assembly (`OtherBranch`), as a six-bar's does on another circuit; from one near
+    /// it, it cannot assemble.
+    struct Spinning;
+
+    impl Kinematics<f64, 1> for Spinning {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            if input > 1.0 && guess[0].abs() > 2.0 {
+                return Err(Error::OtherBranch);
+            }
+            Circle.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Circle.slope(input, position)
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            Circle.same_branch(a, p, b, q)
+        }
+    }
+
+    /// Near a toggle the velocity grows without bound, so the predictor's guesses beyond it
+    /// are far off the motion: where Newton lands from those says nothing of a change point
+    /// (the Stephenson six-bar of the command line's tests was told to have one at its
+    /// toggle). Those that fail still count.
+    #[test]
+    fn landings_from_guesses_the_predictor_cannot_place_do_not_make_a_change_point() {
+        let (samples, stop) = sweep(&Spinning, 0.0, 1.0, 0.1, 15);
+        assert_eq!(samples.len(), 10);
+        assert!(
+            matches!(
+                stop,
+                Some(Stop::Toggle {
+                    last_input: 0.9,
+                    next_input: 1.0,
+                    error: Error::CannotAssemble { .. },
+                })
+            ),
+            "{stop:?}"
+        );
     }
 
     fn sweep<M: Kinematics<f64, 1>>(

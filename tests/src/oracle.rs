@@ -208,7 +208,14 @@ impl Big {
     pub fn wrapped(&self) -> Big {
         let pi = Big::pi();
         let tau = &pi + &pi;
-        let mut x = self.clone();
+        // Whole turns first (a guess that counts a million of them), exact at 256 bits for
+        // any count below 2^53; then at most one more either way.
+        let turns = (self / &tau).to_f64().round();
+        let mut x = if turns.is_finite() && turns.abs() < 2f64.powi(53) {
+            self - &(Big::from_f64(turns) * &tau)
+        } else {
+            self.clone()
+        };
         while x > pi {
             x = x - &tau;
         }
@@ -1986,6 +1993,9 @@ pub struct Case {
     /// Repeat with every length scaled by this factor (a power of two: angles must be
     /// bit-identical; otherwise equal to rounding).
     pub rescale: Option<f64>,
+    /// Whole turns added to each angle of Newton's guess (a guess that counts a linkage's
+    /// turns), rounded to the float's; 0 for none.
+    pub turns: f64,
 }
 
 impl Case {
@@ -2068,7 +2078,12 @@ impl Case {
         let rescale = self
             .rescale
             .map_or(String::new(), |f| format!(" [then every length × {f:e}]"));
-        format!("{build}{call}{rescale} [{}]", self.placement)
+        let turns = if self.turns == 0.0 {
+            String::new()
+        } else {
+            format!(" [the guess's angles + {} turns]", self.turns)
+        };
+        format!("{build}{call}{rescale}{turns} [{}]", self.placement)
     }
 }
 
@@ -3172,6 +3187,13 @@ pub mod judge {
             if self.guess_near_none && matches!(e, Error::OtherBranch) {
                 return;
             }
+            // Within rounding of a limit the branches meet, and which one Newton lands on is
+            // rounding (an `Ok` on either is right there): saying it is the other is right too
+            // (edge run seed 13, case 51538: an f32 slider-crank 1 ulp from a limit, scaled
+            // by a factor whose rounding moves the limit by half a percent of the rod).
+            if self.near_limit() && matches!(e, Error::OtherBranch) {
+                return;
+            }
             match e {
                 Error::CannotAssemble { .. } => {
                     if !self.unreachable_or_near_limit() {
@@ -3482,20 +3504,26 @@ pub mod judge {
         let n = e.n();
         let radius = newton_radius(&e.model, &truth);
         let step = radius / (n as f64).sqrt();
+        let turn = case.turns * std::f64::consts::TAU;
         let guess: Vec<f64> = truth
             .q()
             .iter()
             .enumerate()
             .map(|(j, q)| {
                 let nudge = case.nudge.get(j).copied().unwrap_or(0.0);
-                case.float.round(q.to_f64() + nudge * step)
+                let turned = if e.model.angles[j] { turn } else { 0.0 };
+                case.float.round(q.to_f64() + nudge * step + turned)
             })
             .collect();
+        // Angles a turn apart are one angle: the distance of the guess as rounded, turns and
+        // all (a float of a million turns holds an angle to 1e-9 in f64, 0.5 in f32).
         let distance = guess
             .iter()
             .zip(truth.q())
-            .fold(Big::zero(), |acc, (g, q)| {
-                acc + (Big::from_f64(*g) - q).square()
+            .zip(&e.model.angles)
+            .fold(Big::zero(), |acc, ((g, q), &angle)| {
+                let d = Big::from_f64(*g) - q;
+                acc + if angle { d.wrapped() } else { d }.square()
             })
             .sqrt()
             .to_f64();
@@ -3590,6 +3618,20 @@ pub mod judge {
                 let before = verdict.findings.len();
                 let result = match r {
                     Ok((rates, kappa, stated)) => {
+                        // From a guess outside the truth's basin (rounding of a guess that
+                        // counts turns, in f32: edge run seed 14, case 2723) the Stephenson
+                        // six-bar's Newton may find another root: its contract keeps the
+                        // guess's assembly by its own signs (the dyad's closed form, the
+                        // reduced Jacobian's orientation), which at a guess this far from every
+                        // root need not be the oracle's geometric sides, and promises no
+                        // particular root from an uncertified guess. So the root it found is
+                        // judged, once certified.
+                        if outside && e.reach.is_none() {
+                            let found = polish(&e.model, e.input, &rates[0], e.omega, e.alpha);
+                            if let Some(t) = found.truth.filter(|_| found.kantorovich <= 0.5) {
+                                e.truth = Some(t);
+                            }
+                        }
                         e.position(&mut verdict, api, &rates[0], kappa, &wanted);
                         if let Some(stated) = stated {
                             e.rates(&mut verdict, api, &rates[1..], kappa);
@@ -4539,6 +4581,12 @@ pub mod draw {
             ),
             None => (omega, alpha),
         };
+        // Drawn last, so that every earlier draw of a seed stays as it was.
+        let turns = if matches!(api, Api::Position | Api::MotionNear) && rng.chance(0.1) {
+            rng.sign() * rng.log(1.0, 1e6).round()
+        } else {
+            0.0
+        };
         Case {
             kind,
             float,
@@ -4553,6 +4601,7 @@ pub mod draw {
             nudge,
             placement,
             rescale,
+            turns,
         }
     }
 

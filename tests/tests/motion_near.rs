@@ -181,3 +181,121 @@ fn rates_too_far_off_for_the_requirement_are_refused() {
     let position = linkage.position(t, &guess, &loose).unwrap();
     assert!(position.residual_norm > 1e-3);
 }
+
+/// `q` taken by whole turns to within [−π, π] where `angle`: a turn apart is one angle.
+fn turned_back<T: Real>(q: T, angle: bool) -> T {
+    if angle {
+        let (s, c) = q.sin_cos();
+        s.atan2(c)
+    } else {
+        q
+    }
+}
+
+/// Each of `got` within 64 ε of `want` (angles a turn apart one angle, lengths relative to
+/// `size`).
+fn same_position<T: Real>(what: &str, got: &[T], want: &[T], angles: &[bool], size: T) {
+    for ((g, w), &angle) in got.iter().zip(want).zip(angles) {
+        let (g, w) = (turned_back(*g, angle), turned_back(*w, angle));
+        let scale = if angle { T::one() } else { size };
+        assert!(
+            (g - w).abs() <= T::constant(64.0) * T::epsilon() * scale,
+            "{what}: {g} against {w}"
+        );
+    }
+}
+
+/// A guess whose angles count turns (a linkage that has turned a thousand times, its angles
+/// carried along from step to step) solves as the same guess within a turn of zero, one
+/// loop or several, by `position` and `motion_near`, in f64 and f32: angles beyond ±16 rad
+/// are taken by whole turns first, and the solution's angles are within a turn of zero.
+/// Before, at a thousand turns Newton stalled above its floor (`NoConvergence`): a float of
+/// 6283 holds an angle only to 4.5e-13 rad.
+fn guesses_that_count_turns_solve<T: Real>() {
+    let options = NewtonOptions::default();
+    let tau = T::constant(core::f64::consts::TAU);
+    let (w, a) = (T::constant(10.0), T::constant(2.0));
+    let input = T::constant(1.0);
+    let turns = [3.0, -3.0, 100.0, 1e3, -1e3, 1e5];
+    let within = |q: T| q.abs() <= T::constant(core::f64::consts::PI + 0.01);
+
+    let four_bar = common::example_1::<T>();
+    let exact = four_bar.assemble(input, Branch::Open).unwrap();
+    for k in turns {
+        let k = T::constant(k);
+        let guess = mechanisms::FourBarUnknowns::from_array(exact.to_array().map(|q| q + k * tau));
+        let solved = four_bar.position(input, &guess, &options).unwrap();
+        let near = four_bar.motion_near(input, &guess, &options, w, a).unwrap();
+        let at = four_bar.motion_at(input, &exact, w, a).unwrap();
+        let q = solved.value.to_array();
+        assert!(q.iter().all(|q| within(*q)), "four-bar, {k} turns: {q:?}");
+        assert_eq!(near.value.position.to_array(), q, "{k} turns");
+        same_position("four-bar", &q, &exact.to_array(), &[true; 2], T::one());
+        for (got, want) in [
+            (near.value.velocity.to_array(), at.velocity.to_array()),
+            (
+                near.value.acceleration.to_array(),
+                at.acceleration.to_array(),
+            ),
+        ] {
+            same_position("four-bar rates", &got, &want, &[false; 2], w * w);
+        }
+    }
+
+    // One angle and a length: the slider-crank's θ3 and d.
+    let slider_crank = common::slider_crank::<T>();
+    let exact = slider_crank.assemble(input, Branch::Open).unwrap();
+    let size = T::constant(220.0);
+    for k in turns {
+        let k = T::constant(k);
+        let [theta3, d] = exact.to_array();
+        let guess = mechanisms::SliderCrankUnknowns::from_array([theta3 + k * tau, d]);
+        let q = slider_crank
+            .position(input, &guess, &options)
+            .unwrap()
+            .value
+            .to_array();
+        assert!(within(q[0]), "slider-crank, {k} turns: {q:?}");
+        same_position("slider-crank", &q, &exact.to_array(), &[true, false], size);
+    }
+
+    // Two loops, each kept to its branch by its own sign.
+    let watt = common::watt_six_bar::<T>();
+    let exact = watt.assemble(input, [Branch::Open; 2]).unwrap();
+    for k in turns {
+        let k = T::constant(k);
+        let guess =
+            mechanisms::WattSixBarUnknowns::from_array(exact.to_array().map(|q| q + k * tau));
+        let q = watt
+            .position(input, &guess, &options)
+            .unwrap()
+            .value
+            .to_array();
+        assert!(q.iter().all(|q| within(*q)), "Watt, {k} turns: {q:?}");
+        same_position("Watt six-bar", &q, &exact.to_array(), &[true; 4], T::one());
+    }
+
+    // Newton on two unknowns, the other loop in closed form inside each evaluation.
+    let (stephenson, start) = stephenson_six_bar();
+    let exact = stephenson
+        .position(1.0, &start, &NewtonOptions::default())
+        .unwrap()
+        .value;
+    for k in turns {
+        let guess = mechanisms::StephensonSixBarUnknowns::from_array(
+            exact.to_array().map(|q| q + k * core::f64::consts::TAU),
+        );
+        let q = stephenson
+            .position(1.0, &guess, &NewtonOptions::default())
+            .unwrap()
+            .value
+            .to_array();
+        same_position("Stephenson six-bar", &q, &exact.to_array(), &[true; 4], 1.0);
+    }
+}
+
+#[test]
+fn guesses_that_count_turns_solve_as_within_a_turn() {
+    guesses_that_count_turns_solve::<f64>();
+    guesses_that_count_turns_solve::<f32>();
+}

@@ -23,6 +23,11 @@ impl Generator<'_> {
         }
     }
 
+    /// What `position` says of a guess's angles beyond `mechgen::__private::newton`'s bound.
+    pub(super) const WHOLE_TURNS_DOC: &'static str = " An angle of `guess` beyond ±16 rad is first taken \
+        by whole turns to within [−π, π] (a float that large holds an angle more coarsely than \
+        the accuracy stated), so the solution's angle is then within a turn of zero.";
+
     /// Newton on every unknown together: `position` itself (`public`), or the private
     /// fallback of a reduced `position` (see `super::reduced`).
     pub(super) fn full_position(&self, public: bool) -> TokenStream {
@@ -54,10 +59,11 @@ impl Generator<'_> {
             let public_doc = doc(&format!(
                 "Solves the loops for the unknowns at `{input_text}` by a safeguarded Newton-Raphson \
                  from `guess` (see `mechgen::__private::newton`: halved steps, a certified root, \
-                 stagnation reported).{branch_doc}\n\n\
+                 stagnation reported).{branch_doc}{}\n\n\
                  Errors: a non-finite parameter, input or guess; a singular Jacobian on the way; \
                  [`mechgen::Error::CannotAssemble`] where the iterates press against a toggle \
-                 the loops cannot pass; no convergence within `options.max_iterations`."
+                 the loops cannot pass; no convergence within `options.max_iterations`.",
+                Self::WHOLE_TURNS_DOC
             ));
             let wrapper = self.normalised_newton(NewtonEntry::Position, public_doc);
             let inner = NewtonEntry::Position.solve();
@@ -241,18 +247,19 @@ impl Generator<'_> {
         (keep_orientation, check)
     }
 
-    /// `Orientation::Kept` with which of `unknowns` are angles (every unknown where `None`),
-    /// or `Orientation::Free`.
+    /// `Orientation::Kept` (or `Orientation::Free`, where `keep` is false) with which of
+    /// `unknowns` are angles (every unknown where `None`).
     pub(super) fn orientation(&self, keep: bool, unknowns: Option<&[usize]>) -> TokenStream {
-        if !keep {
-            return quote!(::mechgen::__private::Orientation::Free);
-        }
         let all: Vec<usize> = (0..self.model.unknowns.len()).collect();
         let angles = unknowns
             .unwrap_or(&all)
             .iter()
             .map(|&u| self.model.unknowns[u].kind == crate::model::Kind::Angle);
-        quote!(::mechgen::__private::Orientation::Kept { angles: [#(#angles),*] })
+        if keep {
+            quote!(::mechgen::__private::Orientation::Kept { angles: [#(#angles),*] })
+        } else {
+            quote!(::mechgen::__private::Orientation::Free { angles: [#(#angles),*] })
+        }
     }
 
     /// `motion_near(input, &guess, &options, rate, acceleration)`: Newton from `guess`, then

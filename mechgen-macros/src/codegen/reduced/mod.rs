@@ -350,7 +350,7 @@ impl Generator<'_> {
              stagnation reported) on {iterated} alone: each evaluation solves, in closed form \
              and in this order, {}, then {residual_loops} gives the residual Newton drives to \
              zero, with its Jacobian from the loops' by implicit differentiation (a Schur \
-             complement).{after}\n\n\
+             complement).{after}{whole_turns}\n\n\
              It keeps to the guess's assembly: each loop solved in closed form stays on the \
              branch the guess is on (by the sign its closed form documents), and Newton keeps \
              the orientation (the determinant's sign) of its own Jacobian. Neither sign tells \
@@ -382,6 +382,7 @@ impl Generator<'_> {
              The returned `iterations` and `residual_norm` are this iteration's; `condition` \
              is the loops' full Jacobian's at the solution, as the accuracy contract reads it.",
             describe(&reduction.steps),
+            whole_turns = Self::WHOLE_TURNS_DOC,
         )
     }
 }

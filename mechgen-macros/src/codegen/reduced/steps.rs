@@ -99,26 +99,18 @@ impl Generator<'_> {
     }
 
     /// `let q = …;`: the angle of `direction` within half a turn of the guess's, as Newton
-    /// on every unknown would continue it from there. The direction is a unit vector, so its
-    /// angle is `unit_angle`'s (an arc sine or cosine, within rounding of `atan2`), and an
-    /// offset under 3 rad from the guess (the common case) needs no whole turns taken off:
-    /// `round` would give zero there.
+    /// on every unknown would continue it from there (`angle_near`: within a turn of zero
+    /// where the guess's is beyond the angles Newton iterates on as they are). The direction
+    /// is a unit vector, so its angle is `unit_angle`'s (an arc sine or cosine, within
+    /// rounding of `atan2`).
     pub(super) fn angle_near_guess(&self, unknown: usize, direction: &Ident) -> TokenStream {
         let name = &self.model.unknowns[unknown].name;
         let guess = arg("guess");
-        let (turn, offset) = (local("turn"), local("offset"));
         quote! {
-            let #name = {
-                let #offset = ::mechgen::__private::unit_angle(#direction.y, #direction.x)
-                    - #guess.#name;
-                #guess.#name
-                    + if #offset.abs() < T::constant(3.0) {
-                        #offset
-                    } else {
-                        let #turn = T::constant(::core::f64::consts::TAU);
-                        #offset - (#offset / #turn).round() * #turn
-                    }
-            };
+            let #name = ::mechgen::__private::angle_near(
+                ::mechgen::__private::unit_angle(#direction.y, #direction.x),
+                #guess.#name,
+            );
         }
     }
 }
