@@ -240,7 +240,8 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     let angles = kept.angles();
     let rounding_floor = T::constant(16.0) * T::epsilon();
     let quarter = T::constant(0.25);
-    let mut x = within_a_turn(guess, angles);
+    let start = within_a_turn(guess, angles);
+    let mut x = start;
     let mut here = linearise(&x);
     // The residual as the tests read it: each loop's against its own rounding. Finite only
     // if every component is (the weights are positive), and zero only if each is. Carried
@@ -254,8 +255,6 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     // as for a guess that is already a solution) a default solve takes one more step, which
     // polishes the result rather than stopping short of what the float type allows.
     let mut previous_residual = T::infinity();
-    // How far each angle has turned from the guess, whole turns and all.
-    let mut travel = [T::zero(); N];
     loop {
         if !weighted.is_finite() || !here.scale.is_finite() {
             return Err(Error::NonFinite {
@@ -316,7 +315,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
             return Err(match assembles() {
                 Some(true) => stalled,
                 Some(false) => Error::CannotAssemble { input },
-                None if ran_away(&travel)
+                None if ran_away(&x, &start, &angles)
                     || (iterations >= CREEPING && kantorovich(&here, condition()) > quarter) =>
                 {
                     Error::CannotAssemble { input }
@@ -370,7 +369,9 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 return Err(match assembles() {
                     Some(true) => stalled,
                     Some(false) => Error::CannotAssemble { input },
-                    None if ran_away(&travel) || kantorovich(&here, condition()) > quarter => {
+                    None if ran_away(&x, &start, &angles)
+                        || kantorovich(&here, condition()) > quarter =>
+                    {
                         Error::CannotAssemble { input }
                     }
                     None => stalled,
@@ -387,11 +388,6 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         here = there;
         weighted = there_weighted;
         iterations += 1;
-        for ((turned, d), &angle) in travel.iter_mut().zip(step).zip(&angles) {
-            if angle {
-                *turned = *turned - fraction * d;
-            }
-        }
     }
 }
 
@@ -976,15 +972,19 @@ const TURN_LIMIT: f64 = 1.0 / 1024.0;
 /// floor, or stops at an angle less accurate than the one stated.
 pub(crate) const WHOLE_TURNS_BEYOND: f64 = 16.0;
 
-/// Whether some angle has turned through more than a whole turn from the guess (`travel`,
-/// whole turns and all): the iterates have run away from it, as they do from a guess near no
-/// root (past a toggle they spin through thousands of radians, to another assembly or to a
-/// stall where a float holds the angle too coarsely to reach the floor). From a guess
+/// Whether some angle (`angles`) of the iterate `x` has turned through more than a whole
+/// turn from its value at `start` (the iterates are never taken by whole turns, so the
+/// difference counts them): the iterates have run away from the guess, as they do from one
+/// near no root (past a toggle they spin through thousands of radians, to another assembly
+/// or to a stall where a float holds the angle too coarsely to reach the floor). From a guess
 /// Kantorovich certifies they never do: they stay within twice its ball's radius, which is
 /// below 1 rad (`1/(‖J⁻¹‖·L)`, `L` at least the Jacobian's smallest singular value).
-fn ran_away<T: Real, const N: usize>(travel: &[T; N]) -> bool {
+fn ran_away<T: Real, const N: usize>(x: &[T; N], start: &[T; N], angles: &[bool; N]) -> bool {
     let whole_turn = T::constant(core::f64::consts::TAU);
-    travel.iter().any(|turned| turned.abs() > whole_turn)
+    x.iter()
+        .zip(start)
+        .zip(angles)
+        .any(|((x, start), &angle)| angle && (*x - *start).abs() > whole_turn)
 }
 
 /// `x` with each angle (`angles`) beyond [`WHOLE_TURNS_BEYOND`] taken by whole turns to the
@@ -1848,8 +1848,11 @@ mod tests {
         // Travel counts turns: the same guess a turn up runs away just as far.
         let up = [0.3 + core::f64::consts::TAU, 0.5 + core::f64::consts::TAU];
         assert_eq!(solve(up, 2, None), cannot);
-        assert!(ran_away(&[0.0, 6.3]) && ran_away(&[-6.3, 0.0]));
-        assert!(!ran_away(&[6.2, -6.2]));
+        let angles = [true; 2];
+        assert!(ran_away(&[0.0, 7.3], &[0.0, 1.0], &angles));
+        assert!(ran_away(&[-6.3, 0.0], &[0.0, 0.0], &angles));
+        assert!(!ran_away(&[6.2, -6.2], &[0.0, 0.0], &angles));
+        assert!(!ran_away(&[100.0, 0.0], &[0.0, 0.0], &[false, true]));
     }
 
     /// A guess that counts turns (a linkage that has turned a thousand times, its angles

@@ -1994,7 +1994,9 @@ pub struct Case {
     /// bit-identical; otherwise equal to rounding).
     pub rescale: Option<f64>,
     /// Whole turns added to each angle of Newton's guess (a guess that counts a linkage's
-    /// turns), rounded to the float's; 0 for none.
+    /// turns), rounded to the float's; 0 for none. Fewer (a quarter at a time) where the
+    /// float's rounding at that many would move the guess (the reproducer's guess is the one
+    /// used).
     pub turns: f64,
 }
 
@@ -3504,17 +3506,40 @@ pub mod judge {
         let n = e.n();
         let radius = newton_radius(&e.model, &truth);
         let step = radius / (n as f64).sqrt();
-        let turn = case.turns * std::f64::consts::TAU;
-        let guess: Vec<f64> = truth
-            .q()
-            .iter()
-            .enumerate()
-            .map(|(j, q)| {
-                let nudge = case.nudge.get(j).copied().unwrap_or(0.0);
-                let turned = if e.model.angles[j] { turn } else { 0.0 };
-                case.float.round(q.to_f64() + nudge * step + turned)
-            })
-            .collect();
+        let at = |turns: f64| -> Vec<f64> {
+            truth
+                .q()
+                .iter()
+                .enumerate()
+                .map(|(j, q)| {
+                    let nudge = case.nudge.get(j).copied().unwrap_or(0.0);
+                    let turned = if e.model.angles[j] {
+                        turns * std::f64::consts::TAU
+                    } else {
+                        0.0
+                    };
+                    case.float.round(q.to_f64() + nudge * step + turned)
+                })
+                .collect()
+        };
+        // Whole turns the float can carry without moving the guess by more than a
+        // sixteenth of Kantorovich's step (a million of them hold an angle to 1e-9 rad in
+        // f64, to 0.25 rad in f32): the case is about turns, not about a guess rounding has
+        // thrown far from every root, whose branch the oracle and mechgen may read apart.
+        let plain = at(0.0);
+        let mut turns = case.turns;
+        let guess = loop {
+            let turned = at(turns);
+            let moved = turned
+                .iter()
+                .zip(&plain)
+                .map(|(t, p)| Big::from_f64(t - p).wrapped().abs().to_f64())
+                .fold(0.0, f64::max);
+            if turns == 0.0 || moved <= step / 16.0 {
+                break turned;
+            }
+            turns = (turns / 4.0).trunc();
+        };
         // Angles a turn apart are one angle: the distance of the guess as rounded, turns and
         // all (a float of a million turns holds an angle to 1e-9 in f64, 0.5 in f32).
         let distance = guess
