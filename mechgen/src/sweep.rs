@@ -337,8 +337,8 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
     /// `4·piece`, or `√ε`, if larger) to four times `reach` (and at least four of them), and
     /// counts the answers that say: a position on the other branch, from a guess the
     /// predictor places near the motion (the motion goes on there: a change point), or a
-    /// failure other than a singular Jacobian (it goes on nowhere: a toggle). The more frequent answer, with the nearest such failure, or `None`
-    /// if none says. Nearer than `√ε`, rounding lets Newton converge a hair past a toggle,
+    /// failure other than a singular Jacobian (it goes on nowhere: a toggle). The more
+    /// frequent answer, with the nearest such failure, or `None` if none says. Nearer than `√ε`, rounding lets Newton converge a hair past a toggle,
     /// and fail at a change point itself; farther, one answer alone could see past a narrow
     /// gap, hence the count.
     fn beyond(&self, x: T, q: [T; N], m: [T; N], piece: T, reach: T) -> Option<Refusal<T>> {
@@ -767,6 +767,62 @@ mod tests {
             ),
             "{stop:?}"
         );
+    }
+
+    /// The line `y = x`, whose velocity is said to be twice what it is: the predictor is off
+    /// by the piece's length, and Newton lands on the other branch from a guess more than a
+    /// unit off (as from a coarse piece's, millions of units off).
+    struct Misled {
+        solves: core::cell::Cell<u32>,
+    }
+
+    impl Kinematics<f64, 1> for Misled {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            _options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            self.solves.set(self.solves.get() + 1);
+            if (guess[0] - input).abs() > 1.0 {
+                return Err(Error::OtherBranch);
+            }
+            Ok(Solved {
+                value: [input],
+                iterations: 1,
+                residual_norm: 0.0,
+                condition: 1.0,
+            })
+        }
+
+        fn slope(&self, _input: f64, _position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Ok([2.0])
+        }
+
+        fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
+            true
+        }
+    }
+
+    /// A step of 1e12 is walked in pieces of 1.5e7, from guesses the predictor cannot place:
+    /// refused, halved to a unit, accepted, doubled and refused again, it would crawl through
+    /// millions of solves a piece. It ends after 96 refusals, saying what Newton said.
+    #[test]
+    fn a_coarse_step_ends_after_its_refused_pieces() {
+        let misled = Misled {
+            solves: core::cell::Cell::new(0),
+        };
+        let (samples, stop) = sweep(&misled, 0.0, 0.0, 1e12, 2);
+        assert_eq!(samples.len(), 1);
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 0.0,
+                next_input: 1e12,
+                error: Error::OtherBranch
+            })
+        );
+        assert!(misled.solves.get() < 400, "{}", misled.solves.get());
     }
 
     fn sweep<M: Kinematics<f64, 1>>(
