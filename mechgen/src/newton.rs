@@ -1877,18 +1877,7 @@ mod tests {
                 assert!((q - e).abs() < 1e-14, "{turns} turns: {q} against {e}");
             }
             // The common path leaves such a guess to `newton`.
-            assert!(
-                newton_common(
-                    guess,
-                    &options,
-                    true,
-                    four_bar_started(theta2, guess),
-                    Some,
-                    || None
-                )
-                .is_none(),
-                "{turns} turns"
-            );
+            assert!(left_to_newton(theta2, guess, &options), "{turns} turns");
         }
         // Within 16 rad the angles are iterated as they are: the solution a turn up.
         let guess = near.map(|q| q + 2.0 * tau);
@@ -1922,17 +1911,20 @@ mod tests {
         let [theta3, theta4] = other.solved.value;
         let wrapped = |q: f64, exact: f64| (q - exact).sin().abs();
         assert!(wrapped(theta3, exact[0]) + wrapped(theta4, exact[1]) < 1e-14);
-        assert!(
-            newton_common(
-                guess,
-                &options,
-                true,
-                four_bar_started(theta2, guess),
-                Some,
-                || None
-            )
-            .is_none()
-        );
+        assert!(left_to_newton(theta2, guess, &options));
+    }
+
+    /// Whether the common path, on the four-bar from `guess`, leaves the solve to [`newton`].
+    fn left_to_newton(theta2: f64, guess: [f64; 2], options: &NewtonOptions<f64>) -> bool {
+        newton_common(
+            guess,
+            options,
+            true,
+            four_bar_started(theta2, guess),
+            Some,
+            || None,
+        )
+        .is_none()
     }
 
     #[test]
