@@ -1065,7 +1065,7 @@ impl<T: Real, const K: usize> Started<T, K> {
     /// (one angle's by [`Turning`], the platform's `sin_cos`; several by [`Turnings`]), so
     /// that either path makes the same iterates.
     ///
-    /// An angle beyond [`WHOLE_TURNS_BEYOND`] gives NaN pairs: [`newton`] takes it by whole
+    /// An angle beyond ±16 rad gives NaN pairs: [`newton`] takes it by whole
     /// turns first.
     #[inline(always)]
     pub fn at(angles: [T; K]) -> Self {
@@ -1189,7 +1189,7 @@ fn fresh_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K]) {
 
 /// `angle` (within `[−π, π]`, a closed form's) moved by whole turns to within half a turn of
 /// `guess`, as Newton on every unknown would continue it from there; `angle` itself where the
-/// guess is beyond [`WHOLE_TURNS_BEYOND`], which [`newton`] takes by whole turns first (a
+/// guess is beyond ±16 rad, which [`newton`] takes by whole turns first (a
 /// guess that counts a thousand turns would hand them on to a solution it cannot hold to the
 /// accuracy stated). An offset under 3 rad from the guess (the common case) needs no whole
 /// turns taken off: `round` would give zero there.
