@@ -1853,6 +1853,35 @@ mod tests {
         assert!(ran_away(&[-6.3, 0.0], &[0.0, 0.0], &angles));
         assert!(!ran_away(&[6.2, -6.2], &[0.0, 0.0], &angles));
         assert!(!ran_away(&[100.0, 0.0], &[0.0, 0.0], &[false, true]));
+        // Exactly a whole turn is not more than one; the travel is from the start.
+        assert!(!ran_away(
+            &[core::f64::consts::TAU, 0.0],
+            &[0.0, 0.0],
+            &angles
+        ));
+        assert!(!ran_away(&[7.3, 0.0], &[7.0, 0.0], &angles));
+    }
+
+    /// A closed form's angle continued from the guess's: within half a turn of it, unless the
+    /// guess is beyond 16 rad, where it is the closed form's own, within a turn of zero.
+    #[test]
+    fn a_closed_forms_angle_is_carried_to_the_guesss_turn_unless_that_is_beyond_sixteen_rad() {
+        use core::f64::consts::TAU;
+        // Near the guess: the angle as it is.
+        assert_eq!(angle_near(1.0, 0.5), 1.0);
+        assert_eq!(angle_near(-1.0, -0.5), -1.0);
+        // Across ±π from the guess: the turn nearer it.
+        assert!((angle_near(-3.0, 3.0) - (TAU - 3.0)).abs() < 1e-15);
+        assert!((angle_near(3.0, -3.0) - (3.0 - TAU)).abs() < 1e-15);
+        // The guess two turns up: the angle two turns up.
+        let up = angle_near(1.0, 1.0 + 2.0 * TAU);
+        assert!((up - (1.0 + 2.0 * TAU)).abs() < 1e-14, "{up}");
+        assert!((angle_near(0.9, 1.0 + 2.0 * TAU) - (0.9 + 2.0 * TAU)).abs() < 1e-14);
+        // Beyond 16 rad: the closed form's own angle, bit for bit.
+        assert_eq!(angle_near(0.3, 1000.1), 0.3);
+        assert_eq!(angle_near(-2.5, -16.5), -2.5);
+        let within = angle_near(-2.5, -15.5);
+        assert!((within - (-2.5 - 2.0 * TAU)).abs() < 1e-14, "{within}");
     }
 
     /// A guess that counts turns (a linkage that has turned a thousand times, its angles

@@ -812,7 +812,9 @@ mod tests {
                 error: Error::OtherBranch
             })
         );
-        assert!(misled.solves.get() < 400, "{}", misled.solves.get());
+        // The 97th refusal ends it (171 solves in all: the refused pieces, and those between
+        // them that Newton converged on).
+        assert_eq!(misled.solves.get(), 171);
     }
 
     fn sweep<M: Kinematics<f64, 1>>(
@@ -1189,6 +1191,28 @@ mod tests {
                     iterations: 50,
                     residual_norm: 1.4901070170362611e-8
                 }
+            })
+        );
+    }
+
+    /// `y = x` walked down through the change point at 0, beyond which nothing past −0.5
+    /// assembles: of the solves beyond it, the nearest 13 land on the other branch from
+    /// guesses the predictor places (a step `m·d` of at most a unit, `m` = 1) and the farthest
+    /// fails, a change point. A count that took no guess for placed (as `|m + d| ≤ 1` would
+    /// not) would say a toggle.
+    #[test]
+    fn landings_from_placed_guesses_make_a_change_point() {
+        let cut = Failing {
+            inner: Cross,
+            fail: |input: f64| (input < -0.5).then_some(Error::CannotAssemble { input }),
+        };
+        let (samples, stop) = sweep(&cut, 1.0, 1.0, -0.5, 4);
+        assert_eq!(samples.len(), 3);
+        assert_eq!(
+            stop,
+            Some(Stop::BranchChange {
+                last_input: 0.0,
+                next_input: -0.5
             })
         );
     }
