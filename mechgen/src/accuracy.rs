@@ -208,6 +208,28 @@ impl<T: Real> Accuracy<T> {
     }
 }
 
+/// The error of a position that Newton's default solve returns, relative to `size` (the sum
+/// of the lengths the loops declare), for rates at a position the caller gives: `32·ε·κ`
+/// of the largest loop's magnitudes `largest_loop` at that position (the floor each loop
+/// closes to), which can exceed `size` where a slide's extension counts.
+///
+/// ```
+/// let e = f64::EPSILON;
+/// assert_eq!(mechgen::__private::floor_position_accuracy(3.0, 8.0, 4.0), 32.0 * e * 3.0 * 2.0);
+/// assert_eq!(mechgen::__private::floor_position_accuracy(3.0, 2.0, 4.0), 32.0 * e * 3.0);
+/// ```
+#[inline]
+pub fn floor_position_accuracy<T: Real>(condition: T, largest_loop: T, size: T) -> T {
+    let error = T::constant(32.0) * T::epsilon() * condition.max(T::one());
+    let stretch = largest_loop / size;
+    // Not above 1 (false for NaN).
+    if stretch > T::one() {
+        error * stretch
+    } else {
+        error
+    }
+}
+
 /// The estimate for rates solved with `jacobian` (whose condition estimate is `condition`)
 /// at a position of a mechanism whose declared lengths sum to `size`, `angles[j]` telling
 /// whether unknown `j` is an angle; an error if the velocity's or (with `highest` the

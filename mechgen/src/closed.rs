@@ -512,44 +512,50 @@ pub fn two_angles_sign<T: Real>(k: Vec2<T>, w1: Vec2<T>, q1: T) -> T {
     cross_sign(scaled(k, -T::one()), p1)
 }
 
-/// [`two_angles_sign`], or zero where the solution is within `margin` of the loop's tangency
-/// (see `side`).
+/// [`two_angles_sign`], or zero where the loop's other assembly is within `margin` of the
+/// solution (see `side`).
 pub fn two_angles_side<T: Real>(k: Vec2<T>, w1: Vec2<T>, q1: T, margin: T) -> T {
     let (sin, cos) = q1.sin_cos();
     let p1 = times(Vec2::new(cos, sin), w1);
     side(scaled(k, -T::one()), p1, margin, cross)
 }
 
-/// [`length_and_own_angle_sign`], or zero where the solution is within `margin` of the loop's
-/// tangency (see `side`).
+/// [`length_and_own_angle_sign`], or zero where the loop's other assembly is within `margin`
+/// of the solution (see `side`).
 pub fn length_and_own_angle_side<T: Real>(w0: Vec2<T>, w1: Vec2<T>, l: T, margin: T) -> T {
     side(w1, scaled(w1, l) + w0, margin, dot)
 }
 
-/// [`length_and_other_angle_sign`], or zero where the solution is within `margin` of the
-/// loop's tangency (see `side`).
+/// [`length_and_other_angle_sign`], or zero where the loop's other assembly is within
+/// `margin` of the solution (see `side`).
 pub fn length_and_other_angle_side<T: Real>(k: Vec2<T>, v: Vec2<T>, l: T, margin: T) -> T {
     side(v, k + scaled(v, l), margin, dot)
 }
 
-/// A branch sign, `product(a, b)`, where it is decided; zero where moving `a` and `b` each by
-/// `margin` (a length: a position's error) could change its sign. There the two branches
-/// meet to within that error: the solution is on both, and its sign is rounding.
+/// A branch sign, `product(a, b)`, where it is decided; zero where the loop's other assembly
+/// is within `margin` (a length: a position's error) of this one. The two assemblies are
+/// mirror images whose moving points are `2·|product(â, b)|` apart (`â` the unit vector along
+/// `a`): across the chord `a` for [`cross`] (twice the height of `b`'s tip over it), along
+/// the line `a` for [`dot`] (the two roots of a slide). Within `margin` of each other the
+/// solution is on both to within its error, and its sign is rounding. Beyond it, a solution
+/// returned for the other would be further from it than its error: the sign decides. (A
+/// test of whether moving `a` and `b` each by `margin` could flip the sign, as this was until
+/// edge run case 502593, leaves undecided assemblies up to four margins apart: an f32 Watt
+/// six-bar's solution on the other assembly of its first loop, 1.5 times its error from the
+/// one asked, was returned as on both.)
 fn side<T: Real>(a: Vec2<T>, b: Vec2<T>, margin: T, product: fn(Vec2<T>, Vec2<T>) -> T) -> T {
     let (Ok(sa), Ok(sb)) = (to_unit_scale(&[a]), to_unit_scale(&[b])) else {
         return T::zero();
     };
     let (a, b) = (scaled(a, sa), scaled(b, sb));
     let value = product(a, b);
-    // In these units `a` moves by margin·sa and `b` by margin·sb, so the product by at most
-    // margin·(sa·|b| + sb·|a|); plus its own rounding. An overflow, or NaN, is undecided.
+    // In these units the assemblies are `2·|value|/(sb·|a|)` apart (`|a|` here `sa` times
+    // the given length, `value` `sa·sb` times the given product); plus the product's own
+    // rounding. An overflow, or NaN, is undecided.
     let (la, lb) = (length(a), length(b));
-    let moved = margin * (sa * lb + sb * la) + T::constant(4.0) * T::epsilon() * la * lb;
-    if value.abs() > moved {
-        value
-    } else {
-        T::zero()
-    }
+    let apart = T::constant(2.0) * value.abs();
+    let within = margin * sb * la + T::constant(8.0) * T::epsilon() * la * lb;
+    if apart > within { value } else { T::zero() }
 }
 
 #[cfg(test)]
@@ -1173,41 +1179,52 @@ mod tests {
     }
 
     #[test]
-    fn a_side_is_its_sign_unless_the_margin_could_flip_it() {
-        // Links of 5 spanning the chord (6, 0) meet at (3, ±4): the cross product is 6·4 = 24,
-        // and moving the chord and the link by m moves it by at most m·(6 + 5), so a margin
-        // below 24/11 ≈ 2.2 leaves the sign decided.
+    fn a_side_is_its_sign_unless_the_other_assembly_is_within_the_margin() {
+        // Links of 5 spanning the chord (6, 0) meet at (3, ±4): the two assemblies' joints
+        // are 8 apart, so a margin below 8 leaves the sign decided.
         let (k, w1) = (v(-6.0, 0.0), v(5.0, 0.0));
         let q1 = 4f64.atan2(3.0);
         let sign = two_angles_sign(k, w1, q1);
         assert!(sign > 0.0);
         assert_eq!(two_angles_side(k, w1, q1, 0.0), sign);
-        assert_eq!(two_angles_side(k, w1, q1, 2.1), sign);
-        assert_eq!(two_angles_side(k, w1, q1, 2.3), 0.0);
-        assert_eq!(two_angles_side(k, w1, -q1, 2.3), 0.0);
-        assert!(two_angles_side(k, w1, -q1, 2.1) < 0.0);
+        assert_eq!(two_angles_side(k, w1, q1, 7.9), sign);
+        assert_eq!(two_angles_side(k, w1, q1, 8.1), 0.0);
+        assert_eq!(two_angles_side(k, w1, -q1, 8.1), 0.0);
+        assert!(two_angles_side(k, w1, -q1, 7.9) < 0.0);
         // The same at 1e-300 and 1e300: the margin is a length, at the mechanism's scale.
         for s in [1e-300, 1e300] {
-            assert!(two_angles_side(scaled(k, s), scaled(w1, s), q1, 2.1 * s) > 0.0);
+            assert!(two_angles_side(scaled(k, s), scaled(w1, s), q1, 7.9 * s) > 0.0);
             assert_eq!(
-                two_angles_side(scaled(k, s), scaled(w1, s), q1, 2.3 * s),
+                two_angles_side(scaled(k, s), scaled(w1, s), q1, 8.1 * s),
                 0.0
             );
         }
+        // A longer chord, the same joints: the height over it, not the chord's length or the
+        // link's, sets how far apart the assemblies are. Links of 5 and √(16 + 81) spanning
+        // (12, 0) meet at (3, ±4): again 8 apart.
+        let long = v(-12.0, 0.0);
+        assert!(two_angles_side(long, w1, q1, 7.9) > 0.0);
+        assert_eq!(two_angles_side(long, w1, q1, 8.1), 0.0);
         // Undecided where there is no sign to decide, or the margin is not a number.
         assert_eq!(two_angles_side(v(0.0, 0.0), w1, q1, 0.0), 0.0);
         assert_eq!(two_angles_side(k, w1, q1, f64::NAN), 0.0);
         assert_eq!(two_angles_side(k, w1, q1, f64::INFINITY), 0.0);
         // The dot-product signs, likewise: the slide point 3 along from the circle's centre,
-        // a product of 3 that a margin m moves by m·(1 + 3).
-        assert!(length_and_other_angle_side(v(0.0, 0.0), v(1.0, 0.0), 3.0, 0.7) > 0.0);
+        // its other root 3 behind it: 6 apart.
+        assert!(length_and_other_angle_side(v(0.0, 0.0), v(1.0, 0.0), 3.0, 5.9) > 0.0);
         assert_eq!(
-            length_and_other_angle_side(v(0.0, 0.0), v(1.0, 0.0), 3.0, 0.8),
+            length_and_other_angle_side(v(0.0, 0.0), v(1.0, 0.0), 3.0, 6.1),
             0.0
         );
-        assert!(length_and_own_angle_side(v(0.0, 0.0), v(1.0, 0.0), -3.0, 0.7) < 0.0);
+        assert!(length_and_own_angle_side(v(0.0, 0.0), v(1.0, 0.0), -3.0, 5.9) < 0.0);
         assert_eq!(
-            length_and_own_angle_side(v(0.0, 0.0), v(1.0, 0.0), -3.0, 0.8),
+            length_and_own_angle_side(v(0.0, 0.0), v(1.0, 0.0), -3.0, 6.1),
+            0.0
+        );
+        // A direction of any length: the roots' distance, not the product's size.
+        assert!(length_and_other_angle_side(v(0.0, 0.0), v(8.0, 0.0), 0.375, 5.9) > 0.0);
+        assert_eq!(
+            length_and_other_angle_side(v(0.0, 0.0), v(8.0, 0.0), 0.375, 6.1),
             0.0
         );
     }
@@ -1235,8 +1252,8 @@ mod tests {
     #[test]
     fn a_side_within_its_own_rounding_is_undecided() {
         let e = f64::EPSILON;
-        // (0.5, 0) × (0.5, δ) = δ/2 against 4ε·0.5·0.5 = ε: exactly at it for δ = 2ε,
-        // beyond it for δ = 4ε.
+        // (0.5, 0) × (0.5, δ) = δ/2, twice it against 8ε·0.5·0.5 = 2ε: exactly at it for
+        // δ = 2ε, beyond it for δ = 4ε.
         assert_eq!(side(v(0.5, 0.0), v(0.5, 2.0 * e), 0.0, cross), 0.0);
         assert_eq!(side(v(0.5, 0.0), v(0.5, 4.0 * e), 0.0, cross), 2.0 * e);
         assert_eq!(side(v(0.5, 0.0), v(0.5, -4.0 * e), 0.0, cross), -2.0 * e);

@@ -122,21 +122,27 @@ pub struct Converged<T, const N: usize, P> {
 }
 
 impl<T: Real, const N: usize, P> Converged<T, N, P> {
-    /// The position's estimated error, relative to the size as
-    /// [`Accuracy::estimate`](crate::Accuracy::estimate)'s position: `2·κ·max(16·ε, r/Σ|r|)`
-    /// for the weighted residual `r` it stopped at. The inverse of the column-scaled
+    /// The position's estimated error, relative to `size` (the sum of the lengths the loops
+    /// declare) as [`Accuracy::estimate`](crate::Accuracy::estimate)'s position:
+    /// `2·κ·max(16·ε, r/Σ|r|)` for the weighted residual `r` it stopped at, times the largest
+    /// loop's magnitudes over `size` where that exceeds 1. The inverse of the column-scaled
     /// Jacobian has entries up to κ and the errors of two unknowns can add, so a residual `r`
     /// leaves the position up to `2·κ·r` off; on the floor (`16·ε·Σ|r|`, which also covers
     /// the rounding of evaluating the residual) that is the contract's `32·ε·κ`, and above it
-    /// (a tolerance looser than the floor) the residual itself.
-    pub fn position_accuracy(&self) -> T {
-        self.position_accuracy_at(self.solved.condition)
+    /// (a tolerance looser than the floor) the residual itself. Each loop closes to its own
+    /// magnitudes' rounding, and a loop's magnitudes can exceed the declared lengths (a
+    /// slide's extension counts): relative to `size`, the error is that much larger (edge run
+    /// case 914340, a slider-crank whose slide is as long as its crank, 66,000 times its rod:
+    /// its rates were 1.2 times further off than stated, which read this error against
+    /// `size`).
+    pub fn position_accuracy(&self, size: T) -> T {
+        self.position_accuracy_at(self.solved.condition, size)
     }
 
     /// [`Converged::position_accuracy`] with the condition `condition` instead of the
     /// iteration's: the full Jacobian's, where Newton iterates on fewer unknowns than the
     /// position has (the rest in closed form, to rounding, inside each evaluation).
-    pub fn position_accuracy_at(&self, condition: T) -> T {
+    pub fn position_accuracy_at(&self, condition: T, size: T) -> T {
         let kappa = condition.max(T::one());
         let floor = T::constant(16.0) * T::epsilon();
         // On the floor, as a default solve stops: no norm and no division.
@@ -153,7 +159,21 @@ impl<T: Real, const N: usize, P> Converged<T, N, P> {
             // Above it, or not a number (an undefined size): the residual itself.
             weighted_norm(&self.at.residual, &self.at.weights) / self.at.scale
         };
-        T::constant(2.0) * kappa * relative
+        let error = T::constant(2.0) * kappa * relative;
+        // The largest loop's magnitudes: the scale over the least weight (each loop's weight
+        // is the scale over its own; 1 for one loop, where this is the scale itself).
+        let least_weight = self
+            .at
+            .weights
+            .iter()
+            .fold(T::infinity(), |least, w| least.min(*w));
+        let stretch = self.at.scale / least_weight / size;
+        // Not above 1 (false for NaN, an undefined size that leaves `error` NaN already).
+        if stretch > T::one() {
+            error * stretch
+        } else {
+            error
+        }
     }
 }
 
@@ -392,10 +412,11 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
 }
 
 /// Whether a solution keeps its guess's branches, loop by loop, from their sides (the
-/// `closed::*_side` values: a branch sign, or zero where the branch is within the position's
-/// error of the loop's tangency). Only a loop decided both at the guess and at the solution,
-/// and opposite, is another assembly; at a tangency the two branches meet, and the solution
-/// is on both to within its accuracy.
+/// `closed::*_side` values: a branch sign, or zero where the loop's other assembly is within
+/// the position's error). Only a loop decided both at the guess and at the solution, and
+/// opposite, is another assembly; where the two assemblies are within the error of each
+/// other (near a tangency, where they meet), the solution is on both to within its
+/// accuracy.
 pub fn same_sides<T: Real, const N: usize>(guess: [T; N], solution: [T; N]) -> bool {
     let zero = T::zero();
     guess
@@ -2482,23 +2503,41 @@ mod tests {
         // On the floor, 16·ε of the loops' magnitudes (here 10), each component weighted:
         // 2·κ·16·ε, the contract's 32·ε·κ.
         let floor = converged_at([1e-15, -3e-14], [1.0, 1.0], 10.0, 3.0);
-        assert_eq!(floor.position_accuracy(), 2.0 * 3.0 * 16.0 * e);
-        assert_eq!(floor.position_accuracy_at(5.0), 2.0 * 5.0 * 16.0 * e);
+        assert_eq!(floor.position_accuracy(10.0), 2.0 * 3.0 * 16.0 * e);
+        assert_eq!(floor.position_accuracy_at(5.0, 10.0), 2.0 * 5.0 * 16.0 * e);
         // A condition below 1 counts as 1.
-        assert_eq!(floor.position_accuracy_at(0.5), 2.0 * 16.0 * e);
+        assert_eq!(floor.position_accuracy_at(0.5, 10.0), 2.0 * 16.0 * e);
         // Above it in one component (the other on it): the weighted residual over the
-        // magnitudes, 2·κ·r/Σ|r|.
+        // magnitudes, 2·κ·r/Σ|r|. (A weight below 1, which no mechanism's is, makes a loop
+        // larger than the scale: 10/0.5, taken as the size here.)
         let above = converged_at([1e-15, 4e-9], [1.0, 0.5], 10.0, 3.0);
-        assert_eq!(above.position_accuracy(), 2.0 * 3.0 * (4e-9 * 0.5 / 10.0));
+        assert_eq!(
+            above.position_accuracy(20.0),
+            2.0 * 3.0 * (4e-9 * 0.5 / 10.0)
+        );
         let first = converged_at([2e-9, 1e-15], [1.0, 0.5], 10.0, 3.0);
-        assert_eq!(first.position_accuracy(), 2.0 * 3.0 * (2e-9 / 10.0));
+        assert_eq!(first.position_accuracy(20.0), 2.0 * 3.0 * (2e-9 / 10.0));
         // Just above the floor, weighted under it: on it.
         let weighted = converged_at([1e-15, 5e-14], [1.0, 0.5], 10.0, 3.0);
-        assert_eq!(weighted.position_accuracy(), 2.0 * 3.0 * 16.0 * e);
+        assert_eq!(weighted.position_accuracy(20.0), 2.0 * 3.0 * 16.0 * e);
+        // Loops whose magnitudes exceed the declared lengths (here 10 against 4): the error
+        // relative to those lengths is that much larger. Two loops, the larger of magnitudes
+        // 10/2 = 5 (weight 2) and 10/1.25 = 8 (weight 1.25): 8/4 times the error.
+        assert_eq!(
+            floor.position_accuracy(4.0),
+            2.0 * 3.0 * 16.0 * e * (10.0 / 4.0)
+        );
+        let two_loops = converged_at([1e-15, -1e-14], [2.0, 1.25], 10.0, 3.0);
+        assert_eq!(
+            two_loops.position_accuracy(4.0),
+            2.0 * 3.0 * 16.0 * e * (8.0 / 4.0)
+        );
+        // Declared lengths longer than every loop's magnitudes: the error as it is.
+        assert_eq!(two_loops.position_accuracy(9.0), 2.0 * 3.0 * 16.0 * e);
         // An undefined size leaves it not a number, or infinite: no rates' estimate holds.
         assert!(
             !converged_at([1e-9, 1e-9], [1.0, 1.0], 0.0, 3.0)
-                .position_accuracy()
+                .position_accuracy(10.0)
                 .is_finite()
         );
     }

@@ -3065,8 +3065,8 @@ pub mod judge {
 
         /// Whether a `Motion`'s errors are within the accuracy it states (`Motion::accuracy`,
         /// which the README calls a bound on the true error): its position's against the size
-        /// (Newton's against the larger of the size and each loop's magnitudes, as its
-        /// position's estimate is derived), its rates' and accelerations' against their sizes,
+        /// (Newton's too: its estimate is stretched by the largest loop's magnitudes over the
+        /// size where they exceed it), its rates' and accelerations' against their sizes,
         /// each unknown weighted by its column, as the contract measures them.
         fn within_stated(&self, v: &mut Verdict, api: Api, got: &[Vec<f64>], stated: &Stated) {
             let Some(truth) = &self.truth else {
@@ -3075,10 +3075,8 @@ pub mod judge {
             let (Some(tv), Some(ta)) = (&truth.velocity, &truth.acceleration) else {
                 return;
             };
-            let newton = api == Api::MotionNear;
             let size = self.size();
-            let position =
-                position_error(&self.model, truth, &got[0]) / self.newton_size(truth, newton);
+            let position = position_error(&self.model, truth, &got[0]);
             let no_angles = vec![false; self.n()];
             let velocity = weighted_error(
                 truth,

@@ -299,3 +299,50 @@ fn guesses_that_count_turns_solve_as_within_a_turn() {
     guesses_that_count_turns_solve::<f64>();
     guesses_that_count_turns_solve::<f32>();
 }
+
+/// A loop longer than the declared lengths (a slide's extension counts) closes only to its
+/// own rounding, so a Newton position is off by that much of it: the accuracy `motion_near`
+/// states, and `motion_at`'s at any position (Newton's included), is stretched by the loop's
+/// magnitudes over the declared lengths. Edge run seed 15, case 914340: a slider-crank whose
+/// rod is 66,000 times shorter than its crank and whose slide is as long as the crank had
+/// rates 1.2 times further off than stated, when the position's error was read against the
+/// declared lengths alone.
+#[test]
+fn a_slide_longer_than_the_declared_lengths_stretches_the_accuracy_stated() {
+    let (l2, l3, c) = (1048576.0, 15.810822519382684, 74.79486745186973);
+    let linkage = mechanisms::SliderCrank::<f64>::new(l2, l3, c).unwrap();
+    let (t, w, a) = (3.14150724527024, 16.71564719961489, 9.480223757571935);
+    let closed = linkage.assemble(t, Branch::Crossed).unwrap();
+    let declared = l2 + l3 + c;
+    let stretch = (declared + closed.d.abs()) / declared;
+    assert!(stretch > 1.99, "the slide about as long as the crank: {stretch}");
+    let kappa = linkage.condition(t, &closed);
+    let floor = 32.0 * f64::EPSILON * kappa;
+    let at = linkage.motion_at(t, &closed, w, a).unwrap();
+    assert!(
+        (at.accuracy.position / (floor * stretch) - 1.0).abs() < 1e-12,
+        "motion_at: {:e} against {:e}",
+        at.accuracy.position,
+        floor * stretch
+    );
+    let guess = mechanisms::SliderCrankUnknowns {
+        theta3: closed.theta3 + 1e-3,
+        d: closed.d + 1e-3 * l3,
+    };
+    let near = linkage
+        .motion_near(t, &guess, &NewtonOptions::default(), w, a)
+        .unwrap();
+    assert!(
+        near.value.accuracy.position >= floor * 1.99,
+        "motion_near: {:e} against {:e}",
+        near.value.accuracy.position,
+        floor
+    );
+    // The four-bar's loop is its declared lengths: nothing to stretch.
+    let four_bar = common::example_1::<f64>();
+    let t = 60f64.to_radians();
+    let q = four_bar.assemble(t, Branch::Open).unwrap();
+    let at = four_bar.motion_at(t, &q, w, a).unwrap();
+    let floor = 32.0 * f64::EPSILON * four_bar.condition(t, &q).max(1.0);
+    assert_eq!(at.accuracy.position, floor);
+}

@@ -205,7 +205,7 @@ impl Generator<'_> {
     }
 
     /// Each of `branching`'s branch signs at `position`, as a block: the sign itself, or
-    /// with a `margin` its side (zero within the margin of the loop's tangency).
+    /// with a `margin` its side (zero where the loop's other assembly is within the margin).
     fn branch_signs(&self, branching: &[&Step], margin: Option<&Ident>) -> Vec<TokenStream> {
         let position = arg("position");
         branching

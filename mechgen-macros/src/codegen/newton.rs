@@ -336,7 +336,7 @@ impl Generator<'_> {
             "Acceleration",
             quote!(&#options.accuracy),
             quote!(#size),
-            &super::rates::PositionFrom::Newton(quote!(#converged.position_accuracy())),
+            &super::rates::PositionFrom::Newton(quote!(#converged.position_accuracy(#size))),
         );
         // From Newton's solution on: the same on either path.
         let rates_body = quote! {

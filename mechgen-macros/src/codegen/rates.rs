@@ -81,12 +81,21 @@ impl Generator<'_> {
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
         let eq = self.equations;
+        // Loops whose magnitudes depend on the position (a slide's extension) can be longer
+        // than the declared lengths, and a Newton position is known only to their rounding:
+        // their magnitudes at the position, with the rates.
+        let moving_magnitudes: &[ExprId] = if eq.magnitudes.iter().all(|&m| eq.graph.is_fixed(m)) {
+            &[]
+        } else {
+            &eq.magnitudes
+        };
         let entries: Vec<ExprId> = eq
             .jacobian
             .iter()
             .flatten()
             .chain(&eq.velocity_rhs)
             .chain(&eq.acceleration_rhs)
+            .chain(moving_magnitudes)
             .copied()
             .collect();
         let stage = |var: Var| usize::from(matches!(var, Var::Rate(SymbolRef::Unknown(_))));
@@ -99,12 +108,13 @@ impl Generator<'_> {
             },
         ) = self.block_with(&entries, Bindings::Position, &[], &stage);
         statements.resize(2, Vec::new());
-        let rate_solves = self.rate_solves(
-            &outputs,
-            &statements[0],
-            &statements[1],
-            &PositionFrom::Caller,
-        );
+        let (outputs, magnitudes) = outputs.split_at(outputs.len() - moving_magnitudes.len());
+        let position_from = if magnitudes.is_empty() {
+            PositionFrom::Caller
+        } else {
+            PositionFrom::CallerIn(largest_loop(magnitudes, &eq.magnitude_loops))
+        };
+        let rate_solves = self.rate_solves(outputs, &statements[0], &statements[1], &position_from);
         let (rates, accelerations) = (local("rates"), local("accelerations"));
         let accuracy = local("accuracy");
         let rates_check = self.input_rates_check();
@@ -280,7 +290,7 @@ impl Generator<'_> {
         size: TokenStream,
         position: &PositionFrom,
     ) -> TokenStream {
-        let position = position.tokens();
+        let position = position.tokens(&condition, &size);
         let highest = Ident::new(highest, proc_macro2::Span::call_site());
         let accuracy = local("accuracy");
         let angles: Vec<bool> = self
@@ -477,17 +487,48 @@ pub(crate) enum PositionFrom {
     /// (`velocity`, `acceleration` and the sensitivities, which state none, judge a position
     /// as a closed form's, as their documentation says.)
     Caller,
+    /// The caller, as [`PositionFrom::Caller`], where the loops' magnitudes depend on the
+    /// position: Newton's `32·ε·κ` relative to the largest loop's magnitudes there (this
+    /// expression), which can exceed the size.
+    CallerIn(TokenStream),
     /// Newton's solution: its error bound from the residual it stopped at, this expression.
     Newton(TokenStream),
 }
 
 impl PositionFrom {
-    /// The `Option<T>` that `rates_accuracy` takes.
-    fn tokens(&self) -> TokenStream {
+    /// The `Option<T>` that `rates_accuracy` takes, for a Jacobian of condition `condition`
+    /// in a mechanism of size `size`.
+    fn tokens(&self, condition: &TokenStream, size: &TokenStream) -> TokenStream {
         match self {
             PositionFrom::ClosedForm => quote!(::core::option::Option::None),
             PositionFrom::Caller => quote!(::core::option::Option::Some(T::zero())),
+            PositionFrom::CallerIn(largest) => quote!(::core::option::Option::Some(
+                ::mechgen::__private::floor_position_accuracy(#condition, #largest, #size)
+            )),
             PositionFrom::Newton(error) => quote!(::core::option::Option::Some(#error)),
         }
+    }
+}
+
+/// The largest of the loops' magnitude sums, `|m|` summed over each loop's `magnitudes`
+/// (`loops_of[i]` is the loop of `magnitudes[i]`).
+fn largest_loop(magnitudes: &[Emitted], loops_of: &[usize]) -> TokenStream {
+    let mut loops: Vec<usize> = loops_of.to_vec();
+    loops.dedup();
+    let sums = loops.iter().map(|&k| {
+        let terms = magnitudes
+            .iter()
+            .zip(loops_of)
+            .filter(|(_, l)| **l == k)
+            .map(|(m, _)| {
+                let m = m.receiver();
+                quote!(#m.abs())
+            });
+        quote!(#(#terms)+*)
+    });
+    let sums: Vec<TokenStream> = sums.collect();
+    match sums.as_slice() {
+        [one] => one.clone(),
+        _ => quote!(T::zero()#(.max(#sums))*),
     }
 }

@@ -217,13 +217,14 @@ impl Generator<'_> {
         // The rates' estimate at Newton's position, its error from the residual it stopped at
         // and the full Jacobian's condition.
         let condition = quote!((T::one() / #relative.abs()));
+        let size = self.accuracy_size(quote!(self));
         let accuracy_check = self.rates_check(
             quote!(&#jacobian),
             condition.clone(),
             "Acceleration",
             quote!(&#options.accuracy),
             &crate::codegen::rates::PositionFrom::Newton(
-                quote!(#converged.position_accuracy_at(#condition)),
+                quote!(#converged.position_accuracy_at(#condition, #size)),
             ),
         );
         let docs = doc(&format!(
