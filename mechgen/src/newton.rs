@@ -167,13 +167,10 @@ impl<T: Real, const N: usize, P> Converged<T, N, P> {
             .weights
             .iter()
             .fold(T::infinity(), |least, w| least.min(*w));
-        let stretch = self.at.scale / least_weight / size;
-        // Not above 1 (false for NaN, an undefined size that leaves `error` NaN already).
-        if stretch > T::one() {
-            error * stretch
-        } else {
-            error
-        }
+        // At least 1, without a branch (`max` passes over a NaN stretch, which comes only with
+        // a scale that is not a number, and leaves `error` NaN already).
+        let stretch = (self.at.scale / least_weight / size).max(T::one());
+        error * stretch
     }
 }
 

@@ -315,7 +315,10 @@ fn a_slide_longer_than_the_declared_lengths_stretches_the_accuracy_stated() {
     let closed = linkage.assemble(t, Branch::Crossed).unwrap();
     let declared = l2 + l3 + c;
     let stretch = (declared + closed.d.abs()) / declared;
-    assert!(stretch > 1.99, "the slide about as long as the crank: {stretch}");
+    assert!(
+        stretch > 1.99,
+        "the slide about as long as the crank: {stretch}"
+    );
     let kappa = linkage.condition(t, &closed);
     let floor = 32.0 * f64::EPSILON * kappa;
     let at = linkage.motion_at(t, &closed, w, a).unwrap();

@@ -217,12 +217,15 @@ impl Generator<'_> {
         // The rates' estimate at Newton's position, its error from the residual it stopped at
         // and the full Jacobian's condition.
         let condition = quote!((T::one() / #relative.abs()));
-        let size = self.accuracy_size(quote!(self));
-        let accuracy_check = self.rates_check(
+        // The size the position's error and the rates' accuracy are stated against, once.
+        let size = local("size");
+        let size_value = self.accuracy_size(quote!(self));
+        let accuracy_check = self.rates_check_sized(
             quote!(&#jacobian),
             condition.clone(),
             "Acceleration",
             quote!(&#options.accuracy),
+            quote!(#size),
             &crate::codegen::rates::PositionFrom::Newton(
                 quote!(#converged.position_accuracy_at(#condition, #size)),
             ),
@@ -249,6 +252,7 @@ impl Generator<'_> {
                     let start = #ty { #(#unknown_names),* };
                     return self.#all(#input, &start, #options, #input_dot, #input_ddot);
                 }
+                let #size = #size_value;
                 #accuracy_check
                 let #rates = #velocity;
                 let [#(#rate_names),*] = ::mechgen::__private::finite(#rates, "velocity")?;
