@@ -23,11 +23,14 @@
 //! position's is derived: Newton accepts a residual up to `16·ε` of the loops'
 //! magnitudes, and the inverse of the column-scaled Jacobian has entries up to κ, so the
 //! errors of two unknowns can add (an edge run found positions up to 1.3 times `16·ε·κ`
-//! off; none in the run of `docs/EDGES.md` exceeds `32·ε·κ`). That derivation makes a
-//! Newton position's estimate relative to the larger of the mechanism's size and each loop's
-//! magnitudes at the position (a slide's extension counted, which can exceed the declared
-//! lengths). Near a change point the κ³ of the acceleration is reached; near a
-//! toggle the true error grows only as κ², so there the estimate is pessimistic by up to κ.
+//! off; none in the run of `docs/EDGES.md` exceeds `32·ε·κ`). That derivation holds a
+//! Newton position to the largest loop's magnitudes at the position (a slide's extension
+//! counted, which can exceed the declared lengths): relative to the size, its estimate is
+//! stretched by their ratio where that exceeds 1, and so is the error the rates carry from it
+//! (edge run seed 15, case 914340: a slider-crank's rates, read against the declared lengths
+//! alone, were 1.2 times further off than stated). Near a change point the κ³ of the
+//! acceleration is reached; near a toggle the true error grows only as κ², so there the
+//! estimate is pessimistic by up to κ.
 //!
 //! Here `s = max(1, ρ/16)`, with ρ the aspect: the sum of the lengths the mechanism's loops
 //! declare over the shortest column of an angle unknown. An angle whose vector shrinks (a slide
