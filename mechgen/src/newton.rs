@@ -143,10 +143,29 @@ impl<T: Real, const N: usize, P> Converged<T, N, P> {
     /// iteration's: the full Jacobian's, where Newton iterates on fewer unknowns than the
     /// position has (the rest in closed form, to rounding, inside each evaluation).
     pub fn position_accuracy_at(&self, condition: T, size: T) -> T {
+        self.error_within(condition, size, T::one())
+    }
+
+    /// The position's error as a length, for telling a loop's two assemblies apart at it
+    /// (`mechgen::closed::*_side`): the contract's `32·ε·κ` of `size` (stretched as
+    /// [`Converged::position_accuracy`] is) for any residual a default solve accepts, up to
+    /// the four floors where no step lowers it, and the residual's own estimate where a stated
+    /// tolerance stopped above those. Not [`Converged::position_accuracy`]'s floor alone: a
+    /// solution 2.6 floors up, whose estimate grew to 2.6 times `32·ε·κ`, read the other
+    /// assembly of a loop 1.5 times `32·ε·κ` away as within its error (edge run seed 15, case
+    /// 502593, an f32 Watt six-bar whose asked assembly does not close), where the contract
+    /// holds a default solve's position to `32·ε·κ` and so to one assembly.
+    pub fn error_length(&self, size: T) -> T {
+        self.error_within(self.solved.condition, size, T::constant(STAGNATION_FLOOR)) * size
+    }
+
+    /// [`Converged::position_accuracy_at`] with a residual up to `floors` times the rounding
+    /// floor counted as on it.
+    fn error_within(&self, condition: T, size: T, floors: T) -> T {
         let kappa = condition.max(T::one());
         let floor = T::constant(16.0) * T::epsilon();
         // On the floor, as a default solve stops: no norm and no division.
-        let on_floor_of = floor * self.at.scale;
+        let on_floor_of = floors * floor * self.at.scale;
         let on_floor = self
             .at
             .residual
@@ -2531,6 +2550,17 @@ mod tests {
         );
         // Declared lengths longer than every loop's magnitudes: the error as it is.
         assert_eq!(two_loops.position_accuracy(9.0), 2.0 * 3.0 * 16.0 * e);
+        // As a length for telling assemblies apart: 32·ε·κ of the size for any residual up to
+        // the four floors a default solve accepts; the residual's own estimate above them.
+        assert_eq!(floor.error_length(10.0), 2.0 * 3.0 * 16.0 * e * 10.0);
+        let stalled = converged_at([1e-15, 3.0 * 16.0 * e * 10.0], [1.0, 1.0], 10.0, 3.0);
+        assert_eq!(stalled.error_length(10.0), 2.0 * 3.0 * 16.0 * e * 10.0);
+        assert!(stalled.position_accuracy(10.0) > 2.0 * 3.0 * 16.0 * e);
+        let loose = converged_at([1e-15, 5.0 * 16.0 * e * 10.0], [1.0, 1.0], 10.0, 3.0);
+        assert_eq!(
+            loose.error_length(10.0),
+            2.0 * 3.0 * (5.0 * 16.0 * e * 10.0 / 10.0) * 10.0
+        );
         // An undefined size leaves it not a number, or infinite: no rates' estimate holds.
         assert!(
             !converged_at([1e-9, 1e-9], [1.0, 1.0], 0.0, 3.0)

@@ -173,19 +173,19 @@ impl Generator<'_> {
         }
     }
 
-    /// `mechgen_keeps_branches(input, guess, solution, condition)`: whether Newton's
-    /// solution, whose condition estimate is `condition`, is on the guess's branches. A loop
-    /// counts as switched only where its sign is decided at both, beyond the position's
-    /// error estimate (`32·ε·κ` of the size): at a tangency the branches meet.
+    /// `mechgen_keeps_branches(input, guess, solution, margin)`: whether Newton's solution,
+    /// whose estimated error is the length `margin` (the runtime's `Converged::error_length`:
+    /// `32·ε·κ` of the size, more where a stated tolerance stopped above it),
+    /// is on the guess's branches. A loop counts as switched only where its sign is decided at
+    /// both: where its other assembly is farther than the error (near a tangency the two
+    /// meet).
     fn keeps_branches(&self, branching: &[&Step]) -> TokenStream {
         let input_params = self.input_params();
         let (position, guess) = (arg("position"), arg("guess"));
-        let (solution, condition, margin) =
-            (local("solution"), local("condition"), local("margin"));
+        let (solution, margin) = (local("solution"), local("margin"));
         let (unknowns, _, _) = self.signature_types();
         let sides = self.branch_signs(branching, Some(&margin));
         let n = Literal::usize_unsuffixed(sides.len());
-        let size = self.accuracy_size(quote!(self));
         let docs = doc("Whether Newton's `solution` keeps `guess`'s branches (see \
              `mechgen::__private::same_sides`).");
         quote! {
@@ -195,9 +195,8 @@ impl Generator<'_> {
                 #input_params,
                 #guess: &#unknowns,
                 #solution: &#unknowns,
-                #condition: T,
+                #margin: T,
             ) -> bool {
-                let #margin = T::constant(32.0) * T::epsilon() * #condition * (#size);
                 let sides = |#position: &#unknowns| -> [T; #n] { [#(#sides),*] };
                 ::mechgen::__private::same_sides(sides(#guess), sides(#solution))
             }

@@ -38,8 +38,11 @@ impl Generator<'_> {
         let converged = arg("converged");
         let (unknowns, _, _) = self.signature_types();
         let ty = &self.unknowns_type;
-        let (keep_orientation, branch_check) =
-            self.branch_keeping(quote!(&#solved.value), quote!(#solved.condition));
+        let size_value = self.accuracy_size(quote!(self));
+        let (keep_orientation, branch_check) = self.branch_keeping(
+            quote!(&#solved.value),
+            quote!(#converged.error_length(#size_value)),
+        );
         let orientation = self.orientation(keep_orientation, None);
         let branch_doc = if keep_orientation || branch_check.is_some() {
             " It keeps to the guess's assembly branch (for one loop, the orientation of the \
@@ -225,11 +228,11 @@ impl Generator<'_> {
     /// loop, or loops none of which has a closed form with branches: the sign of the
     /// determinant cannot change along a branch, so a change means another assembly), and
     /// the check after it otherwise (several loops with closed-form branches), comparing
-    /// `solution`, of condition estimate `condition`, with the guess.
+    /// `solution`, whose estimated error is the length `error`, with the guess.
     fn branch_keeping(
         &self,
         solution: TokenStream,
-        condition: TokenStream,
+        error: TokenStream,
     ) -> (bool, Option<TokenStream>) {
         let input = self.input_args();
         let guess = arg("guess");
@@ -239,7 +242,7 @@ impl Generator<'_> {
         let keep_orientation = self.model.loops.len() == 1 || branching == 0;
         let check = (branching > 0 && !keep_orientation).then(|| {
             quote! {
-                if !self.mechgen_keeps_branches(#input, #guess, #solution, #condition) {
+                if !self.mechgen_keeps_branches(#input, #guess, #solution, #error) {
                     return ::core::result::Result::Err(::mechgen::Error::OtherBranch);
                 }
             }
@@ -287,9 +290,10 @@ impl Generator<'_> {
             named,
             used: bound,
         } = self.linearisation(&x, &guess);
+        let size = local("size");
         let (keep_orientation, branch_check) = self.branch_keeping(
             quote!(&#ty::from_array(#converged.solved.value)),
-            quote!(#converged.solved.condition),
+            quote!(#converged.error_length(#size)),
         );
         let orientation = self.orientation(keep_orientation, None);
 
