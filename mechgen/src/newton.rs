@@ -143,7 +143,14 @@ impl<T: Real, const N: usize, P> Converged<T, N, P> {
     /// iteration's: the full Jacobian's, where Newton iterates on fewer unknowns than the
     /// position has (the rest in closed form, to rounding, inside each evaluation).
     pub fn position_accuracy_at(&self, condition: T, size: T) -> T {
-        self.error_within(condition, size, T::one())
+        self.stretched(self.error_within(condition, T::one()), size)
+    }
+
+    /// [`Converged::position_accuracy_at`] where no loop's magnitudes can sum to more than
+    /// the size (every magnitude one of the declared lengths, none twice in a loop, as the
+    /// generated code knows from the declaration): no stretch to compute.
+    pub fn position_accuracy_within_size_at(&self, condition: T) -> T {
+        self.error_within(condition, T::one())
     }
 
     /// The position's error as a length, for telling a loop's two assemblies apart at it
@@ -156,12 +163,13 @@ impl<T: Real, const N: usize, P> Converged<T, N, P> {
     /// 502593, an f32 Watt six-bar whose asked assembly does not close), where the contract
     /// holds a default solve's position to `32·ε·κ` and so to one assembly.
     pub fn error_length(&self, size: T) -> T {
-        self.error_within(self.solved.condition, size, T::constant(STAGNATION_FLOOR)) * size
+        let error = self.error_within(self.solved.condition, T::constant(STAGNATION_FLOOR));
+        self.stretched(error, size) * size
     }
 
-    /// [`Converged::position_accuracy_at`] with a residual up to `floors` times the rounding
-    /// floor counted as on it.
-    fn error_within(&self, condition: T, size: T, floors: T) -> T {
+    /// The position's error relative to the largest loop's magnitudes, with a residual up to
+    /// `floors` times the rounding floor counted as on it.
+    fn error_within(&self, condition: T, floors: T) -> T {
         let kappa = condition.max(T::one());
         let floor = T::constant(16.0) * T::epsilon();
         // On the floor, as a default solve stops: no norm and no division.
@@ -178,7 +186,12 @@ impl<T: Real, const N: usize, P> Converged<T, N, P> {
             // Above it, or not a number (an undefined size): the residual itself.
             weighted_norm(&self.at.residual, &self.at.weights) / self.at.scale
         };
-        let error = T::constant(2.0) * kappa * relative;
+        T::constant(2.0) * kappa * relative
+    }
+
+    /// `error`, relative to the largest loop's magnitudes, relative to `size` instead where
+    /// that loop is the longer.
+    fn stretched(&self, error: T, size: T) -> T {
         // The largest loop's magnitudes: the scale over the least weight (each loop's weight
         // is the scale over its own; 1 for one loop, where this is the scale itself).
         let least_weight = self
@@ -2542,6 +2555,11 @@ mod tests {
         assert_eq!(
             floor.position_accuracy(4.0),
             2.0 * 3.0 * 16.0 * e * (10.0 / 4.0)
+        );
+        // Where the declaration rules a longer loop out, nothing is stretched.
+        assert_eq!(
+            floor.position_accuracy_within_size_at(3.0),
+            2.0 * 3.0 * 16.0 * e
         );
         let two_loops = converged_at([1e-15, -1e-14], [2.0, 1.25], 10.0, 3.0);
         assert_eq!(

@@ -340,7 +340,11 @@ impl Generator<'_> {
             "Acceleration",
             quote!(&#options.accuracy),
             quote!(#size),
-            &super::rates::PositionFrom::Newton(quote!(#converged.position_accuracy(#size))),
+            &super::rates::PositionFrom::Newton(if self.loops_within_size() {
+                quote!(#converged.position_accuracy_within_size_at(#converged.solved.condition))
+            } else {
+                quote!(#converged.position_accuracy(#size))
+            }),
         );
         // From Newton's solution on: the same on either path.
         let rates_body = quote! {

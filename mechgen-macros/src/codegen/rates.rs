@@ -320,6 +320,28 @@ impl Generator<'_> {
         }
     }
 
+    /// Whether no loop's magnitudes can sum to more than [`Self::accuracy_size`]: every
+    /// term's magnitude one of the declared lengths (no formula, no factor, no slide's
+    /// extension), none twice in a loop. Newton's position error, held to each loop's own
+    /// magnitudes, then needs no stretch to be read against the size.
+    pub(super) fn loops_within_size(&self) -> bool {
+        self.model.loops.iter().all(|sum| {
+            let mut seen = std::collections::BTreeSet::new();
+            sum.terms.iter().all(|term| {
+                let m = &term.magnitude;
+                let single =
+                    m.formulas.is_empty() && m.constant == 0.0 && m.coefficients.len() == 1;
+                single
+                    && m.coefficients.iter().all(|(symbol, c)| {
+                        matches!(symbol, SymbolRef::Param(i)
+                            if self.model.params[*i].kind == crate::model::Kind::Length
+                                && c.abs() == 1.0
+                                && seen.insert(*i))
+                    })
+            })
+        })
+    }
+
     /// The size [`Self::rates_check`] weighs the columns against: the sum of the lengths the
     /// loops declare (1 without one), read from the mechanism `receiver`.
     pub(super) fn accuracy_size(&self, receiver: TokenStream) -> TokenStream {

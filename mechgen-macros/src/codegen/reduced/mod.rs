@@ -226,9 +226,11 @@ impl Generator<'_> {
             "Acceleration",
             quote!(&#options.accuracy),
             quote!(#size),
-            &crate::codegen::rates::PositionFrom::Newton(
-                quote!(#converged.position_accuracy_at(#condition, #size)),
-            ),
+            &crate::codegen::rates::PositionFrom::Newton(if self.loops_within_size() {
+                quote!(#converged.position_accuracy_within_size_at(#condition))
+            } else {
+                quote!(#converged.position_accuracy_at(#condition, #size))
+            }),
         );
         let docs = doc(&format!(
             "Position by Newton-Raphson from `guess` (as [`Self::position`]: on the iterated \
