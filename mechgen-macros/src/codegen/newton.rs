@@ -704,17 +704,7 @@ pub(super) fn scale_and_weights(
     row_loops: &[usize],
     scale: &Ident,
 ) -> (TokenStream, TokenStream) {
-    let sum = |loop_index: Option<usize>| {
-        let terms = magnitudes
-            .iter()
-            .zip(loops_of)
-            .filter(move |(_, l)| loop_index.is_none_or(|k| **l == k))
-            .map(|(m, _)| {
-                let m = m.receiver();
-                quote!(#m.abs())
-            });
-        quote!(#(#terms)+*)
-    };
+    let sum = |loop_index: Option<usize>| magnitude_sum(magnitudes, loops_of, loop_index);
     let rows = 2 * row_loops.len();
     if row_loops.iter().all(|&k| k == row_loops[0]) {
         let own = sum(Some(row_loops[0]));
@@ -733,6 +723,24 @@ pub(super) fn scale_and_weights(
         quote!(let #scale = #total; #(#statements)*),
         quote!([#(#weights),*]),
     )
+}
+
+/// `Σ|m|` over the magnitudes of loop `loop_index` (every loop's where `None`),
+/// `loops_of[i]` the loop of `magnitudes[i]`.
+pub(super) fn magnitude_sum(
+    magnitudes: &[Emitted],
+    loops_of: &[usize],
+    loop_index: Option<usize>,
+) -> TokenStream {
+    let terms = magnitudes
+        .iter()
+        .zip(loops_of)
+        .filter(|(_, l)| loop_index.is_none_or(|k| **l == k))
+        .map(|(m, _)| {
+            let m = m.receiver();
+            quote!(#m.abs())
+        });
+    quote!(#(#terms)+*)
 }
 
 /// [`Generator::linearisation`]'s parts.

@@ -537,18 +537,10 @@ impl PositionFrom {
 fn largest_loop(magnitudes: &[Emitted], loops_of: &[usize]) -> TokenStream {
     let mut loops: Vec<usize> = loops_of.to_vec();
     loops.dedup();
-    let sums = loops.iter().map(|&k| {
-        let terms = magnitudes
-            .iter()
-            .zip(loops_of)
-            .filter(|(_, l)| **l == k)
-            .map(|(m, _)| {
-                let m = m.receiver();
-                quote!(#m.abs())
-            });
-        quote!(#(#terms)+*)
-    });
-    let sums: Vec<TokenStream> = sums.collect();
+    let sums: Vec<TokenStream> = loops
+        .iter()
+        .map(|&k| super::newton::magnitude_sum(magnitudes, loops_of, Some(k)))
+        .collect();
     match sums.as_slice() {
         [one] => one.clone(),
         _ => quote!(T::zero()#(.max(#sums))*),
