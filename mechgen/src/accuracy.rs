@@ -141,22 +141,29 @@ impl<T: Real> Accuracy<T> {
     /// the caller gives. The position is then the larger of `position` and the closed form's
     /// `32·ε·κ`, and each rate carries what its error does to the Jacobian the rates are solved
     /// with: an angle off by `δθ` turns its column by `δθ`, up to `ρ·δ` for a weighted error
-    /// `δ` (ρ the aspect, at least 1), which the solve amplifies by κ; the accelerations'
-    /// right-hand side carries the velocities' error, so once more by κ:
+    /// `δ` (ρ the aspect, at least 1), and the rates solved with it by that much of their size,
+    /// which the solve amplifies by κ; the accelerations' right-hand side carries the
+    /// velocities' error twice (a squared rate's error is twice the rate's), so twice once
+    /// more by κ:
     ///
-    /// - velocity: the closed form's, plus `κ·ρ·δ/2`;
-    /// - acceleration: the closed form's, plus `κ²·ρ·δ/2`.
+    /// - velocity: the closed form's, plus `κ·ρ·δ`;
+    /// - acceleration: the closed form's, plus `2·κ²·ρ·δ`.
     ///
-    /// At a Newton position on its floor (`δ = 32·ε·κ`) these are `16·ε·κ²·ρ` and
-    /// `16·ε·κ³·ρ`, within the bounds the edge tests hold Newton's rates to against the
-    /// multiple-precision oracle (`16·ε·κ²·ρ` and `16·ε·κ³·ρ²`), and checked against it there.
+    /// At a Newton position on its floor (`δ = 32·ε·κ`) these are `32·ε·κ²·ρ` and
+    /// `64·ε·κ³·ρ`, against the bounds the edge tests hold Newton's rates to against the
+    /// multiple-precision oracle (`16·ε·κ²·ρ` and `16·ε·κ³·ρ²`). Until positions a stated
+    /// tolerance left short of the floor were drawn too, these were `κ·ρ·δ/2` and `κ²·ρ·δ/2`,
+    /// which such positions exceeded: an inverted slider-crank at κ 1 and ρ 1 whose slide's
+    /// velocity was off by its turn, 0.55 of `δ` (1.1 times `κ·ρ·δ/2`), and a slider-crank at
+    /// κ 1.9 and ρ 2.2 whose coupler, turning 1.5 times as fast as the crank, had its
+    /// acceleration 1.07 times `κ²·ρ·δ` off.
     ///
     /// ```
     /// use mechgen::Accuracy;
     /// let closed = Accuracy::<f64>::estimate(10.0, 2.0);
     /// let near = Accuracy::<f64>::estimate_at(10.0, 2.0, 0.0);
     /// assert_eq!(near.position, closed.position);
-    /// assert_eq!(near.velocity, closed.velocity + 10.0 * 2.0 * closed.position / 2.0);
+    /// assert_eq!(near.velocity, closed.velocity + 10.0 * 2.0 * closed.position);
     /// // A position known to 1e-9 only (a loose tolerance): rates far less accurate.
     /// assert!(Accuracy::<f64>::estimate_at(10.0, 2.0, 1e-9).velocity > 1e-8);
     /// ```
@@ -170,12 +177,12 @@ impl<T: Real> Accuracy<T> {
         } else {
             position
         };
-        // κ·ρ·δ/2, which the acceleration's term takes once more by κ.
-        let carried = kappa * aspect.max(T::one()) * delta * T::constant(0.5);
+        // κ·ρ·δ, which the acceleration's term takes twice, once more by κ.
+        let carried = kappa * aspect.max(T::one()) * delta;
         Accuracy {
             position: delta,
             velocity: closed.velocity + carried,
-            acceleration: closed.acceleration + kappa * carried,
+            acceleration: closed.acceleration + T::constant(2.0) * kappa * carried,
         }
     }
 
@@ -656,30 +663,27 @@ mod tests {
     #[test]
     fn rates_at_a_position_not_a_closed_form_carry_its_error() {
         let e = f64::EPSILON;
-        // At a Newton position on its floor (32·ε·κ): 16·ε·κ²·ρ and 16·ε·κ³·ρ² more.
+        // At a Newton position on its floor (32·ε·κ): 32·ε·κ²·ρ and 64·ε·κ³·ρ more.
         let (kappa, aspect) = (100.0, 4.0);
         let closed = Accuracy::<f64>::estimate(kappa, aspect);
         let floor = Accuracy::<f64>::estimate_at(kappa, aspect, 0.0);
         assert_eq!(floor.position, closed.position);
         assert_eq!(
             floor.velocity,
-            closed.velocity + kappa * aspect * (32.0 * e * kappa) * 0.5
+            closed.velocity + kappa * aspect * (32.0 * e * kappa)
         );
         assert_eq!(
             floor.acceleration,
-            closed.acceleration + kappa * kappa * aspect * (32.0 * e * kappa) * 0.5
+            closed.acceleration + 2.0 * kappa * kappa * aspect * (32.0 * e * kappa)
         );
         assert!(
-            (floor.velocity - closed.velocity) / (16.0 * e * kappa * kappa * aspect) - 1.0 < 1e-12
+            (floor.velocity - closed.velocity) / (32.0 * e * kappa * kappa * aspect) - 1.0 < 1e-12
         );
         // A position off by more than the floor (a loose tolerance) is that far off, and so
         // are its rates, in proportion.
         let loose = Accuracy::<f64>::estimate_at(kappa, aspect, 1e-6);
         assert_eq!(loose.position, 1e-6);
-        assert_eq!(
-            loose.velocity,
-            closed.velocity + kappa * aspect * 1e-6 * 0.5
-        );
+        assert_eq!(loose.velocity, closed.velocity + kappa * aspect * 1e-6);
         // An aspect below 1 counts as 1; an unknown error is unknown.
         assert_eq!(
             Accuracy::<f64>::estimate_at(kappa, 0.5, 0.0),
@@ -710,7 +714,7 @@ mod tests {
             );
         }
         // Accelerations refused where the closed form's position would pass (κ 2000: ε·κ³ is
-        // 1.8e-6 of the 1.2e-4 required, 16·ε·κ³·ρ at ρ 10 is 2.8e-4).
+        // 1.8e-6 of the 1.2e-4 required, 64·ε·κ³·ρ at ρ 10 is 1.1e-3).
         let kappa = 2e3;
         assert!(
             rates_accuracy(

@@ -1895,6 +1895,16 @@ pub fn coupled_relative_residual(model: &Model, input: f64, q: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The largest component of any loop's residual, in length units: what Newton's
+/// `Solved::residual_norm` reports and a stated tolerance bounds, here exact.
+pub fn residual_norm(model: &Model, input: f64, q: &[f64]) -> f64 {
+    let state = State::from_f64(model, input, q);
+    residual(model, &state)
+        .iter()
+        .map(|r| r.re.abs().to_f64().max(r.im.abs().to_f64()))
+        .fold(0.0, f64::max)
+}
+
 // ---------------------------------------------------------------------------------------------
 // Cases
 
@@ -1936,9 +1946,10 @@ pub enum Api {
     Assemble,
     /// `motion(input, branches, ω, α)`.
     Motion,
-    /// Newton: `position(input, &guess, &NewtonOptions::default())`.
+    /// Newton: `position(input, &guess, &NewtonOptions::new(tolerance, 50))` (the default
+    /// options for a tolerance of 0).
     Position,
-    /// Newton and rates: `motion_near(input, &guess, &default, ω, α)`.
+    /// Newton and rates: `motion_near(input, &guess, &options, ω, α)`, the options as above.
     MotionNear,
     /// Every scene kernel of `scenes()`.
     Scenes,
@@ -1998,6 +2009,9 @@ pub struct Case {
     /// float's rounding at that many would move the guess (the reproducer's guess is the one
     /// used).
     pub turns: f64,
+    /// Newton's stated tolerance, in the mechanism's length units (in the float's precision);
+    /// 0 for the default options, which go to the rounding floor.
+    pub tolerance: f64,
 }
 
 impl Case {
@@ -2052,6 +2066,11 @@ impl Case {
         } else {
             format!("{:?}", self.branches)
         };
+        let options = if self.tolerance == 0.0 {
+            "NewtonOptions::default()".to_string()
+        } else {
+            format!("NewtonOptions::new({}, 50)", d(self.tolerance))
+        };
         let call = match self.api {
             Api::Assemble => format!(".assemble({}, {branches})", d(self.input)),
             Api::Motion => format!(
@@ -2060,12 +2079,9 @@ impl Case {
                 d(self.omega),
                 d(self.alpha)
             ),
-            Api::Position => format!(
-                ".position({}, &guess, &NewtonOptions::default())",
-                d(self.input)
-            ),
+            Api::Position => format!(".position({}, &guess, &{options})", d(self.input)),
             Api::MotionNear => format!(
-                ".motion_near({}, &guess, &NewtonOptions::default(), {}, {})",
+                ".motion_near({}, &guess, &{options}, {}, {})",
                 d(self.input),
                 d(self.omega),
                 d(self.alpha)
@@ -2263,14 +2279,16 @@ pub mod judge {
             w: T,
             a: T,
         ) -> Option<Got<([Vec<f64>; 3], Stated)>>;
-        /// The position, `Solved::condition` and `Solved::residual_norm`.
-        fn position(&self, input: T, guess: &[T]) -> Got<(Vec<f64>, f64, f64)>;
+        /// The position, `Solved::condition` and `Solved::residual_norm`, from Newton with the
+        /// stated `tolerance` (0 for the default options).
+        fn position(&self, input: T, guess: &[T], tolerance: T) -> Got<(Vec<f64>, f64, f64)>;
         /// The position, rates and accelerations, `Solved::condition`, and the accuracy the
         /// `Motion` states.
         fn motion_near(
             &self,
             input: T,
             guess: &[T],
+            tolerance: T,
             w: T,
             a: T,
         ) -> Got<([Vec<f64>; 3], f64, Stated)>;
@@ -2313,9 +2331,9 @@ pub mod judge {
 
     macro_rules! newton_entry_points {
         ($unknowns:ident) => {
-            fn position(&self, input: T, guess: &[T]) -> Got<(Vec<f64>, f64, f64)> {
+            fn position(&self, input: T, guess: &[T], tolerance: T) -> Got<(Vec<f64>, f64, f64)> {
                 let guess = $unknowns::from_array(guess.try_into().expect("a guess per unknown"));
-                self.position(input, &guess, &NewtonOptions::default())
+                self.position(input, &guess, &NewtonOptions::new(tolerance, 50))
                     .map(|s| {
                         (
                             f(&s.value.to_array()),
@@ -2330,11 +2348,12 @@ pub mod judge {
                 &self,
                 input: T,
                 guess: &[T],
+                tolerance: T,
                 w: T,
                 a: T,
             ) -> Got<([Vec<f64>; 3], f64, Stated)> {
                 let guess = $unknowns::from_array(guess.try_into().expect("a guess per unknown"));
-                self.motion_near(input, &guess, &NewtonOptions::default(), w, a)
+                self.motion_near(input, &guess, &NewtonOptions::new(tolerance, 50), w, a)
                     .map(|s| {
                         let m = s.value;
                         (
@@ -2692,6 +2711,8 @@ pub mod judge {
         /// guess, from the mirrored one): its branch is then undefined, and any accurate
         /// solution is right.
         guess_near_none: bool,
+        /// Newton's stated tolerance (0 for the default options).
+        tolerance: f64,
     }
 
     impl Expect {
@@ -2802,20 +2823,37 @@ pub mod judge {
             if order != mechgen::Order::Position && self.rho() * e.sqrt() >= 1.0 {
                 return true;
             }
-            // Rates at a Newton position carry its error, 32·ε·κ on its floor, through the
-            // Jacobian (README, "Accuracy"): 16·ε·κ²·ρ more for a velocity, 16·ε·κ³·ρ for an
-            // acceleration.
+            // A stated tolerance above the floor leaves the position as far off as 2·κ·r, r up
+            // to the tolerance, against the loop it is read in (the smallest, at most), the
+            // largest loop's magnitudes over the size where they exceed it (README,
+            // "Accuracy"): at most this.
+            let stopped_short = if newton && self.tolerance > 0.0 {
+                let magnitudes: Vec<f64> = self
+                    .model
+                    .loop_magnitudes(&t.state)
+                    .iter()
+                    .map(Big::to_f64)
+                    .collect();
+                let smallest = magnitudes.iter().copied().fold(f64::INFINITY, f64::min);
+                let largest = magnitudes.iter().copied().fold(0.0, f64::max);
+                2.0 * kappa * self.tolerance / smallest * (largest / self.size()).max(1.0)
+            } else {
+                0.0
+            };
+            // Rates at a Newton position carry its error δ, 32·ε·κ on its floor, through the
+            // Jacobian (README, "Accuracy"): κ·ρ·δ more for a velocity (32·ε·κ²·ρ on the
+            // floor), 2·κ²·ρ·δ for an acceleration (64·ε·κ³·ρ).
             let (newton_velocity, newton_acceleration) = if newton {
                 let rho = self.rho().max(1.0);
-                (
-                    FACTOR * e * kappa * kappa * rho,
-                    FACTOR * e * kappa.powi(3) * rho,
-                )
+                let delta = (POSITION_FACTOR * e * kappa).max(stopped_short);
+                (kappa * rho * delta, 2.0 * kappa * kappa * rho * delta)
             } else {
                 (0.0, 0.0)
             };
             let (estimate, required) = match order {
-                mechgen::Order::Position => (POSITION_FACTOR * e * kappa, e.sqrt()),
+                mechgen::Order::Position => {
+                    ((POSITION_FACTOR * e * kappa).max(stopped_short), e.sqrt())
+                }
                 mechgen::Order::Velocity => (
                     e * kappa * (64.0 + 12.0 * kappa) * shrunk
                         + newton_velocity
@@ -2873,11 +2911,25 @@ pub mod judge {
             } else {
                 relative_residual(&self.model, self.input, q)
             };
-            if residual > floor {
+            // A stated tolerance stops Newton where every component of the residual is within
+            // it (as the float evaluates it, to the floor's rounding), wherever that is above
+            // the floor.
+            let stated = newton && self.tolerance > 0.0;
+            let absolute = if stated {
+                residual_norm(&self.model, self.input, q)
+            } else {
+                0.0
+            };
+            let tolerated = stated && absolute <= self.tolerance + floor * self.size();
+            if residual > floor && !tolerated {
                 v.fail(
                     api,
                     "residual above the rounding floor",
-                    format!("residual {residual:.2e} of the loop's magnitudes, floor (16 + n)·ε = {floor:.2e}"),
+                    if stated {
+                        format!("residual {absolute:.2e}, above the tolerance {:.2e} and the floor (16 + n)·ε of the loop's magnitudes", self.tolerance)
+                    } else {
+                        format!("residual {residual:.2e} of the loop's magnitudes, floor (16 + n)·ε = {floor:.2e}")
+                    },
                 );
             }
             let Some(truth) = &self.truth else {
@@ -2923,7 +2975,10 @@ pub mod judge {
                 return;
             };
             let kappa = self.kappa(reported_kappa);
-            let bound = POSITION_FACTOR * self.eps * kappa * self.newton_size(truth, newton);
+            let on_floor = POSITION_FACTOR * self.eps * kappa * self.newton_size(truth, newton);
+            // Above the floor, as far off as 2·κ·r for the residual r it stopped at (README,
+            // "Accuracy"; Kantorovich's certificate doubles the Newton step's length at most).
+            let bound = on_floor.max(2.0 * kappa * absolute / self.size());
             let error = position_error(&self.model, truth, q);
             let state = State::from_f64(&self.model, self.input, q);
             let (branches, _) = branch_signs(&self.model, &state);
@@ -2950,7 +3005,11 @@ pub mod judge {
                 } else {
                     v.fail(
                         api,
-                        "position error beyond 32·ε·κ",
+                        if stated {
+                            "position error beyond 32·ε·κ and 2·κ·r (a stated tolerance)"
+                        } else {
+                            "position error beyond 32·ε·κ"
+                        },
                         format!(
                             "error {error:.2e} = {:.1} × bound (κ {kappa:.2e}, true κ {:.2e})",
                             error / bound,
@@ -3017,7 +3076,14 @@ pub mod judge {
                 return false;
             };
             let kappa = t.condition.max(reported_kappa).max(1.0);
-            position_error(&self.model, &t, q) <= POSITION_FACTOR * self.eps * kappa
+            // A stated tolerance's position, as `position` judges it.
+            let stopped_short = if self.tolerance > 0.0 {
+                2.0 * kappa * residual_norm(&self.model, self.input, q) / self.size()
+            } else {
+                0.0
+            };
+            position_error(&self.model, &t, q)
+                <= (POSITION_FACTOR * self.eps * kappa).max(stopped_short)
         }
 
         /// Judges rates and accelerations.
@@ -3025,6 +3091,12 @@ pub mod judge {
             let Some(truth) = &self.truth else {
                 return;
             };
+            // These bounds are a default solve's, on the floor. Rates solved at a position a
+            // stated tolerance stopped short of it carry its error, and the `Motion` says how
+            // much: `within_stated` holds them to that (and fails a value that is not finite).
+            if matches!(api, Api::Position | Api::MotionNear) && self.tolerance > 0.0 {
+                return;
+            }
             let (Some(tv), Some(ta)) = (&truth.velocity, &truth.acceleration) else {
                 v.fail(
                     api,
@@ -3447,6 +3519,7 @@ pub mod judge {
                 model: o.model,
                 params: p.clone(),
                 guess_near_none: false,
+                tolerance: case.tolerance,
                 reach: Some(o.reach),
                 truth: o.truth,
                 others: o.others,
@@ -3470,6 +3543,7 @@ pub mod judge {
                     model,
                     params: p.clone(),
                     guess_near_none: false,
+                    tolerance: case.tolerance,
                     reach: None,
                     truth,
                     others: Vec::new(),
@@ -3631,11 +3705,12 @@ pub mod judge {
                 let wanted = guess_branches(&e.model, &State::from_f64(&e.model, e.input, &guess));
                 e.guess_near_none = e.truth.is_none();
                 let switched = e.truth.as_ref().is_some_and(|t| t.branches != wanted);
+                let tolerance = T::constant(case.tolerance);
                 let r = if api == Api::Position {
-                    S::position(&m, input, &guess_t)
+                    S::position(&m, input, &guess_t, tolerance)
                         .map(|(q, k, _)| ([q, Vec::new(), Vec::new()], k, None))
                 } else {
-                    S::motion_near(&m, input, &guess_t, w, a)
+                    S::motion_near(&m, input, &guess_t, tolerance, w, a)
                         .map(|(rates, k, stated)| (rates, k, Some(stated)))
                 };
                 let before = verdict.findings.len();
@@ -3739,6 +3814,7 @@ pub mod judge {
         let lengths = length_slots(case.kind);
         let mut scaled = case.clone();
         scaled.rescale = None;
+        scaled.tolerance = case.float.round(case.tolerance * factor);
         for (i, d) in scaled.dims.iter_mut().enumerate() {
             if lengths.contains(&i) {
                 *d = case.float.round(*d * factor);
@@ -4604,9 +4680,28 @@ pub mod draw {
             ),
             None => (omega, alpha),
         };
-        // Drawn last, so that every earlier draw of a seed stays as it was.
+        // Drawn last (the turns, then the tolerance), so that every earlier draw of a seed
+        // stays as it was.
         let turns = if matches!(api, Api::Position | Api::MotionNear) && rng.chance(0.1) {
             rng.sign() * rng.log(1.0, 1e6).round()
+        } else {
+            0.0
+        };
+        // A stated tolerance for a quarter of Newton's cases, from below the rounding floor
+        // (where it is the default) to far above it (where `motion_near` says its rates are
+        // inaccurate, and `position` stops short): of the declared lengths' sum, 1e-15 to
+        // 1e-5 in f64, 1e-7 to 1e-2 in f32.
+        let tolerance = if matches!(api, Api::Position | Api::MotionNear) && rng.chance(0.25) {
+            let size = dims
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| slots.contains(i))
+                .fold(0.0, |sum, (_, d)| sum + d.abs());
+            let (lo, hi) = match float {
+                Float::F64 => (1e-15, 1e-5),
+                Float::F32 => (1e-7, 1e-2),
+            };
+            float.round(size * rng.log(lo, hi))
         } else {
             0.0
         };
@@ -4625,6 +4720,7 @@ pub mod draw {
             placement,
             rescale,
             turns,
+            tolerance,
         }
     }
 

@@ -219,13 +219,38 @@ fn the_third_large_runs_reproducers_keep_the_contract() {
     large_run_cases_keep_the_contract(15, &[502593, 914340]);
 }
 
+/// A case of the first run whose draw states Newton tolerances (seed 20, 50,000 cases), which
+/// broke the contract:
+/// - 4911: a Stephenson six-bar of size 4e199 from a guess 86,194 turns out, with a tolerance
+///   of 1.4e-7 of the size. The reduced iteration fell back to Newton on every unknown, which
+///   stopped at a residual 3,000 times the rounding floor, and `motion_near` stated the
+///   accuracy `motion_at` states for a position on the floor (9.7e-15 of the size, against an
+///   error of 7.8e-12) and judged it by the default requirement rather than the options'. Its
+///   fallback now states its accuracy from where Newton stopped, as the reduced path does.
+#[test]
+fn the_first_tolerance_runs_reproducers_keep_the_contract() {
+    drawn_cases_keep_the_contract(20, &[4911], true);
+}
+
 /// Judges cases `indices` of the large run with `seed` (`everything`), requiring no finding.
+/// Those runs stated no Newton tolerance, which the draw has done since (drawn last, so the
+/// case is otherwise as it was).
 fn large_run_cases_keep_the_contract(seed: u64, indices: &[u64]) {
+    drawn_cases_keep_the_contract(seed, indices, false);
+}
+
+/// Judges cases `indices` of the run with `seed` (`everything`), with the tolerance drawn
+/// (`with_tolerance`) or the default options, requiring no finding.
+fn drawn_cases_keep_the_contract(seed: u64, indices: &[u64], with_tolerance: bool) {
     let family = draw::family("everything").expect("a family");
     for &index in indices {
         // As the large run draws case `index` (tests/src/bin/edges.rs).
         let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ index);
-        let case = draw::case(&family, &mut rng);
+        let drawn = draw::case(&family, &mut rng);
+        let case = Case {
+            tolerance: if with_tolerance { drawn.tolerance } else { 0.0 },
+            ..drawn
+        };
         let verdict = judge::judge(&case);
         assert!(
             verdict.findings.is_empty(),
@@ -277,6 +302,7 @@ fn newton_case(
         placement: placement.into(),
         rescale: None,
         turns: 0.0,
+        tolerance: 0.0,
     }
 }
 
@@ -546,6 +572,7 @@ fn the_judge_catches_what_it_must() {
         placement: "beyond the extended limit".into(),
         rescale: None,
         turns: 0.0,
+        tolerance: 0.0,
     };
     // 3 rad is beyond this triple-rocker's extended limit (about 1.76 rad): CannotAssemble is
     // the right answer, and the judge finds nothing wrong with it.

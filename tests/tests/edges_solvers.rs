@@ -522,7 +522,7 @@ fn the_caller_states_the_accuracy_it_needs() {
         Err(Error::Inaccurate { .. })
     ));
     // The acceleration has no digit left there (κ near 1e5, and Newton's position carries
-    // 16·ε·κ³·ρ into it: an estimate of about 20): loosened past that.
+    // 64·ε·κ³·ρ into it: an estimate of about 80): loosened past that.
     let loose = NewtonOptions::default().with_accuracy(Accuracy {
         position: 1e-3,
         velocity: 1e-2,

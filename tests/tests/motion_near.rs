@@ -349,3 +349,190 @@ fn a_slide_longer_than_the_declared_lengths_stretches_the_accuracy_stated() {
     let floor = 32.0 * f64::EPSILON * four_bar.condition(t, &q).max(1.0);
     assert_eq!(at.accuracy.position, floor);
 }
+
+/// Where the coupled loops' reduced iteration falls back to Newton on every unknown, a stated
+/// tolerance leaves the position as far off as the residual it stopped at, and the accuracy
+/// stated says so, as on the reduced path. Edge run seed 20, case 4911: a Stephenson six-bar
+/// of size 4e199 from a guess 86,194 turns out, with a tolerance of 1.4e-7 of the size,
+/// stopped at a residual 3,000 times the rounding floor and stated the floor's 9.7e-15 of the
+/// size (what `motion_at` states for a position on it) for an error of 7.8e-12.
+#[test]
+fn a_stated_tolerance_leaves_its_accuracy_on_the_fallback_of_coupled_loops() {
+    let linkage = mechanisms::StephensonSixBar::<f64>::new(
+        3.172664574031082e198,
+        7.112983859618762e197,
+        1.6672907512341432e198,
+        [2.496758721068498e197, 3.3103283728634656e197],
+        -0.6392390047318863,
+        4.3412785652393507e198,
+        2.2505339431004197e199,
+        (-9.735672780474796e198, 2.2429613380262655e199),
+    )
+    .unwrap();
+    let guess = mechanisms::StephensonSixBarUnknowns::from_array([
+        -541571.3319381861,
+        -541570.1115900369,
+        -541575.3876558257,
+        -541574.0557543798,
+    ]);
+    let (t, w, a) = (3.020917478464141, 97.7860919585858, 6.763331673338108);
+    let tolerance = 5.538150554973107e192;
+    let exact = linkage
+        .motion_near(t, &guess, &NewtonOptions::default(), w, a)
+        .unwrap();
+    let loose = linkage
+        .motion_near(t, &guess, &NewtonOptions::new(tolerance, 50), w, a)
+        .unwrap();
+    assert!(loose.residual_norm > 1e3 * 16.0 * f64::EPSILON * 4e199 / 8.0);
+    // Each angle's error times its link's length (the coupler's longer side for θ5), over
+    // the declared lengths' sum.
+    let lengths = [
+        1.6672907512341432e198,
+        4.3412785652393507e198,
+        3.3103283728634656e197,
+        2.2505339431004197e199,
+    ];
+    let size = 3.172664574031082e198
+        + 7.112983859618762e197
+        + 1.6672907512341432e198
+        + 2.496758721068498e197
+        + 3.3103283728634656e197
+        + 4.3412785652393507e198
+        + 2.2505339431004197e199
+        + (9.735672780474796e198f64).hypot(2.2429613380262655e199);
+    let error = loose
+        .value
+        .position
+        .to_array()
+        .iter()
+        .zip(exact.value.position.to_array())
+        .zip(lengths)
+        .fold(0.0f64, |m, ((got, want), l)| m.max((got - want).abs() * l))
+        / size;
+    let stated = loose.value.accuracy.position;
+    assert!(error > 1e-12, "the tolerance leaves an error: {error:e}");
+    assert!(
+        error <= stated,
+        "error {error:e} against the stated {stated:e}"
+    );
+    // Stated from the residual it stopped at, not the floor alone.
+    assert!(stated >= 2.0 * loose.residual_norm / size, "{stated:e}");
+    assert!(loose.value.accuracy.velocity > exact.value.accuracy.velocity * 100.0);
+}
+
+/// Rates solved at a position a stated tolerance left short of the floor carry its error `δ`
+/// through the Jacobian, and the accuracy stated covers it: `κ·ρ·δ` for the velocity and
+/// `2·κ²·ρ·δ` for the acceleration (`mechgen::Accuracy::estimate_at`). The edge draws that
+/// first stated tolerances found both halves of the earlier `κ·ρ·δ/2` and `κ²·ρ·δ/2`
+/// exceeded: an inverted slider-crank whose slide's velocity was off by the slide's turn
+/// (1.1 times), and a slider-crank whose coupler turns 1.5 times as fast as its crank, its
+/// acceleration off by the velocity's error times that rate (1.07 times).
+#[test]
+fn rates_at_a_stated_tolerances_position_are_within_what_they_state() {
+    // Everything returned, to compare with what it states.
+    let anything = mechgen::Accuracy {
+        position: 1.0,
+        velocity: 1.0,
+        acceleration: 1.0,
+    };
+    // The largest error over the unknowns, each weighted by its column's length.
+    let error = |got: [f64; 2], want: [f64; 2], columns: [f64; 2]| {
+        (0..2).fold(0.0f64, |m, j| m.max((got[j] - want[j]).abs() * columns[j]))
+    };
+    let size_of = |want: [f64; 2], columns: [f64; 2], floor: f64| {
+        (0..2).fold(floor, |m, j| m.max((want[j] * columns[j]).abs()))
+    };
+    let check = |what: &str,
+                 near: mechgen::Motion<[f64; 2], f64>,
+                 exact: [[f64; 2]; 3],
+                 columns: [f64; 2],
+                 size: f64,
+                 (w, a): (f64, f64)| {
+        let position = error(near.position, exact[0], columns) / size;
+        let velocity =
+            error(near.velocity, exact[1], columns) / size_of(exact[1], columns, size * w.abs());
+        let acceleration = error(near.acceleration, exact[2], columns)
+            / size_of(exact[2], columns, size * (w * w + a.abs()));
+        let stated = near.accuracy;
+        assert!(
+            position <= stated.position,
+            "{what}: position {position:e} vs {:e}",
+            stated.position
+        );
+        assert!(
+            velocity <= stated.velocity,
+            "{what}: velocity {velocity:e} vs {:e}",
+            stated.velocity
+        );
+        assert!(
+            acceleration <= stated.acceleration,
+            "{what}: acceleration {acceleration:e} vs {:e}",
+            stated.acceleration
+        );
+        // Far from the floor: the carried error is what is stated.
+        assert!(stated.velocity > 1e6 * f64::EPSILON, "{what}: {stated:?}");
+    };
+
+    let (l1, l2, c, gamma) = (
+        0.0011689728993278673,
+        1024.0,
+        0.029859208888583694,
+        2.616991474820236,
+    );
+    let inverted = mechanisms::InvertedSliderCrank::<f64>::new(l1, l2, c, gamma).unwrap();
+    let (t, w, a) = (-0.4322012873544323, 1.0, -5.411310685773052);
+    let guess = mechanisms::InvertedSliderCrankUnknowns::from_array([
+        -3.0491786776701746,
+        1024.0247822229753,
+    ]);
+    let options = NewtonOptions::new(0.0065206066759504605, 50).with_accuracy(anything);
+    let near = inverted
+        .motion_near(t, &guess, &options, w, a)
+        .unwrap()
+        .value;
+    let exact = inverted.motion(t, Branch::Open, w, a).unwrap();
+    let b = exact.position.b.abs();
+    check(
+        "inverted slider-crank",
+        mechgen::Motion {
+            position: near.position.to_array(),
+            velocity: near.velocity.to_array(),
+            acceleration: near.acceleration.to_array(),
+            accuracy: near.accuracy,
+        },
+        [
+            exact.position.to_array(),
+            exact.velocity.to_array(),
+            exact.acceleration.to_array(),
+        ],
+        [b, 1.0],
+        l1 + l2 + c,
+        (w, a),
+    );
+
+    let (l2, l3, c) = (0.08445248871785131, 0.07333896474097021, 0.0);
+    let slider = mechanisms::SliderCrank::<f64>::new(l2, l3, c).unwrap();
+    let (t, w, a) = (3.973159052010029, -19.06014585260367, -7.42833157463167);
+    let guess =
+        mechanisms::SliderCrankUnknowns::from_array([1.0172144142508899, -0.01734295000128923]);
+    let options = NewtonOptions::new(3.3734342579565836e-8, 50).with_accuracy(anything);
+    let near = slider.motion_near(t, &guess, &options, w, a).unwrap().value;
+    let exact = slider.motion(t, Branch::Open, w, a).unwrap();
+    check(
+        "slider-crank",
+        mechgen::Motion {
+            position: near.position.to_array(),
+            velocity: near.velocity.to_array(),
+            acceleration: near.acceleration.to_array(),
+            accuracy: near.accuracy,
+        },
+        [
+            exact.position.to_array(),
+            exact.velocity.to_array(),
+            exact.acceleration.to_array(),
+        ],
+        [l3, 1.0],
+        l2 + l3 + c,
+        (w, a),
+    );
+}

@@ -272,11 +272,54 @@ impl Generator<'_> {
         if let Some(reduction) = &self.equations.reduction {
             return self.reduced_motion_near(reduction);
         }
+        let (input_dot_text, input_ddot_text) = (self.input_dots_text(), self.input_ddots_text());
+        let the_input = self.the_input();
+        let docs = doc(&format!(
+            "Position by Newton-Raphson from `guess` (as [`Self::position`]), then velocity \
+             and acceleration at the solution for {the_input} moving at `{input_dot_text}` and \
+             accelerating at `{input_ddot_text}` (as [`Self::motion_at`]), reusing the sines, \
+             cosines and factored Jacobian of Newton's last evaluation: the fastest way to all \
+             three without a closed form.\n\nErrors: as [`Self::position`] and \
+             [`Self::motion_at`]."
+        ));
+        let aside = Ident::new("mechgen_motion_near_safeguarded", Span::call_site());
+        let FullMotionNear {
+            common,
+            safeguarded,
+        } = self.full_motion_near(&aside);
+        let wrapper = self.normalised_newton(NewtonEntry::MotionNear, docs);
+        let inner = NewtonEntry::MotionNear.solve();
+        let hot = self.motion_near_item(
+            quote!(fn #inner),
+            normalised_motion_near_doc(),
+            quote!(#[allow(unused_variables)] #[inline(always)]),
+            self.check_finite_with_rates(),
+            common,
+        );
+        let aside_docs = doc(
+            "[`Self::motion_near`] by the safeguarded Newton alone (`mechgen::__private::newton`), \
+             out of line: what it falls back to where Newton's common path cannot decide. Its \
+             arguments are checked.",
+        );
+        let cold = self.motion_near_item(
+            quote!(fn #aside),
+            aside_docs,
+            quote!(#[allow(unused_variables)] #[cold] #[inline(never)]),
+            TokenStream::new(),
+            safeguarded,
+        );
+        quote!(#wrapper #hot #cold)
+    }
+
+    /// `motion_near`'s bodies by Newton on every unknown together: its common path inline,
+    /// falling back to `aside` (with `motion_near`'s signature), and the safeguarded solve
+    /// alone, which `aside` is for a mechanism without a reduction, and for a reduced one
+    /// what its iteration falls back to (`super::reduced`): in both, the rates' accuracy
+    /// from Newton's own stop (a stated tolerance's residual included) and the options'.
+    pub(super) fn full_motion_near(&self, aside: &Ident) -> FullMotionNear {
         let input = self.input_args();
         let first_input = self.first_input();
         let (input_dot, input_ddot) = (self.input_dot_args(), self.input_ddot_args());
-        let (input_dot_text, input_ddot_text) = (self.input_dots_text(), self.input_ddots_text());
-        let the_input = self.the_input();
         let (guess, options, x) = (arg("guess"), arg("options"), arg("x"));
         let (converged, jacobian) = (arg("converged"), arg("jacobian"));
         let (rates, accelerations) = (local("rates"), local("accelerations"));
@@ -322,14 +365,6 @@ impl Generator<'_> {
         let (velocity_rhs, acceleration_rhs) = outputs.split_at(n);
         let names = self.model.unknowns.iter().map(|u| &u.name);
         let rate_names = &self.unknown_dots;
-        let docs = doc(&format!(
-            "Position by Newton-Raphson from `guess` (as [`Self::position`]), then velocity \
-             and acceleration at the solution for {the_input} moving at `{input_dot_text}` and \
-             accelerating at `{input_ddot_text}` (as [`Self::motion_at`]), reusing the sines, \
-             cosines and factored Jacobian of Newton's last evaluation: the fastest way to all \
-             three without a closed form.\n\nErrors: as [`Self::position`] and \
-             [`Self::motion_at`]."
-        ));
         // The size the rates' accuracy weighs the columns against, computed before the
         // iteration: one value to keep through it rather than the lengths.
         let size = local("size");
@@ -369,8 +404,7 @@ impl Generator<'_> {
         };
         // Newton's common path inline; anything else is the safeguarded solve's to decide,
         // from the guess again, out of line.
-        let aside = Ident::new("mechgen_motion_near_safeguarded", Span::call_site());
-        let body = quote! {
+        let common = quote! {
                 #hoisted
                 let #size = #size_value;
                 ::mechgen::__private::newton_common(
@@ -389,7 +423,7 @@ impl Generator<'_> {
                 )
         };
         let assembles = self.assembles();
-        let aside_body = quote! {
+        let safeguarded = quote! {
                 #hoisted
                 let #size = #size_value;
                 let #converged = ::mechgen::__private::newton(
@@ -402,28 +436,10 @@ impl Generator<'_> {
                 )?;
                 #rates_body
         };
-        let wrapper = self.normalised_newton(NewtonEntry::MotionNear, docs);
-        let inner = NewtonEntry::MotionNear.solve();
-        let hot = self.motion_near_item(
-            quote!(fn #inner),
-            normalised_motion_near_doc(),
-            quote!(#[allow(unused_variables)] #[inline(always)]),
-            self.check_finite_with_rates(),
-            body,
-        );
-        let aside_docs = doc(
-            "[`Self::motion_near`] by the safeguarded Newton alone (`mechgen::__private::newton`), \
-             out of line: what it falls back to where Newton's common path cannot decide. Its \
-             arguments are checked.",
-        );
-        let cold = self.motion_near_item(
-            quote!(fn #aside),
-            aside_docs,
-            quote!(#[allow(unused_variables)] #[cold] #[inline(never)]),
-            TokenStream::new(),
-            aside_body,
-        );
-        quote!(#wrapper #hot #cold)
+        FullMotionNear {
+            common,
+            safeguarded,
+        }
     }
 
     /// The `motion_near` item around its body: the signature, the check of the arguments
@@ -761,6 +777,14 @@ struct Linearised {
 
 /// The locals `sin_{stem}` and `cos_{stem}` for the sine and cosine of `var` that the code
 /// reads (`None` for one it does not), each recorded in `named` with `stage`.
+/// `motion_near`'s bodies by Newton on every unknown (see [`Generator::full_motion_near`]).
+pub(super) struct FullMotionNear {
+    /// Newton's common path inline, falling back to the safeguarded solve out of line.
+    pub(super) common: TokenStream,
+    /// The safeguarded solve alone, its arguments checked by the caller.
+    pub(super) safeguarded: TokenStream,
+}
+
 fn trig_names(
     graph: &crate::symbolic::Graph,
     var: ExprId,

@@ -146,18 +146,20 @@ impl Generator<'_> {
         let (input_dot, input_ddot) = (self.input_dot_args(), self.input_ddot_args());
         let (input_dot_text, input_ddot_text) = (self.input_dots_text(), self.input_ddots_text());
         let the_input = self.the_input();
-        let (guess, options, solved) = (arg("guess"), arg("options"), arg("solved"));
+        let (guess, options) = (arg("guess"), arg("options"));
         let ty = &self.unknowns_type;
         let n = self.model.unknowns.len();
-        let fallback = self.fallback_name();
-        let motion = local("motion");
         let reduced = arg("reduced");
+        let all = Ident::new("mechgen_motion_near_all", Span::call_site());
+        // Where the iteration failed, its failure says why better than the full one's, but
+        // for the rates' verdict on a position the full iteration found.
         let fall_back = quote! {
-            let #solved = self
-                .#fallback(#input, #guess, #options)
-                .map_err(|full| #reduced.unwrap_or(full))?;
-            let #motion = self.motion_at(#input, &#solved.value, #input_dot, #input_ddot)?;
-            return ::core::result::Result::Ok(#solved.map(|_| #motion));
+            return self
+                .#all(#input, #guess, #options, #input_dot, #input_ddot)
+                .map_err(|full| match full {
+                    ::mechgen::Error::Inaccurate { .. } => full,
+                    _ => #reduced.unwrap_or(full),
+                });
         };
         let right_sides: Vec<ExprId> = reduction
             .velocity_rhs
@@ -183,7 +185,6 @@ impl Generator<'_> {
         let (converged, factored) = (arg("converged"), arg("jacobian"));
         let graph = &self.equations.graph;
         let columns = column_squares(reduction, graph, &entries);
-        let all = Ident::new("mechgen_motion_near_all", Span::call_site());
         // Through the blocks where there is no loop solved after the iteration.
         let (factor, velocity, acceleration, relative) = if reduction.after.is_empty() {
             let zeros =
@@ -273,19 +274,20 @@ impl Generator<'_> {
                     condition: T::one() / #relative.abs(),
                 })
         };
-        let all_body = quote! {
-            let #solved = self.#fallback(#input, #guess, #options)?;
-            let #motion = self.motion_at(#input, &#solved.value, #input_dot, #input_ddot)?;
-            ::core::result::Result::Ok(#solved.map(|_| #motion))
-        };
+        // The safeguarded solve alone: its accuracy from where Newton stopped (a stated
+        // tolerance's residual, above the floor, included) and judged by the options', as on
+        // the reduced path, which `motion_at` (for any position the solvers return by default,
+        // judged by the default requirement) would not.
+        let all_body = self.full_motion_near(&all).safeguarded;
         let all_item = self.motion_near_item(
             quote!(fn #all),
             doc(
-                "[`Self::motion_near`] by Newton on every unknown from `guess`, then the \
-                 rates, out of line: where the reduced iteration's solution is certainly not \
-                 the guess's root, or (from that solution) where it stagnated.",
+                "[`Self::motion_near`] by Newton on every unknown from `guess`, with its rates, \
+                 out of line: where the reduced iteration cannot close the loops at the guess, \
+                 where its solution is certainly not the guess's root, or (from that solution) \
+                 where it stagnated.",
             ),
-            quote!(#[cold] #[inline(never)]),
+            quote!(#[allow(unused_variables)] #[cold] #[inline(never)]),
             TokenStream::new(),
             all_body,
         );
