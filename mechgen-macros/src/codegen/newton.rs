@@ -485,6 +485,19 @@ impl Generator<'_> {
         check: TokenStream,
         body: TokenStream,
     ) -> TokenStream {
+        self.motion_near_item_with(name, docs, attrs, TokenStream::new(), check, body)
+    }
+
+    /// [`Generator::motion_near_item`] with `extra` parameters after `motion_near`'s.
+    pub(super) fn motion_near_item_with(
+        &self,
+        name: TokenStream,
+        docs: TokenStream,
+        attrs: TokenStream,
+        extra: TokenStream,
+        check: TokenStream,
+        body: TokenStream,
+    ) -> TokenStream {
         let input_params = self.input_params();
         let (input_dot_params, input_ddot_params) =
             (self.input_dot_params(), self.input_ddot_params());
@@ -500,6 +513,7 @@ impl Generator<'_> {
                 #options: &::mechgen::NewtonOptions<T>,
                 #input_dot_params,
                 #input_ddot_params,
+                #extra
             ) -> ::core::result::Result<
                 ::mechgen::Solved<::mechgen::Motion<#unknowns, T>, T>,
                 ::mechgen::Error<T>,

@@ -151,15 +151,11 @@ impl Generator<'_> {
         let n = self.model.unknowns.len();
         let reduced = arg("reduced");
         let all = Ident::new("mechgen_motion_near_all", Span::call_site());
-        // Where the iteration failed, its failure says why better than the full one's, but
-        // for the rates' verdict on a position the full iteration found.
+        let failed = Ident::new("mechgen_motion_near_failed", Span::call_site());
+        // One call, its arguments as they are: the error's choice is the cold function's, so
+        // that no more of the failure is kept on the common path.
         let fall_back = quote! {
-            return self
-                .#all(#input, #guess, #options, #input_dot, #input_ddot)
-                .map_err(|full| match full {
-                    ::mechgen::Error::Inaccurate { .. } => full,
-                    _ => #reduced.unwrap_or(full),
-                });
+            return self.#failed(#input, #guess, #options, #input_dot, #input_ddot, #reduced);
         };
         let right_sides: Vec<ExprId> = reduction
             .velocity_rhs
@@ -291,8 +287,27 @@ impl Generator<'_> {
             TokenStream::new(),
             all_body,
         );
+        // Where the iteration failed, its failure says why better than the full one's, but
+        // for the rates' verdict on a position the full iteration found.
+        let failed_item = self.motion_near_item_with(
+            quote!(fn #failed),
+            doc(
+                "[`Self::motion_near`] where the reduced iteration failed (`reduced`, the \
+                 failure) or cannot tell: Newton on every unknown from `guess`, out of line.",
+            ),
+            quote!(#[cold] #[inline(never)]),
+            quote!(#reduced: ::core::option::Option<::mechgen::Error<T>>,),
+            TokenStream::new(),
+            quote! {
+                self.#all(#input, #guess, #options, #input_dot, #input_ddot)
+                    .map_err(|full| match full {
+                        ::mechgen::Error::Inaccurate { .. } => full,
+                        _ => #reduced.unwrap_or(full),
+                    })
+            },
+        );
         let function = self.motion_near_function(docs, TokenStream::new(), check, body);
-        quote!(#function #all_item)
+        quote!(#function #all_item #failed_item)
     }
 
     /// Whether the reduced iteration's solution (the unknowns, bound by name) is certainly
