@@ -435,44 +435,6 @@ fn rates_at_a_stated_tolerances_position_are_within_what_they_state() {
         velocity: 1.0,
         acceleration: 1.0,
     };
-    // The largest error over the unknowns, each weighted by its column's length.
-    let error = |got: [f64; 2], want: [f64; 2], columns: [f64; 2]| {
-        (0..2).fold(0.0f64, |m, j| m.max((got[j] - want[j]).abs() * columns[j]))
-    };
-    let size_of = |want: [f64; 2], columns: [f64; 2], floor: f64| {
-        (0..2).fold(floor, |m, j| m.max((want[j] * columns[j]).abs()))
-    };
-    let check = |what: &str,
-                 near: mechgen::Motion<[f64; 2], f64>,
-                 exact: [[f64; 2]; 3],
-                 columns: [f64; 2],
-                 size: f64,
-                 (w, a): (f64, f64)| {
-        let position = error(near.position, exact[0], columns) / size;
-        let velocity =
-            error(near.velocity, exact[1], columns) / size_of(exact[1], columns, size * w.abs());
-        let acceleration = error(near.acceleration, exact[2], columns)
-            / size_of(exact[2], columns, size * (w * w + a.abs()));
-        let stated = near.accuracy;
-        assert!(
-            position <= stated.position,
-            "{what}: position {position:e} vs {:e}",
-            stated.position
-        );
-        assert!(
-            velocity <= stated.velocity,
-            "{what}: velocity {velocity:e} vs {:e}",
-            stated.velocity
-        );
-        assert!(
-            acceleration <= stated.acceleration,
-            "{what}: acceleration {acceleration:e} vs {:e}",
-            stated.acceleration
-        );
-        // Far from the floor: the carried error is what is stated.
-        assert!(stated.velocity > 1e6 * f64::EPSILON, "{what}: {stated:?}");
-    };
-
     let (l1, l2, c, gamma) = (
         0.0011689728993278673,
         1024.0,
@@ -486,29 +448,13 @@ fn rates_at_a_stated_tolerances_position_are_within_what_they_state() {
         1024.0247822229753,
     ]);
     let options = NewtonOptions::new(0.0065206066759504605, 50).with_accuracy(anything);
-    let near = inverted
-        .motion_near(t, &guess, &options, w, a)
-        .unwrap()
-        .value;
+    let near = inverted.motion_near(t, &guess, &options, w, a).unwrap();
     let exact = inverted.motion(t, Branch::Open, w, a).unwrap();
-    let b = exact.position.b.abs();
-    check(
-        "inverted slider-crank",
-        mechgen::Motion {
-            position: near.position.to_array(),
-            velocity: near.velocity.to_array(),
-            acceleration: near.acceleration.to_array(),
-            accuracy: near.accuracy,
-        },
-        [
-            exact.position.to_array(),
-            exact.velocity.to_array(),
-            exact.acceleration.to_array(),
-        ],
-        [b, 1.0],
-        l1 + l2 + c,
-        (w, a),
-    );
+    // θ4's column is the slide's length, b's a unit vector.
+    let columns = [exact.position.b.abs(), 1.0];
+    let to_array = |q: &mechanisms::InvertedSliderCrankUnknowns<f64>| q.to_array();
+    let inverted_case = ("inverted slider-crank", l1 + l2 + c, (w, a), columns);
+    within_stated(inverted_case, &near.value, &exact, to_array);
 
     let (l2, l3, c) = (0.08445248871785131, 0.07333896474097021, 0.0);
     let slider = mechanisms::SliderCrank::<f64>::new(l2, l3, c).unwrap();
@@ -516,23 +462,53 @@ fn rates_at_a_stated_tolerances_position_are_within_what_they_state() {
     let guess =
         mechanisms::SliderCrankUnknowns::from_array([1.0172144142508899, -0.01734295000128923]);
     let options = NewtonOptions::new(3.3734342579565836e-8, 50).with_accuracy(anything);
-    let near = slider.motion_near(t, &guess, &options, w, a).unwrap().value;
+    let near = slider.motion_near(t, &guess, &options, w, a).unwrap();
     let exact = slider.motion(t, Branch::Open, w, a).unwrap();
-    check(
-        "slider-crank",
-        mechgen::Motion {
-            position: near.position.to_array(),
-            velocity: near.velocity.to_array(),
-            acceleration: near.acceleration.to_array(),
-            accuracy: near.accuracy,
-        },
-        [
-            exact.position.to_array(),
-            exact.velocity.to_array(),
-            exact.acceleration.to_array(),
-        ],
-        [l3, 1.0],
-        l2 + l3 + c,
-        (w, a),
+    let to_array = |q: &mechanisms::SliderCrankUnknowns<f64>| q.to_array();
+    let slider_case = ("slider-crank", l2 + l3 + c, (w, a), [l3, 1.0]);
+    within_stated(slider_case, &near.value, &exact, to_array);
+}
+
+/// Asserts that `near`'s errors from `exact` are within what `near` states, far from the floor
+/// (`case`: a name, the size, the input's rate and acceleration, and the unknowns' column
+/// lengths, which weigh their errors as the contract does).
+fn within_stated<U>(
+    (what, size, (w, a), columns): (&str, f64, (f64, f64), [f64; 2]),
+    near: &mechgen::Motion<U, f64>,
+    exact: &mechgen::Motion<U, f64>,
+    to_array: impl Fn(&U) -> [f64; 2],
+) {
+    // The largest error over the unknowns, each weighted by its column's length, and the
+    // largest weighted value, at least `floor`.
+    let error = |got: &U, want: &U| {
+        let (got, want) = (to_array(got), to_array(want));
+        (0..2).fold(0.0f64, |m, j| m.max((got[j] - want[j]).abs() * columns[j]))
+    };
+    let size_of = |want: &U, floor: f64| {
+        let want = to_array(want);
+        (0..2).fold(floor, |m, j| m.max((want[j] * columns[j]).abs()))
+    };
+    let position = error(&near.position, &exact.position) / size;
+    let velocity =
+        error(&near.velocity, &exact.velocity) / size_of(&exact.velocity, size * w.abs());
+    let acceleration = error(&near.acceleration, &exact.acceleration)
+        / size_of(&exact.acceleration, size * (w * w + a.abs()));
+    let stated = near.accuracy;
+    assert!(
+        position <= stated.position,
+        "{what}: position {position:e} vs {:e}",
+        stated.position
     );
+    assert!(
+        velocity <= stated.velocity,
+        "{what}: velocity {velocity:e} vs {:e}",
+        stated.velocity
+    );
+    assert!(
+        acceleration <= stated.acceleration,
+        "{what}: acceleration {acceleration:e} vs {:e}",
+        stated.acceleration
+    );
+    // Far from the floor: the carried error is what is stated.
+    assert!(stated.velocity > 1e6 * f64::EPSILON, "{what}: {stated:?}");
 }
