@@ -156,7 +156,7 @@ impl<T: Real> Accuracy<T> {
     /// which such positions exceeded: an inverted slider-crank at κ 1 and ρ 1 whose slide's
     /// velocity was off by its turn, 0.55 of `δ` (1.1 times `κ·ρ·δ/2`), and a slider-crank at
     /// κ 1.9 and ρ 2.2 whose coupler, turning 1.5 times as fast as the crank, had its
-    /// acceleration 1.07 times `κ²·ρ·δ` off.
+    /// acceleration 2.1 times `κ²·ρ·δ/2` off.
     ///
     /// ```
     /// use mechgen::Accuracy;

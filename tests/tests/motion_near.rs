@@ -426,7 +426,7 @@ fn a_stated_tolerance_leaves_its_accuracy_on_the_fallback_of_coupled_loops() {
 /// first stated tolerances found both halves of the earlier `κ·ρ·δ/2` and `κ²·ρ·δ/2`
 /// exceeded: an inverted slider-crank whose slide's velocity was off by the slide's turn
 /// (1.1 times), and a slider-crank whose coupler turns 1.5 times as fast as its crank, its
-/// acceleration off by the velocity's error times that rate (1.07 times).
+/// acceleration off by the velocity's error times that rate (2.1 times).
 #[test]
 fn rates_at_a_stated_tolerances_position_are_within_what_they_state() {
     // Everything returned, to compare with what it states.
