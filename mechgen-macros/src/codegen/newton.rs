@@ -789,8 +789,6 @@ struct Linearised {
     used: BTreeSet<Var>,
 }
 
-/// The locals `sin_{stem}` and `cos_{stem}` for the sine and cosine of `var` that the code
-/// reads (`None` for one it does not), each recorded in `named` with `stage`.
 /// `motion_near`'s bodies by Newton on every unknown (see [`Generator::full_motion_near`]).
 pub(super) struct FullMotionNear {
     /// Newton's common path inline, falling back to the safeguarded solve out of line.
@@ -799,6 +797,8 @@ pub(super) struct FullMotionNear {
     pub(super) safeguarded: TokenStream,
 }
 
+/// The locals `sin_{stem}` and `cos_{stem}` for the sine and cosine of `var` that the code
+/// reads (`None` for one it does not), each recorded in `named` with `stage`.
 fn trig_names(
     graph: &crate::symbolic::Graph,
     var: ExprId,
