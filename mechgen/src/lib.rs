@@ -53,9 +53,9 @@ pub mod __private {
     };
     pub use crate::linear::{Factored, orientation, solve_lu, solve2};
     pub use crate::newton::{
-        Linearisation, Orientation, Started, Turning, Turnings, all_finite, angle_near,
-        certified_start, check_all_finite, check_finite, finite, guess_certified, loop_weight,
-        newton, newton_common, root_elsewhere, same_sides, sin_cos, stagnated,
+        Linearisation, NewtonConstants, Orientation, Started, Turning, Turnings, all_finite,
+        angle_near, certified_start, check_all_finite, check_finite, finite, guess_certified,
+        loop_weight, newton, newton_common, root_elsewhere, same_sides, sin_cos, stagnated,
     };
     pub use crate::rate_limits::{RateLimits, aspect};
     pub use core::result::Result::{Err, Ok};

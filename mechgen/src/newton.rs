@@ -9,6 +9,23 @@ use core::cmp::Ordering;
 use crate::linear::Factored;
 use crate::{Accuracy, Error, Real};
 
+/// What a generated `{Name}Newton` computes once from the dimensions, for its
+/// `motion_near`: the mechanism's size and aspect, which the accuracy of every solution is
+/// stated against, and whether the mechanism is solved as it is given (its size well inside
+/// the float's range). Computed by the same expressions as the general `motion_near` computes
+/// on each call, so the two give the same bits.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonConstants<T> {
+    /// The sum of the lengths the loops declare.
+    pub size: T,
+    /// The size over the shortest column of an angle unknown, where the dimensions fix the
+    /// columns (else unused).
+    pub aspect: T,
+    /// Whether the dimensions are solved as given (`kernel::as_given`).
+    pub as_given: bool,
+}
+
 /// How hard Newton-Raphson tries.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonOptions<T> {
@@ -696,12 +713,14 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
         let mut x = guess;
         let mut iterations = 0;
         let mut started_positive = false;
-        let mut previous_residual = T::infinity();
+        let mut previous_residual = T::max_value();
         loop {
             let here = linearise(&x);
             // Every weighted component lower than the weighted residual before the step
             // (which [`newton`] takes whole only then), so finite and not NaN; at the guess,
-            // below infinity. Then their largest is [`weighted_norm`]'s, and the unweighted
+            // below the largest float (a float comparison, where infinity's is a test of the
+            // bits: a residual of exactly the largest, which [`newton`] takes, is left to
+            // `otherwise`, which is [`newton`]). Then their largest is [`weighted_norm`]'s, and the unweighted
             // components, finite too, give [`max_abs`]'s where it is wanted.
             // The tests together (`&`, not `&&`), for one branch.
             let lower = here

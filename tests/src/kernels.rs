@@ -412,6 +412,24 @@ fn motion_near() -> impl FnMut(f64) -> [f64; 6] {
     }
 }
 
+fn newton_motion_near() -> impl FnMut(f64) -> [f64; 6] {
+    let newton = four_bar()
+        .newton()
+        .expect("the four-bar's dimensions are finite");
+    let options = NewtonOptions::new(NEWTON_TOLERANCE, 50);
+    let mut guess = FourBarUnknowns::from_array(four_bar_start());
+    #[inline(always)]
+    move |t| {
+        let m = newton
+            .motion_near(t, &guess, &options, OMEGA, ALPHA)
+            .unwrap()
+            .value;
+        let (q, v) = (m.position.to_array(), m.velocity.to_array());
+        guess = FourBarUnknowns::from_array(predict(q, v));
+        flat([q, v, m.acceleration.to_array()])
+    }
+}
+
 fn position_motion_at() -> impl FnMut(f64) -> [f64; 6] {
     let linkage = four_bar();
     let options = NewtonOptions::new(NEWTON_TOLERANCE, 50);
@@ -765,6 +783,17 @@ pub static KERNELS: &[Kernel] = &[
         compared_with: Some("hand-newton"),
         build: || summed(motion_near()),
         outputs: || listed(motion_near()),
+    },
+    Kernel {
+        name: "newton-motion-near",
+        group: Group::FourBarNewton,
+        origin: Origin::Generated,
+        float: Float::F64,
+        mechanism: FOUR_BAR_DIMENSIONS,
+        description: "`newton()` once, then `motion_near(θ2, &guess, &NewtonOptions::new(1e-12, 50), ω, α)` on it: the dimensions checked and Newton's constants computed once",
+        compared_with: Some("hand-newton"),
+        build: || summed(newton_motion_near()),
+        outputs: || listed(newton_motion_near()),
     },
     Kernel {
         name: "position-motion-at",

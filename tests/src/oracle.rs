@@ -2353,7 +2353,19 @@ pub mod judge {
                 a: T,
             ) -> Got<([Vec<f64>; 3], f64, Stated)> {
                 let guess = $unknowns::from_array(guess.try_into().expect("a guess per unknown"));
-                self.motion_near(input, &guess, &NewtonOptions::new(tolerance, 50), w, a)
+                let options = NewtonOptions::new(tolerance, 50);
+                let general = self.motion_near(input, &guess, &options, w, a);
+                // The prepared solver gives the same bits, errors included (compared as
+                // printed: a NaN in an error is the same NaN).
+                if let Ok(newton) = self.newton() {
+                    let prepared = newton.motion_near(input, &guess, &options, w, a);
+                    assert_eq!(
+                        format!("{prepared:?}"),
+                        format!("{general:?}"),
+                        "`newton()?.motion_near` against `motion_near`"
+                    );
+                }
+                general
                     .map(|s| {
                         let m = s.value;
                         (

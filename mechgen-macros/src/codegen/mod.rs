@@ -14,6 +14,7 @@ mod evaluators;
 mod newton;
 mod normalise;
 mod points;
+mod prepared;
 pub(crate) mod rates;
 mod reduced;
 mod scenes;
@@ -42,6 +43,7 @@ pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
     let kinematics = generator.kinematics_impl();
     let design = generator.design_impl();
     let scenes = generator.scene_items();
+    let newton = generator.newton_items();
     let sensitivities = generator.sensitivities_struct();
     let branches = generator.branches_struct();
     let name = &model.name;
@@ -54,6 +56,7 @@ pub fn generate(model: &Model, equations: &Equations) -> TokenStream {
         #kinematics
         #design
         #scenes
+        #newton
         // Spans of generated tokens all point at the macro call, which misleads
         // `possible_missing_comma`; generated argument lists follow the declaration.
         #[allow(clippy::possible_missing_comma, clippy::too_many_arguments)]
@@ -91,7 +94,7 @@ enum Bindings {
 }
 
 /// The generated functions' own argument and local names, besides derived ones.
-const ARGUMENT_NAMES: [&str; 21] = [
+const ARGUMENT_NAMES: [&str; 22] = [
     "converged",
     "scale",
     "solved_a",
@@ -113,6 +116,7 @@ const ARGUMENT_NAMES: [&str; 21] = [
     "solution",
     "values",
     "reduced",
+    "constants",
 ];
 
 /// One of [`ARGUMENT_NAMES`], as a hygienic identifier.
@@ -471,7 +475,13 @@ impl<'a> Generator<'a> {
             functions.extend([self.input_jacobian(), self.velocity()]);
         }
         if outputs.acceleration {
-            functions.extend([self.acceleration(), self.motion_at(), self.motion_near()]);
+            functions.extend([
+                self.acceleration(),
+                self.motion_at(),
+                self.motion_near(),
+                self.prepared_motion_near(),
+                self.newton_constructor(),
+            ]);
         }
         functions.push(self.scenes_constructor());
         if !self.model.points.is_empty() {

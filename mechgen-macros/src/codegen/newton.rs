@@ -317,6 +317,17 @@ impl Generator<'_> {
     /// what its iteration falls back to (`super::reduced`): in both, the rates' accuracy
     /// from Newton's own stop (a stated tolerance's residual included) and the options'.
     pub(super) fn full_motion_near(&self, aside: &Ident) -> FullMotionNear {
+        self.full_motion_near_with(aside, None)
+    }
+
+    /// [`Self::full_motion_near`], its size and aspect read from `constants` (a
+    /// `mechgen::__private::NewtonConstants` argument) where given, instead of computed from
+    /// the dimensions: a `{Name}Newton`'s, computed once by the same expressions.
+    pub(super) fn full_motion_near_with(
+        &self,
+        aside: &Ident,
+        constants: Option<&Ident>,
+    ) -> FullMotionNear {
         let input = self.input_args();
         let first_input = self.first_input();
         let (input_dot, input_ddot) = (self.input_dot_args(), self.input_ddot_args());
@@ -368,8 +379,11 @@ impl Generator<'_> {
         // The size the rates' accuracy weighs the columns against, computed before the
         // iteration: one value to keep through it rather than the lengths.
         let size = local("size");
-        let size_value = self.accuracy_size(quote!(self));
-        let accuracy_check = self.rates_check_sized(
+        let size_value = match constants {
+            Some(constants) => quote!(#constants.size),
+            None => self.accuracy_size(quote!(self)),
+        };
+        let accuracy_check = self.rates_check_at(
             quote!(&#converged.at.jacobian),
             quote!(#converged.solved.condition),
             "Acceleration",
@@ -380,6 +394,7 @@ impl Generator<'_> {
             } else {
                 quote!(#converged.position_accuracy(#size))
             }),
+            constants.map(|constants| quote!(#constants.aspect)),
         );
         // From Newton's solution on: the same on either path.
         let rates_body = quote! {

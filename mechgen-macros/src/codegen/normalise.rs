@@ -279,6 +279,13 @@ impl Generator<'_> {
         };
         let normalised = entry.normalised();
         let solve = entry.solve();
+        // `motion_near` is a kernel a sweep calls once a step: inline where the caller's
+        // loop is, as the scene kernels are, so that what the caller does not read (the
+        // accuracy, the iterations) need not be computed and written out.
+        let inline = match entry {
+            NewtonEntry::Position => TokenStream::new(),
+            NewtonEntry::MotionNear => quote!(#[inline]),
+        };
         let as_given = match entry {
             NewtonEntry::Position => self.as_given(),
             NewtonEntry::MotionNear => self.as_given_with_rates(),
@@ -299,6 +306,7 @@ impl Generator<'_> {
         ));
         quote! {
             #docs
+            #inline
             pub fn #name(
                 &self,
                 #input_params,

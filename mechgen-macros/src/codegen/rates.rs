@@ -290,6 +290,22 @@ impl Generator<'_> {
         size: TokenStream,
         position: &PositionFrom,
     ) -> TokenStream {
+        self.rates_check_at(matrix, condition, highest, required, size, position, None)
+    }
+
+    /// [`Self::rates_check_sized`] with the aspect, where the dimensions fix it, already
+    /// computed as `aspect` (`None`: computed here, from the size).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn rates_check_at(
+        &self,
+        matrix: TokenStream,
+        condition: TokenStream,
+        highest: &str,
+        required: TokenStream,
+        size: TokenStream,
+        position: &PositionFrom,
+        aspect: Option<TokenStream>,
+    ) -> TokenStream {
         let position = position.tokens(&condition, &size);
         let highest = Ident::new(highest, proc_macro2::Span::call_site());
         let accuracy = local("accuracy");
@@ -302,7 +318,10 @@ impl Generator<'_> {
         // Columns of fixed lengths: the aspect from the dimensions, not the Jacobian (which
         // decides only where their squares leave the float's range).
         let receiver = Ident::new("self", proc_macro2::Span::call_site());
-        let (function, aspect) = match self.known_aspect(&receiver, &size) {
+        let known = self
+            .known_aspect(&receiver, &size)
+            .map(|computed| aspect.unwrap_or(computed));
+        let (function, aspect) = match known {
             Some(aspect) => (quote!(rates_accuracy_at_aspect), quote!(#aspect,)),
             None => (quote!(rates_accuracy), TokenStream::new()),
         };

@@ -185,6 +185,21 @@ macro_rules! check {
                 m.motion_near(input, guess, options, rate, acceleration)
             }
 
+            /// `newton()`, then its `motion_near`: the prepared solver's constructor and
+            /// its inlined common path.
+            #[cfg_attr(not(debug_assertions), no_panic)]
+            #[inline(never)]
+            pub fn newton_motion_near(
+                m: &$mech<T>,
+                input: T,
+                guess: &U,
+                options: &NewtonOptions<T>,
+                rate: T,
+                acceleration: T,
+            ) -> Result<Solved<Motion<U, T>, T>, Error<T>> {
+                m.newton()?.motion_near(input, guess, options, rate, acceleration)
+            }
+
             $(
                 #[cfg_attr(not(debug_assertions), no_panic)]
                 #[inline(never)]
@@ -242,6 +257,7 @@ macro_rules! check {
                     ("acceleration", acceleration as *const ()),
                     ("motion_at", motion_at as *const ()),
                     ("motion_near", motion_near as *const ()),
+                    ("newton_motion_near", newton_motion_near as *const ()),
                     ("points", points as *const ()),
                     ("point_velocities", point_velocities as *const ()),
                     ("point_accelerations", point_accelerations as *const ()),

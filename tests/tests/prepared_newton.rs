@@ -1,0 +1,154 @@
+//! `newton()` then `{Name}Newton::motion_near` gives what `motion_near` gives, bit for bit and
+//! error for error: the same solve with the dimensions' checks and constants made once.
+
+mod common;
+
+use mechgen::{Branch, Error, NewtonOptions, mechanism};
+use mechgen_tests::examples::stephenson_six_bar;
+
+mechanism! {
+    /// A four-bar whose lengths anyone may set.
+    pub struct OpenFourBar {
+        params: pub l1, pub l2, pub l3, pub l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
+    }
+}
+
+mechanism! {
+    /// A rod of length `l` with one end on the x axis at `x` (the input, a slider) and the
+    /// other on the y axis at `y`: an input that is a length joins the size on each call.
+    pub struct Trammel {
+        params: pub l;
+        input: x: length;
+        unknowns: theta: angle, y: length;
+        loop: x @ 0 + l @ theta - y @ (pi / 2);
+    }
+}
+
+/// Both solves of the same call, as printed (a NaN in an error is then the same NaN).
+fn same<T: std::fmt::Debug>(prepared: T, general: T) {
+    assert_eq!(format!("{prepared:?}"), format!("{general:?}"));
+}
+
+#[test]
+fn a_sweep_gives_the_general_bits() {
+    let linkage = common::example_1::<f64>();
+    let newton = linkage.newton().unwrap();
+    assert_eq!(newton.mechanism(), &linkage);
+    let (w, a) = (10.0, 2.0);
+    for options in [NewtonOptions::default(), NewtonOptions::new(1e-12, 50)] {
+        let mut guess = linkage.assemble(0.0, Branch::Open).unwrap();
+        for degree in 1..360 {
+            let t = f64::from(degree).to_radians();
+            let general = linkage.motion_near(t, &guess, &options, w, a);
+            let prepared = newton.motion_near(t, &guess, &options, w, a);
+            assert_eq!(prepared, general, "at {degree}°");
+            let m = general.unwrap().value;
+            guess = mechanisms::FourBarUnknowns {
+                theta3: m.position.theta3 + m.velocity.theta3 / w * 1f64.to_radians(),
+                theta4: m.position.theta4 + m.velocity.theta4 / w * 1f64.to_radians(),
+            };
+        }
+    }
+}
+
+#[test]
+fn coupled_loops_give_the_general_bits() {
+    let (linkage, start) = stephenson_six_bar();
+    let newton = linkage.newton().unwrap();
+    let options = NewtonOptions::default();
+    for degree in [5, 30, 90, 200] {
+        let t = f64::from(degree).to_radians();
+        same(
+            newton.motion_near(t, &start, &options, 3.0, -1.0),
+            linkage.motion_near(t, &start, &options, 3.0, -1.0),
+        );
+    }
+}
+
+#[test]
+fn what_the_common_path_does_not_take_is_the_general_functions() {
+    let linkage = common::example_1::<f64>();
+    let newton = linkage.newton().unwrap();
+    let guess = linkage.assemble(0.3, Branch::Open).unwrap();
+    let options = NewtonOptions::default();
+    let calls: [(f64, NewtonOptions<f64>, f64, f64); 9] = [
+        // Not finite: the input, its rate, its acceleration.
+        (f64::NAN, options, 1.0, 0.0),
+        (f64::INFINITY, options, 1.0, 0.0),
+        (0.3, options, f64::NAN, 0.0),
+        (0.3, options, 1.0, f64::INFINITY),
+        // Rates whose squares leave the range: counted in other units.
+        (0.3, options, 1e-200, 1e-300),
+        // A tolerance that is no tolerance.
+        (0.3, NewtonOptions::new(-1.0, 50), 1.0, 0.0),
+        (0.3, NewtonOptions::new(f64::NAN, 50), 1.0, 0.0),
+        // Beyond the range of motion (the four-bar is a crank-rocker: none), and far off.
+        (0.3 + 2.0 * std::f64::consts::PI * 1e6, options, 1.0, 0.0),
+        (3.0, NewtonOptions::new(0.0, 1), 1.0, 0.0),
+    ];
+    for (t, options, w, a) in calls {
+        same(
+            newton.motion_near(t, &guess, &options, w, a),
+            linkage.motion_near(t, &guess, &options, w, a),
+        );
+    }
+}
+
+#[test]
+fn a_mechanism_far_from_unit_size_gives_the_general_bits() {
+    for scale in [1e-250, 1e250] {
+        let linkage = OpenFourBar {
+            l1: 180.0 * scale,
+            l2: 80.0 * scale,
+            l3: 200.0 * scale,
+            l4: 150.0 * scale,
+        };
+        let newton = linkage.newton().unwrap();
+        let guess = linkage.assemble(0.5, Branch::Open).unwrap();
+        same(
+            newton.motion_near(0.52, &guess, &NewtonOptions::default(), 2.0, 1.0),
+            linkage.motion_near(0.52, &guess, &NewtonOptions::default(), 2.0, 1.0),
+        );
+        assert!(
+            newton
+                .motion_near(0.52, &guess, &NewtonOptions::default(), 2.0, 1.0)
+                .is_ok()
+        );
+    }
+}
+
+#[test]
+fn a_parameter_that_is_not_finite_is_named_when_the_solver_is_made() {
+    let linkage = OpenFourBar {
+        l1: 180.0,
+        l2: 80.0,
+        l3: f64::NAN,
+        l4: 150.0,
+    };
+    assert_eq!(
+        linkage.newton().unwrap_err(),
+        Error::NonFinite {
+            quantity: "parameter `l3`"
+        }
+    );
+}
+
+#[test]
+fn a_slider_input_gives_the_general_bits_at_every_size() {
+    let linkage = Trammel { l: 2.0 };
+    let newton = linkage.newton().unwrap();
+    // Near the assembly at x = 1: the rod at 120°, its top at √3.
+    let guess = TrammelUnknowns { theta: 2.1, y: 1.7 };
+    let options = NewtonOptions::default();
+    // Within reach, beyond it, not finite, and a slide so long the size is not taken as given.
+    for x in [1.0, 1.05, 2.5, f64::NAN, 1e300] {
+        same(
+            newton.motion_near(x, &guess, &options, 0.5, 0.1),
+            linkage.motion_near(x, &guess, &options, 0.5, 0.1),
+        );
+    }
+    assert!(newton.motion_near(1.05, &guess, &options, 0.5, 0.1).is_ok());
+}
