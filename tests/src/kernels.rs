@@ -396,38 +396,50 @@ fn hand_newton() -> impl FnMut(f64) -> [f64; 6] {
     }
 }
 
-fn motion_near() -> impl FnMut(f64) -> [f64; 6] {
-    let linkage = four_bar();
+/// The four-bar's turn by `motion_near(t, &guess, &options, ω, α)` (as `solve` calls it),
+/// each guess predicted from the solution before.
+fn four_bar_newton_sweep(
+    solve: impl Fn(f64, &FourBarUnknowns<f64>, &NewtonOptions<f64>) -> FourBarMotion,
+) -> impl FnMut(f64) -> [f64; 6] {
     let options = NewtonOptions::new(NEWTON_TOLERANCE, 50);
     let mut guess = FourBarUnknowns::from_array(four_bar_start());
     #[inline(always)]
     move |t| {
-        let m = linkage
-            .motion_near(t, &guess, &options, OMEGA, ALPHA)
-            .unwrap()
-            .value;
+        let m = solve(t, &guess, &options);
         let (q, v) = (m.position.to_array(), m.velocity.to_array());
         guess = FourBarUnknowns::from_array(predict(q, v));
         flat([q, v, m.acceleration.to_array()])
     }
 }
 
+type FourBarMotion = mechgen::Motion<FourBarUnknowns<f64>, f64>;
+
+fn motion_near() -> impl FnMut(f64) -> [f64; 6] {
+    let linkage = four_bar();
+    four_bar_newton_sweep(
+        #[inline(always)]
+        move |t, guess, options| {
+            linkage
+                .motion_near(t, guess, options, OMEGA, ALPHA)
+                .unwrap()
+                .value
+        },
+    )
+}
+
 fn newton_motion_near() -> impl FnMut(f64) -> [f64; 6] {
     let newton = four_bar()
         .newton()
         .expect("the four-bar's dimensions are finite");
-    let options = NewtonOptions::new(NEWTON_TOLERANCE, 50);
-    let mut guess = FourBarUnknowns::from_array(four_bar_start());
-    #[inline(always)]
-    move |t| {
-        let m = newton
-            .motion_near(t, &guess, &options, OMEGA, ALPHA)
-            .unwrap()
-            .value;
-        let (q, v) = (m.position.to_array(), m.velocity.to_array());
-        guess = FourBarUnknowns::from_array(predict(q, v));
-        flat([q, v, m.acceleration.to_array()])
-    }
+    four_bar_newton_sweep(
+        #[inline(always)]
+        move |t, guess, options| {
+            newton
+                .motion_near(t, guess, options, OMEGA, ALPHA)
+                .unwrap()
+                .value
+        },
+    )
 }
 
 fn position_motion_at() -> impl FnMut(f64) -> [f64; 6] {

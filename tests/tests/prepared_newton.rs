@@ -5,16 +5,7 @@ mod common;
 
 use mechgen::{Branch, Error, NewtonOptions, mechanism};
 use mechgen_tests::examples::stephenson_six_bar;
-
-mechanism! {
-    /// A four-bar whose lengths anyone may set.
-    pub struct OpenFourBar {
-        params: pub l1, pub l2, pub l3, pub l4;
-        input: theta2: angle;
-        unknowns: theta3: angle, theta4: angle;
-        loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - l1 @ 0;
-    }
-}
+use mechgen_tests::scenes::Everything as OpenFourBar;
 
 mechanism! {
     /// A rod of length `l` with one end on the x axis at `x` (the input, a slider) and the

@@ -17,26 +17,44 @@ impl Generator<'_> {
     pub(super) fn check_finite(&self) -> TokenStream {
         let inputs = self.inputs();
         let input_params = self.input_params();
-        let fields = self.model.params.iter().map(|param| &param.name);
-        let labels = self
-            .model
-            .params
-            .iter()
-            .map(|param| format!("parameter `{}`", param.name.unraw()));
         let input_labels = inputs
             .iter()
             .map(|input| format!("input `{}`", input.unraw()));
-        let (formulas, formula_labels) = self.formula_checks();
+        let (values, labels) = self.dimension_checks();
         quote! {
             /// Checks that the parameters and the input are finite.
             #[inline]
             fn mechgen_check_finite(&self, #input_params) -> ::core::result::Result<(), ::mechgen::Error<T>> {
                 ::mechgen::__private::check_all_finite(
-                    [#(self.#fields,)* #(#formulas,)* #(#inputs),*],
-                    &[#(#labels,)* #(#formula_labels,)* #(#input_labels),*],
+                    [#(#values,)* #(#inputs),*],
+                    &[#(#labels,)* #(#input_labels),*],
                 )
             }
         }
+    }
+
+    /// Every parameter (`self.l1`) and formula of them, with the name a failure blames:
+    /// what is checked finite of the dimensions.
+    pub(super) fn dimension_checks(&self) -> (Vec<TokenStream>, Vec<String>) {
+        let (formulas, formula_labels) = self.formula_checks();
+        let values = self
+            .model
+            .params
+            .iter()
+            .map(|param| {
+                let name = &param.name;
+                quote!(self.#name)
+            })
+            .chain(formulas)
+            .collect();
+        let labels = self
+            .model
+            .params
+            .iter()
+            .map(|param| format!("parameter `{}`", param.name.unraw()))
+            .chain(formula_labels)
+            .collect();
+        (values, labels)
     }
 
     /// `check_all_finite([parameters, input, rate, acceleration], names)?;`: the check

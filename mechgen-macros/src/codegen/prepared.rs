@@ -10,7 +10,6 @@
 
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
-use syn::ext::IdentExt;
 
 use super::docs::doc;
 use super::newton::FullMotionNear;
@@ -91,13 +90,7 @@ impl Generator<'_> {
             return TokenStream::new();
         }
         let newton = self.newton_type();
-        let fields = self.model.params.iter().map(|param| &param.name);
-        let labels = self
-            .model
-            .params
-            .iter()
-            .map(|param| format!("parameter `{}`", param.name.unraw()));
-        let (formulas, formula_labels) = self.formula_checks();
+        let (values, labels) = self.dimension_checks();
         let size = self.accuracy_size(quote!(self));
         let receiver = Ident::new("self", Span::call_site());
         let aspect = self
@@ -118,10 +111,7 @@ impl Generator<'_> {
         quote! {
             #docs
             pub fn newton(&self) -> ::core::result::Result<#newton<T>, ::mechgen::Error<T>> {
-                ::mechgen::__private::check_all_finite(
-                    [#(self.#fields,)* #(#formulas),*],
-                    &[#(#labels,)* #(#formula_labels),*],
-                )?;
+                ::mechgen::__private::check_all_finite([#(#values),*], &[#(#labels),*])?;
                 let size = #size;
                 ::core::result::Result::Ok(#newton {
                     mechanism: *self,

@@ -270,31 +270,19 @@ impl Generator<'_> {
         required: TokenStream,
         position: &PositionFrom,
     ) -> TokenStream {
-        self.rates_check_sized(
+        self.rates_check_at(
             matrix,
             condition,
             highest,
             required,
             self.accuracy_size(quote!(self)),
             position,
+            None,
         )
     }
 
-    /// [`Self::rates_check`] with the size already computed, as `size`.
-    pub(super) fn rates_check_sized(
-        &self,
-        matrix: TokenStream,
-        condition: TokenStream,
-        highest: &str,
-        required: TokenStream,
-        size: TokenStream,
-        position: &PositionFrom,
-    ) -> TokenStream {
-        self.rates_check_at(matrix, condition, highest, required, size, position, None)
-    }
-
-    /// [`Self::rates_check_sized`] with the aspect, where the dimensions fix it, already
-    /// computed as `aspect` (`None`: computed here, from the size).
+    /// [`Self::rates_check`] with the size already computed, as `size`, and the aspect,
+    /// where the dimensions fix it, as `aspect` (`None`: computed here, from the size).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn rates_check_at(
         &self,

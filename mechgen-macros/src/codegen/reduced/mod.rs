@@ -217,7 +217,7 @@ impl Generator<'_> {
         // The size the position's error and the rates' accuracy are stated against, once.
         let size = local("size");
         let size_value = self.accuracy_size(quote!(self));
-        let accuracy_check = self.rates_check_sized(
+        let accuracy_check = self.rates_check_at(
             quote!(&#jacobian),
             condition.clone(),
             "Acceleration",
@@ -228,6 +228,7 @@ impl Generator<'_> {
             } else {
                 quote!(#converged.position_accuracy_at(#condition, #size))
             }),
+            None,
         );
         let docs = doc(&format!(
             "Position by Newton-Raphson from `guess` (as [`Self::position`]: on the iterated \
