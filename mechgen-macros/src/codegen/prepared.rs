@@ -42,11 +42,18 @@ impl Generator<'_> {
             "[`{name}`]'s Newton solver, made by [`{name}::newton`]: its parameters checked \
              finite, and the size and aspect its accuracy is stated against computed, once."
         ));
-        let motion_near_doc = doc(&format!(
-            "[`{name}::motion_near`], with the dimensions' checks and constants from \
-             [`{name}::newton`]: the same bits, fewer instructions per call (each call checks \
-             only its own arguments)."
-        ));
+        let motion_near_doc = if self.equations.reduction.is_some() {
+            doc(&format!(
+                "[`{name}::motion_near`] itself: where Newton iterates on fewer unknowns than \
+                 the loops have, it keeps its own checks, and the solver saves nothing per call."
+            ))
+        } else {
+            doc(&format!(
+                "[`{name}::motion_near`], with the dimensions' checks and constants from \
+                 [`{name}::newton`]: the same bits, fewer instructions per call (each call \
+                 checks only its own arguments)."
+            ))
+        };
         quote! {
             #type_doc
             #[derive(Clone, Copy, Debug, PartialEq)]
