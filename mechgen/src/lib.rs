@@ -54,8 +54,9 @@ pub mod __private {
     pub use crate::linear::{Factored, orientation, solve_lu, solve2};
     pub use crate::newton::{
         Linearisation, NewtonConstants, Orientation, Started, Turning, Turnings, all_finite,
-        angle_near, certified_start, check_all_finite, check_finite, finite, guess_certified,
-        loop_weight, newton, newton_common, root_elsewhere, same_sides, sin_cos, stagnated,
+        angle_near, certified_start, check_all_finite, check_finite, closes_within_rounding,
+        finite, guess_certified, loop_weight, newton, newton_common, root_elsewhere, same_sides,
+        sin_cos, stagnated,
     };
     pub use crate::rate_limits::{RateLimits, aspect};
     pub use core::result::Result::{Err, Ok};

@@ -640,6 +640,18 @@ fn guess_radius<T: Real, const N: usize>(residual: &[T; N], jacobian: &[[T; N]; 
     (reach_squared * eta_squared <= T::constant(0.25)).then(|| T::one() / reach_squared.sqrt())
 }
 
+/// Whether the loops close at a position to their rounding floor, `16·ε·size` for the sum
+/// of the declared lengths `size`: then the mechanism assembles there (within rounding), and
+/// no solver's `CannotAssemble` from it stands. Generated code asks this where a reduced
+/// iteration's `CannotAssemble` meets Newton's `Singular` on every unknown from the same
+/// guess. NaN closes nothing.
+#[cold]
+#[inline(never)]
+pub fn closes_within_rounding<T: Real, const N: usize>(residual: &[T; N], size: T) -> bool {
+    let floor = T::constant(16.0) * T::epsilon() * size;
+    residual.iter().all(|r| r.abs() <= floor)
+}
+
 /// Whether Kantorovich certifies `guess` (`h = β·L·η ≤ 1/2` there, see `guess_radius`):
 /// Newton on every unknown from it converges to the root it is near. Generated code asks
 /// this before it lets Newton on every unknown answer for a reduced iteration that landed

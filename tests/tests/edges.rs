@@ -246,6 +246,19 @@ fn newton_past_a_limit_by_less_than_its_residual_keeps_the_contract() {
     drawn_cases_keep_the_contract("ratios/newton", 25, &[96232], true);
 }
 
+/// A case of the million at `51edbbd` (seed 28, `everything`) that broke the contract, and
+/// at every commit before it: case 286727, an f32 Stephenson six-bar of size 1.3e-16 whose
+/// `cd` link, 2.2e-24, is below the rounding of the size, from a guess that closes the loops
+/// to 4e-8 of the size, where the Jacobian's κ of 4,400 is beyond f32's threshold. The
+/// reduced iteration's closed form for that link's loop missed in rounding (`CannotAssemble`);
+/// Newton on every unknown then said `Singular`, and `position` and `motion_near` chose the
+/// reduced iteration's error: `CannotAssemble` inside the range of motion. From a guess
+/// Kantorovich certifies they now say `Singular`.
+#[test]
+fn a_link_below_rounding_at_a_singular_position_is_singular_not_unassemblable() {
+    drawn_cases_keep_the_contract("everything", 28, &[286727], true);
+}
+
 /// Judges cases `indices` of the large run with `seed` (`everything`), requiring no finding.
 /// Those runs stated no Newton tolerance, which the draw has done since (drawn last, so the
 /// case is otherwise as it was).

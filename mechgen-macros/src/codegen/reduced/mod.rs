@@ -56,10 +56,11 @@ impl Generator<'_> {
         let ty = &self.unknowns_type;
         let fallback = self.fallback_name();
         let reduced = arg("reduced");
+        let choose = self.fallback_error(&reduced);
         let fall_back = quote! {
             return self
                 .#fallback(#input, #guess, #options)
-                .map_err(|full| #reduced.unwrap_or(full));
+                .map_err(|full| #choose);
         };
         let after = self.roots_after(reduction, &[]);
         let iteration = self.reduced_iteration(reduction, &fall_back, &after);
@@ -299,16 +300,43 @@ impl Generator<'_> {
             quote!(#[cold] #[inline(never)]),
             quote!(#reduced: ::core::option::Option<::mechgen::Error<T>>,),
             TokenStream::new(),
-            quote! {
-                self.#all(#input, #guess, #options, #input_dot, #input_ddot)
-                    .map_err(|full| match full {
-                        ::mechgen::Error::Inaccurate { .. } => full,
-                        _ => #reduced.unwrap_or(full),
-                    })
+            {
+                let choose = self.fallback_error(&reduced);
+                quote! {
+                    self.#all(#input, #guess, #options, #input_dot, #input_ddot)
+                        .map_err(|full| match full {
+                            ::mechgen::Error::Inaccurate { .. } => full,
+                            _ => #choose,
+                        })
+                }
             },
         );
         let function = self.motion_near_function(docs, TokenStream::new(), check, body);
         quote!(#function #all_item #failed_item)
+    }
+
+    /// The error where the reduced iteration failed (`reduced`, its failure, if any) and
+    /// Newton on every unknown then failed too (`full`): the reduced iteration's, which says
+    /// why better, but for its `CannotAssemble` against a `Singular` from a guess at which
+    /// the loops close to their rounding floor. Then the mechanism assembles at the guess, and
+    /// the reduced iteration's closed form missed only in rounding at the singular position
+    /// the full one found (edge run seed 28, case 286727: an f32 Stephenson six-bar whose
+    /// 2e-24 link is below the rounding of its 1e-16 size, the guess closing the loops to
+    /// 4e-8 of it, at κ 4400, beyond f32's threshold).
+    fn fallback_error(&self, reduced: &Ident) -> TokenStream {
+        let (input, guess) = (self.input_args(), arg("guess"));
+        let size = self.accuracy_size(quote!(self));
+        quote! {
+            match #reduced {
+                ::core::option::Option::Some(::mechgen::Error::CannotAssemble { .. })
+                    if matches!(full, ::mechgen::Error::Singular { .. })
+                        && ::mechgen::__private::closes_within_rounding(
+                            &self.residual(#input, #guess),
+                            #size,
+                        ) => full,
+                _ => #reduced.unwrap_or(full),
+            }
+        }
     }
 
     /// Whether the reduced iteration's solution (the unknowns, bound by name) is certainly
