@@ -1322,6 +1322,25 @@ fn platform_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K])
 mod tests {
     use super::*;
 
+    /// The loops close to their rounding floor, `16·ε·size`, and not a bit beyond it; NaN
+    /// closes nothing.
+    #[test]
+    fn loops_close_within_rounding_up_to_the_floor() {
+        let size = 3.0;
+        let floor = 16.0 * f64::EPSILON * size;
+        assert!(closes_within_rounding(&[floor, -floor], size));
+        assert!(closes_within_rounding(&[0.0, floor / 2.0], size));
+        assert!(!closes_within_rounding(
+            &[floor * (1.0 + f64::EPSILON), 0.0],
+            size
+        ));
+        assert!(!closes_within_rounding(&[0.0, -floor * 1.5], size));
+        assert!(!closes_within_rounding(&[f64::NAN, 0.0], size));
+        let floor32 = 16.0 * f32::EPSILON * 2.0;
+        assert!(closes_within_rounding(&[floor32], 2.0f32));
+        assert!(!closes_within_rounding(&[floor32 * 1.25], 2.0f32));
+    }
+
     /// The four-bar of the seeds' Example 1 at `theta2`, as generated code evaluates it.
     fn four_bar(theta2: f64) -> impl FnMut(&[f64; 2]) -> Linearisation<f64, 2, [f64; 4]> + Clone {
         let mut turnings = Turnings::<f64, 2>::new();
