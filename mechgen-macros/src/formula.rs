@@ -10,6 +10,7 @@
 //! with the mechanism as a declared length does (the solvers scale every length by a power
 //! of two, and a formula must come out scaled by the same).
 
+use std::collections::BTreeSet;
 use std::fmt;
 
 /// A function a declaration may apply to numbers and parameters.
@@ -103,6 +104,22 @@ impl Formula {
                     _ => f64::NAN,
                 }
             }
+        }
+    }
+
+    /// The parameters it reads, into `params`.
+    pub fn params(&self, params: &mut BTreeSet<usize>) {
+        match self {
+            Formula::Param(i) => {
+                params.insert(*i);
+            }
+            Formula::Number(_) => {}
+            Formula::Neg(inner) => inner.params(params),
+            Formula::Add(a, b) | Formula::Sub(a, b) | Formula::Mul(a, b) | Formula::Div(a, b) => {
+                a.params(params);
+                b.params(params);
+            }
+            Formula::Call(_, arguments) => arguments.iter().for_each(|a| a.params(params)),
         }
     }
 

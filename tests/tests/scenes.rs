@@ -91,6 +91,57 @@ fn four_bar_scenes_agree_with_the_general_functions() {
     four_bar_scenes_agree::<f32>();
 }
 
+/// A coupler point far off its link (its distance `a` up to the float's range, the loops'
+/// lengths 80 to 200): the scenes' scale is the loops', so their closed forms neither
+/// underflow nor lose the angles. Found by an adversarial review: scaled by every length,
+/// `a = 1e100` shrank the loops to 1e-98, and `angles` said `Singular`, and from `a = 1e80`
+/// (f64) or `1e12` (f32) gave wrong angles, rates and joints as `Ok`.
+fn far_coupler_point_scenes_agree<T: Real>(distances: &[f64]) {
+    let c = T::constant;
+    let (w, acc) = (c(RATE), c(ACCELERATION));
+    let tol = tolerance::<T>();
+    for &distance in distances {
+        let linkage = mechanisms::FourBar::new(c(180.0), c(80.0), c(200.0), c(150.0))
+            .and_then(|linkage| linkage.with_coupler_point(c(distance), c(0.3)))
+            .unwrap();
+        let scenes = linkage.scenes().unwrap();
+        for t in inputs::<T>().step_by(7) {
+            let motion = linkage.motion(t, Branch::Open, w, acc).unwrap();
+            let (q, v) = (motion.position, motion.velocity);
+            let angles = scenes.angles(t, Branch::Open, w, acc).unwrap();
+            close("θ3", t, angles.theta3, q.theta3, T::one(), tol);
+            close("θ4", t, angles.theta4, q.theta4, T::one(), tol);
+            close("ω4", t, angles.theta4_dot, v.theta4, w, tol);
+            close(
+                "α4",
+                t,
+                angles.theta4_ddot,
+                motion.acceleration.theta4,
+                w * w,
+                tol,
+            );
+            let points = linkage.points(t, &q).unwrap();
+            let joints = scenes.joints(t, Branch::Open).unwrap();
+            close2("B", t, joints.rocker_pin, points.rocker_pin, c(200.0), tol);
+            let path = scenes.coupler_path(t, Branch::Open).unwrap();
+            close2(
+                "P",
+                t,
+                path.coupler_point,
+                points.coupler_point,
+                c(distance),
+                tol,
+            );
+        }
+    }
+}
+
+#[test]
+fn a_coupler_point_far_off_its_link_leaves_the_loops_to_their_own_scale() {
+    far_coupler_point_scenes_agree::<f64>(&[1e13, 1e80, 1e100, 1e160, 1e300]);
+    far_coupler_point_scenes_agree::<f32>(&[1e12, 1e13, 1e20, 1e36]);
+}
+
 fn slider_crank_scenes_agree<T: Real>() {
     let linkage: SliderCrank<T> = common::slider_crank();
     let scenes = linkage.scenes().unwrap();

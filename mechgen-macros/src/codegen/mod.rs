@@ -308,6 +308,32 @@ impl<'a> Generator<'a> {
             .collect()
     }
 
+    /// The parameters that are lengths and make the loops' magnitudes (themselves, or
+    /// through a formula): what a scene kernel's scale brings to about 1. A length that only
+    /// places a point (a coupler point's distance) is left out: however long, it must not
+    /// shrink the loops, whose closed forms multiply their lengths four at a time, into
+    /// underflow.
+    fn loop_length_params(&self) -> Vec<&Ident> {
+        let mut in_loops = BTreeSet::new();
+        for term in self.model.loops.iter().flat_map(|sum| &sum.terms) {
+            for symbol in term.magnitude.coefficients.keys() {
+                if let SymbolRef::Param(i) = symbol {
+                    in_loops.insert(*i);
+                }
+            }
+            for (_, formula) in &term.magnitude.formulas {
+                formula.params(&mut in_loops);
+            }
+        }
+        self.model
+            .params
+            .iter()
+            .enumerate()
+            .filter(|(i, param)| param.kind == Kind::Length && in_loops.contains(i))
+            .map(|(_, param)| &param.name)
+            .collect()
+    }
+
     /// The fields of `self` scaled by `scale` (a power of two): its lengths times it, its
     /// angles as they are.
     fn scaled_fields(&self, scale: &Ident) -> Vec<TokenStream> {

@@ -72,9 +72,10 @@ impl Generator<'_> {
             pub struct #scenes_type<T> {
                 mechanism: #name<T>,
                 /// The mechanism with its lengths times `scale`, a power of two that brings
-                /// the longest to about 1: the kernels compute in these units, where no
-                /// square overflows or underflows, and give the same angles, bit for bit,
-                /// for every power-of-two scaling of a mechanism.
+                /// the longest of its loops' to about 1 (a length that only places a point,
+                /// however long, leaves the loops alone): the kernels compute in these
+                /// units, where no square overflows or underflows, and give the same angles,
+                /// bit for bit, for every power-of-two scaling of a mechanism.
                 scaled: #name<T>,
                 scale: T,
                 unscale: T,
@@ -127,7 +128,7 @@ impl Generator<'_> {
         let statements = block.statements.concat();
         let name = &self.model.name;
         let (scale, unscale) = (local("scale"), local("unscale"));
-        let lengths = self.length_params();
+        let lengths = self.loop_length_params();
         let scaled_fields = self.scaled_fields(&scale);
         let (size, aspect) = self.scene_aspect(&scaled);
         let values = &block.outputs;
