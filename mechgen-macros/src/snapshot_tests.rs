@@ -113,6 +113,55 @@ fn position_only_expansion() {
     assert_expansion("FourBarPositions", &expansion);
 }
 
+/// The columns a Newton position's error moves (`mechgen::Accuracy::estimate_at`'s `moving`),
+/// as the rates' accuracy checks count them: one per angle unknown, two per slide along an
+/// unknown angle, and a margin of two per unknown for each term whose angle sums unknowns.
+#[test]
+fn moving_columns_are_counted_from_the_loops() {
+    let count = |declaration: proc_macro2::TokenStream| {
+        let expansion = pretty(crate::expand::expand(declaration));
+        let counts: std::collections::BTreeSet<String> = expansion
+            .match_indices("T::constant(")
+            .filter_map(|(at, _)| expansion[at..].split_once(')').map(|(call, _)| call))
+            .filter(|call| call.ends_with("f64") && !call.contains('.'))
+            .map(str::to_owned)
+            .collect();
+        counts.into_iter().collect::<Vec<_>>()
+    };
+    // A slide along a fixed line moves nothing; along an unknown angle, two columns.
+    let slider = quote::quote! {
+        pub struct Slider {
+            params: l2, l3, c;
+            input: theta2: angle;
+            unknowns: theta3: angle, d: length;
+            loop: l2 @ theta2 + l3 @ theta3 - c @ (pi / 2) - d @ 0;
+            generate: position, velocity, acceleration;
+        }
+    };
+    assert_eq!(count(slider), ["T::constant(1f64"]);
+    let inverted = quote::quote! {
+        pub struct Inverted {
+            params: l1, l2;
+            input: theta2: angle;
+            unknowns: theta4: angle, b: length;
+            loop: l2 @ theta2 - b @ theta4 - l1 @ 0;
+            generate: position, velocity, acceleration;
+        }
+    };
+    assert_eq!(count(inverted), ["T::constant(3f64"]);
+    // An angle summing two unknowns: 2 for the angles, and 2·2 for the term.
+    let summed = quote::quote! {
+        pub struct Summed {
+            params: l1, l2, l3, l4;
+            input: theta2: angle;
+            unknowns: theta3: angle, theta4: angle;
+            loop: l2 @ theta2 + l3 @ (theta3 + theta4) - l4 @ theta4 - l1 @ 0;
+            generate: position, velocity, acceleration;
+        }
+    };
+    assert_eq!(count(summed), ["T::constant(6f64"]);
+}
+
 /// A four-bar whose coupler angle is measured the other way (`pi - phi3`, coefficient −1):
 /// its closed forms solve for `phi3' = −phi3` and hand back `phi3 = −phi3'`, its unit vector
 /// conjugated, and the scene kernel's block determinant changes sign with that column.

@@ -139,36 +139,50 @@ impl<T: Real> Accuracy<T> {
     /// than one a closed form computed, which [`Accuracy::estimate`] is for: a Newton
     /// position, which stops at a residual up to its floor (or its tolerance), or a position
     /// the caller gives. The position is then the larger of `position` and the closed form's
-    /// `32·ε·κ`, and each rate carries what its error does to the Jacobian the rates are solved
-    /// with: an angle off by `δθ` turns its column by `δθ`, up to `ρ·δ` for a weighted error
-    /// `δ` (ρ the aspect, at least 1), and the rates solved with it by that much of their size,
-    /// which the solve amplifies by κ; the accelerations' right-hand side carries the
-    /// velocities' error twice (a squared rate's error is twice the rate's), so twice once
-    /// more by κ:
+    /// `32·ε·κ`, and the rates carry what its error does to the Jacobian they are solved
+    /// with. With the unknowns off by `Δq` (each weighted by its column at most `δ` of the
+    /// size `S`), the Jacobian is off by the loops' second derivatives, `ΔJ·q̇ = f''[Δq, q̇]`,
+    /// and the weighted rates by κ times that over the rates' size `V`:
     ///
-    /// - velocity: the closed form's, plus `κ·ρ·δ`;
-    /// - acceleration: the closed form's, plus `2·κ²·ρ·δ`.
+    /// - an angle unknown's own term, `∂²f/∂θ² = i·∂f/∂θ` (a turn of its column), has its
+    ///   column's length `c`, so `c·|Δθ|·|θ̇| ≤ δ·S·V/c ≤ ρ·δ·V`, with ρ (the aspect, at
+    ///   least 1) the size over the shortest angle's column;
+    /// - a length unknown `b` along an angle unknown's direction adds `|Δb|·|θ̇| + |ḃ|·|Δθ|`,
+    ///   up to `2·ρ·δ·V`; one along a fixed direction, nothing;
     ///
-    /// At a Newton position on its floor (`δ = 32·ε·κ`) these are `32·ε·κ²·ρ` and
-    /// `64·ε·κ³·ρ`, against the bounds the edge tests hold Newton's rates to against the
+    /// and these add up: `moving` is their count, the unknowns' columns the position's error
+    /// moves (the four-bar's two angles, 2; the slider-crank's coupler angle and its slide
+    /// along a fixed line, 1; the inverted slider-crank's angle and its slide along it, 3;
+    /// generated code counts them from the loops). The accelerations' right-hand side carries
+    /// the velocities' error twice (a squared rate's error is twice the rate's), so twice
+    /// once more by κ:
+    ///
+    /// - velocity: the closed form's, plus `m·κ·ρ·δ`;
+    /// - acceleration: the closed form's, plus `2·κ·m·κ·ρ·δ`.
+    ///
+    /// At a Newton position on its floor (`δ = 32·ε·κ`) these are `32·m·ε·κ²·ρ` and
+    /// `64·m·ε·κ³·ρ`, against the bounds the edge tests hold Newton's rates to against the
     /// multiple-precision oracle (`16·ε·κ²·ρ` and `16·ε·κ³·ρ²`). Until positions a stated
     /// tolerance left short of the floor were drawn too, these were `κ·ρ·δ/2` and `κ²·ρ·δ/2`,
     /// which such positions exceeded: an inverted slider-crank at κ 1 and ρ 1 whose slide's
     /// velocity was off by its turn, 0.55 of `δ` (1.1 times `κ·ρ·δ/2`), and a slider-crank at
     /// κ 1.9 and ρ 2.2 whose coupler, turning 1.5 times as fast as the crank, had its
-    /// acceleration 2.1 times `κ²·ρ·δ/2` off.
+    /// acceleration 2.1 times `κ²·ρ·δ/2` off; and until an adversarial review drew guesses
+    /// farther off, `κ·ρ·δ` and `2·κ²·ρ·δ` for every mechanism (`m` = 1), which a four-bar
+    /// stopped by a tolerance short of its floor exceeded, its two angles' errors adding:
+    /// its velocity 1.25 times, its acceleration 1.07 times.
     ///
     /// ```
     /// use mechgen::Accuracy;
     /// let closed = Accuracy::<f64>::estimate(10.0, 2.0);
-    /// let near = Accuracy::<f64>::estimate_at(10.0, 2.0, 0.0);
+    /// let near = Accuracy::<f64>::estimate_at(10.0, 2.0, 0.0, 2.0);
     /// assert_eq!(near.position, closed.position);
-    /// assert_eq!(near.velocity, closed.velocity + 10.0 * 2.0 * closed.position);
+    /// assert_eq!(near.velocity, closed.velocity + 2.0 * 10.0 * 2.0 * closed.position);
     /// // A position known to 1e-9 only (a loose tolerance): rates far less accurate.
-    /// assert!(Accuracy::<f64>::estimate_at(10.0, 2.0, 1e-9).velocity > 1e-8);
+    /// assert!(Accuracy::<f64>::estimate_at(10.0, 2.0, 1e-9, 2.0).velocity > 1e-8);
     /// ```
     #[inline]
-    pub fn estimate_at(condition: T, aspect: T, position: T) -> Self {
+    pub fn estimate_at(condition: T, aspect: T, position: T, moving: T) -> Self {
         let closed = Self::estimate(condition, aspect);
         let kappa = condition.max(T::one());
         // The larger, and NaN (an unknown error) where `position` is.
@@ -177,8 +191,8 @@ impl<T: Real> Accuracy<T> {
         } else {
             position
         };
-        // κ·ρ·δ, which the acceleration's term takes twice, once more by κ.
-        let carried = kappa * aspect.max(T::one()) * delta;
+        // m·κ·ρ·δ, which the acceleration's term takes twice, once more by κ.
+        let carried = moving * kappa * aspect.max(T::one()) * delta;
         Accuracy {
             position: delta,
             velocity: closed.velocity + carried,
@@ -245,16 +259,18 @@ pub fn floor_position_accuracy<T: Real>(condition: T, largest_loop: T, size: T) 
 /// whether unknown `j` is an angle; an error if the velocity's or (with `highest` the
 /// acceleration) the acceleration's exceeds `required`. `position` says where the position
 /// came from: `None`, a closed form ([`Accuracy::estimate`]); `Some(δ)`, a position known to
-/// within `δ` or the closed form's `32·ε·κ`, whichever is larger ([`Accuracy::estimate_at`]):
-/// Newton's (from its residual), or a position the caller gives (`Some(0)`: any position
-/// within the contract).
+/// within `δ` or the closed form's `32·ε·κ`, whichever is larger ([`Accuracy::estimate_at`],
+/// with `moving` the count of columns its error moves): Newton's (from its residual), or a
+/// position the caller gives (`Some(0)`: any position within the contract).
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 pub fn rates_accuracy<T: Real, const N: usize>(
     condition: T,
     jacobian: &[[T; N]; N],
     size: T,
     angles: [bool; N],
     position: Option<T>,
+    moving: T,
     highest: Order,
     required: &Accuracy<T>,
 ) -> Result<Accuracy<T>, Error<T>> {
@@ -267,14 +283,14 @@ pub fn rates_accuracy<T: Real, const N: usize>(
     if let Some(aspect) = ordinary(jacobian, size, angles, position.is_some()) {
         let estimate = match position {
             None => Accuracy::estimate(condition, T::one()),
-            Some(position) => Accuracy::estimate_at(condition, aspect, position),
+            Some(position) => Accuracy::estimate_at(condition, aspect, position, moving),
         };
         if within(&estimate) {
             return Ok(estimate);
         }
     }
     rates_accuracy_aside(
-        condition, *jacobian, size, angles, position, highest, required,
+        condition, *jacobian, size, angles, position, moving, highest, required,
     )
 }
 
@@ -292,6 +308,7 @@ pub fn rates_accuracy_at_aspect<T: Real, const N: usize>(
     size: T,
     angles: [bool; N],
     position: Option<T>,
+    moving: T,
     highest: Order,
     required: &Accuracy<T>,
 ) -> Result<Accuracy<T>, Error<T>> {
@@ -299,7 +316,7 @@ pub fn rates_accuracy_at_aspect<T: Real, const N: usize>(
     if aspect >= T::one() && aspect < T::infinity() {
         let estimate = match position {
             None => Accuracy::estimate(condition, aspect),
-            Some(position) => Accuracy::estimate_at(condition, aspect, position),
+            Some(position) => Accuracy::estimate_at(condition, aspect, position, moving),
         };
         if estimate.velocity <= required.velocity
             && (highest < Order::Acceleration || estimate.acceleration <= required.acceleration)
@@ -308,7 +325,7 @@ pub fn rates_accuracy_at_aspect<T: Real, const N: usize>(
         }
     }
     rates_accuracy_aside(
-        condition, *jacobian, size, angles, position, highest, required,
+        condition, *jacobian, size, angles, position, moving, highest, required,
     )
 }
 
@@ -316,19 +333,21 @@ pub fn rates_accuracy_at_aspect<T: Real, const N: usize>(
 /// need not keep it in memory for this rare path).
 #[cold]
 #[inline(never)]
+#[allow(clippy::too_many_arguments)]
 fn rates_accuracy_aside<T: Real, const N: usize>(
     condition: T,
     jacobian: [[T; N]; N],
     size: T,
     angles: [bool; N],
     position: Option<T>,
+    moving: T,
     highest: Order,
     required: &Accuracy<T>,
 ) -> Result<Accuracy<T>, Error<T>> {
     let aspect = aspect(&jacobian, size, angles);
     let estimate = match position {
         None => Accuracy::estimate(condition, aspect),
-        Some(position) => Accuracy::estimate_at(condition, aspect, position),
+        Some(position) => Accuracy::estimate_at(condition, aspect, position, moving),
     };
     estimate.within(&rates_only(required), highest)?;
     Ok(estimate)
@@ -571,6 +590,7 @@ mod tests {
                 10.0,
                 [true, true],
                 None,
+                1.0,
                 Order::Acceleration,
                 &required
             ),
@@ -584,6 +604,7 @@ mod tests {
                 64.0,
                 [true, true],
                 None,
+                1.0,
                 Order::Acceleration,
                 &required
             ),
@@ -602,6 +623,7 @@ mod tests {
                 10.0,
                 [true, true],
                 None,
+                1.0,
                 Order::Velocity,
                 &required
             ),
@@ -614,6 +636,7 @@ mod tests {
                 10.0,
                 [true, true],
                 None,
+                1.0,
                 Order::Acceleration,
                 &required
             ),
@@ -632,6 +655,7 @@ mod tests {
                 10.0,
                 [true, true],
                 None,
+                1.0,
                 Order::Velocity,
                 &required
             ),
@@ -653,6 +677,7 @@ mod tests {
                 64.0,
                 [true, true],
                 None,
+                1.0,
                 Order::Acceleration,
                 &strict
             ),
@@ -663,34 +688,39 @@ mod tests {
     #[test]
     fn rates_at_a_position_not_a_closed_form_carry_its_error() {
         let e = f64::EPSILON;
-        // At a Newton position on its floor (32·ε·κ): 32·ε·κ²·ρ and 64·ε·κ³·ρ more.
-        let (kappa, aspect) = (100.0, 4.0);
+        // At a Newton position on its floor (32·ε·κ): 32·ε·κ²·ρ and 64·ε·κ³·ρ more, each
+        // times the columns the position's error moves (here two angles').
+        let (kappa, aspect, moving) = (100.0, 4.0, 2.0);
         let closed = Accuracy::<f64>::estimate(kappa, aspect);
-        let floor = Accuracy::<f64>::estimate_at(kappa, aspect, 0.0);
+        let floor = Accuracy::<f64>::estimate_at(kappa, aspect, 0.0, moving);
         assert_eq!(floor.position, closed.position);
         assert_eq!(
             floor.velocity,
-            closed.velocity + kappa * aspect * (32.0 * e * kappa)
+            closed.velocity + moving * kappa * aspect * (32.0 * e * kappa)
         );
         assert_eq!(
             floor.acceleration,
-            closed.acceleration + 2.0 * kappa * kappa * aspect * (32.0 * e * kappa)
+            closed.acceleration + 2.0 * kappa * (moving * kappa * aspect * (32.0 * e * kappa))
         );
         assert!(
-            (floor.velocity - closed.velocity) / (32.0 * e * kappa * kappa * aspect) - 1.0 < 1e-12
+            (floor.velocity - closed.velocity) / (moving * 32.0 * e * kappa * kappa * aspect) - 1.0
+                < 1e-12
         );
         // A position off by more than the floor (a loose tolerance) is that far off, and so
         // are its rates, in proportion.
-        let loose = Accuracy::<f64>::estimate_at(kappa, aspect, 1e-6);
+        let loose = Accuracy::<f64>::estimate_at(kappa, aspect, 1e-6, moving);
         assert_eq!(loose.position, 1e-6);
-        assert_eq!(loose.velocity, closed.velocity + kappa * aspect * 1e-6);
+        assert_eq!(
+            loose.velocity,
+            closed.velocity + moving * kappa * aspect * 1e-6
+        );
         // An aspect below 1 counts as 1; an unknown error is unknown.
         assert_eq!(
-            Accuracy::<f64>::estimate_at(kappa, 0.5, 0.0),
-            Accuracy::<f64>::estimate_at(kappa, 1.0, 0.0)
+            Accuracy::<f64>::estimate_at(kappa, 0.5, 0.0, moving),
+            Accuracy::<f64>::estimate_at(kappa, 1.0, 0.0, moving)
         );
         assert!(
-            Accuracy::<f64>::estimate_at(kappa, aspect, f64::NAN)
+            Accuracy::<f64>::estimate_at(kappa, aspect, f64::NAN, moving)
                 .velocity
                 .is_nan()
         );
@@ -707,10 +737,11 @@ mod tests {
                     size,
                     [true, true],
                     Some(position),
+                    3.0,
                     Order::Acceleration,
                     &required
                 ),
-                Ok(Accuracy::estimate_at(10.0, aspect, position))
+                Ok(Accuracy::estimate_at(10.0, aspect, position, 3.0))
             );
         }
         // Accelerations refused where the closed form's position would pass (κ 2000: ε·κ³ is
@@ -723,6 +754,7 @@ mod tests {
                 10.0,
                 [true, true],
                 None,
+                1.0,
                 Order::Acceleration,
                 &required
             )
@@ -735,6 +767,7 @@ mod tests {
                 10.0,
                 [true, true],
                 Some(0.0),
+                1.0,
                 Order::Acceleration,
                 &required
             ),
@@ -759,13 +792,14 @@ mod tests {
                     size,
                     angles,
                     position,
+                    1.0,
                     Order::Acceleration,
                     &required,
                 )
             };
             let want = |aspect: f64| match position {
                 None => Accuracy::estimate(10.0, aspect),
-                Some(p) => Accuracy::estimate_at(10.0, aspect, p),
+                Some(p) => Accuracy::estimate_at(10.0, aspect, p, 1.0),
             };
             // Read as given (here 4, though the Jacobian's columns would say 10).
             assert_eq!(at(4.0, 10.0), Ok(want(4.0)));
@@ -778,6 +812,7 @@ mod tests {
                 10.0,
                 angles,
                 position,
+                1.0,
                 Order::Acceleration,
                 &required,
             );
@@ -794,6 +829,7 @@ mod tests {
                 10.0,
                 angles,
                 None,
+                1.0,
                 Order::Velocity,
                 &required
             ),
@@ -822,6 +858,7 @@ mod tests {
                 10.0,
                 [true, true],
                 None,
+                1.0,
                 highest,
                 &required,
             )
@@ -837,6 +874,7 @@ mod tests {
                 40.0,
                 [true, true],
                 None,
+                1.0,
                 Order::Velocity,
                 &required,
             ),
@@ -866,10 +904,11 @@ mod tests {
                     size,
                     [true, true],
                     Some(0.0),
+                    1.0,
                     Order::Acceleration,
                     &required
                 ),
-                Ok(Accuracy::estimate_at(10.0, size / 2.0, 0.0)),
+                Ok(Accuracy::estimate_at(10.0, size / 2.0, 0.0, 1.0)),
                 "{size}"
             );
         }

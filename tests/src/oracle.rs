@@ -466,6 +466,20 @@ impl Kind {
     pub fn unknowns(self) -> usize {
         2 * self.loops()
     }
+
+    /// How many of the unknowns' columns a position's error moves, as the generated code
+    /// counts them (`mechgen::Accuracy::estimate_at`'s `moving`): one per angle, two more per
+    /// slide along an unknown angle (the inverted slider-crank's), none for a slide along a
+    /// fixed line (the slider-crank's).
+    pub fn moving(self) -> f64 {
+        match self {
+            Kind::FourBar => 2.0,
+            Kind::SliderCrank => 1.0,
+            Kind::InvertedSliderCrank => 3.0,
+            Kind::WattSixBar | Kind::StephensonSixBar => 4.0,
+            Kind::JansenLeg => 6.0,
+        }
+    }
 }
 
 /// A mechanism's parameters by name, as it holds them (read from its `Debug` output, so the
@@ -2853,12 +2867,14 @@ pub mod judge {
                 0.0
             };
             // Rates at a Newton position carry its error δ, 32·ε·κ on its floor, through the
-            // Jacobian (README, "Accuracy"): κ·ρ·δ more for a velocity (32·ε·κ²·ρ on the
-            // floor), 2·κ²·ρ·δ for an acceleration (64·ε·κ³·ρ).
+            // Jacobian (README, "Accuracy"): m·κ·ρ·δ more for a velocity (32·m·ε·κ²·ρ on the
+            // floor), 2·m·κ²·ρ·δ for an acceleration (64·m·ε·κ³·ρ), with m the columns the
+            // position's error moves.
             let (newton_velocity, newton_acceleration) = if newton {
                 let rho = self.rho().max(1.0);
                 let delta = (POSITION_FACTOR * e * kappa).max(stopped_short);
-                (kappa * rho * delta, 2.0 * kappa * kappa * rho * delta)
+                let carried = self.model.kind.moving() * kappa * rho * delta;
+                (carried, 2.0 * kappa * carried)
             } else {
                 (0.0, 0.0)
             };

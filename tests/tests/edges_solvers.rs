@@ -522,11 +522,12 @@ fn the_caller_states_the_accuracy_it_needs() {
         Err(Error::Inaccurate { .. })
     ));
     // The acceleration has no digit left there (κ near 1e5, and Newton's position carries
-    // 64·ε·κ³·ρ into it: an estimate of about 80): loosened past that.
+    // 64·m·ε·κ³·ρ into it, m = 2 for the four-bar's two angles: an estimate of about 170):
+    // loosened past that.
     let loose = NewtonOptions::default().with_accuracy(Accuracy {
         position: 1e-3,
         velocity: 1e-2,
-        acceleration: 100.0,
+        acceleration: 1000.0,
     });
     let motion = parallelogram
         .motion_near(near, &guess, &loose, 10.0, 0.0)

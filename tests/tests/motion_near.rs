@@ -421,8 +421,9 @@ fn a_stated_tolerance_leaves_its_accuracy_on_the_fallback_of_coupled_loops() {
 }
 
 /// Rates solved at a position a stated tolerance left short of the floor carry its error `δ`
-/// through the Jacobian, and the accuracy stated covers it: `κ·ρ·δ` for the velocity and
-/// `2·κ²·ρ·δ` for the acceleration (`mechgen::Accuracy::estimate_at`). The edge draws that
+/// through the Jacobian, and the accuracy stated covers it: `m·κ·ρ·δ` for the velocity and
+/// `2·m·κ²·ρ·δ` for the acceleration, `m` the columns the error moves
+/// (`mechgen::Accuracy::estimate_at`). The edge draws that
 /// first stated tolerances found both halves of the earlier `κ·ρ·δ/2` and `κ²·ρ·δ/2`
 /// exceeded: an inverted slider-crank whose slide's velocity was off by the slide's turn
 /// (1.1 times), and a slider-crank whose coupler turns 1.5 times as fast as its crank, its
@@ -467,6 +468,48 @@ fn rates_at_a_stated_tolerances_position_are_within_what_they_state() {
     let to_array = |q: &mechanisms::SliderCrankUnknowns<f64>| q.to_array();
     let slider_case = ("slider-crank", l2 + l3 + c, (w, a), [l3, 1.0]);
     within_stated(slider_case, &near.value, &exact, to_array);
+
+    // Four-bars from guesses far off, stopped just short of their tolerances (an adversarial
+    // review): each angle's error turns its own column, and the two add up, so that with the
+    // carried error counted once (`κ·ρ·δ`) the velocity was 1.25 times and the acceleration
+    // 1.07 times off what was stated; counted per column moved (2 here), they are within.
+    let (w, a) = (1.0, 0.5);
+    for (lengths, t, tolerance, guess, accuracy) in [
+        (
+            [
+                1.0,
+                0.7670523876444308,
+                0.4551742507137488,
+                0.40472484019481664,
+            ],
+            5.301396748403195,
+            1.881757438561414e-9,
+            [0.9466529201647218, -2.226795856115067],
+            mechgen::Accuracy::required(),
+        ),
+        (
+            [
+                1.0,
+                0.7489819023915032,
+                0.5075369219179153,
+                0.45121350131438337,
+            ],
+            5.221658699302826,
+            8.613888324067805e-6,
+            [1.1265887611391618, -2.6013111149029857],
+            anything,
+        ),
+    ] {
+        let [l1, l2, l3, l4] = lengths;
+        let four_bar = mechanisms::FourBar::<f64>::new(l1, l2, l3, l4).unwrap();
+        let guess = mechanisms::FourBarUnknowns::from_array(guess);
+        let options = NewtonOptions::new(tolerance, 50).with_accuracy(accuracy);
+        let near = four_bar.motion_near(t, &guess, &options, w, a).unwrap();
+        let exact = four_bar.motion(t, Branch::Open, w, a).unwrap();
+        let to_array = |q: &mechanisms::FourBarUnknowns<f64>| q.to_array();
+        let case = ("four-bar", l1 + l2 + l3 + l4, (w, a), [l3, l4]);
+        within_stated(case, &near.value, &exact, to_array);
+    }
 }
 
 /// Asserts that `near`'s errors from `exact` are within what `near` states, far from the floor

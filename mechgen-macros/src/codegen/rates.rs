@@ -313,6 +313,7 @@ impl Generator<'_> {
             Some(aspect) => (quote!(rates_accuracy_at_aspect), quote!(#aspect,)),
             None => (quote!(rates_accuracy), TokenStream::new()),
         };
+        let moving = proc_macro2::Literal::f64_suffixed(self.moving_columns());
         quote! {
             let #accuracy = ::mechgen::__private::#function(
                 #condition,
@@ -321,10 +322,65 @@ impl Generator<'_> {
                 #size,
                 [#(#angles),*],
                 #position,
+                T::constant(#moving),
                 ::mechgen::Order::#highest,
                 #required,
             )?;
         }
+    }
+
+    /// How many of the unknowns' columns an error of the position moves, each by up to the
+    /// aspect times that error (`mechgen::Accuracy::estimate_at`'s `moving`): one per angle
+    /// unknown (its own second derivative is its column turned a right angle, of its length,
+    /// however many terms it turns); two per term whose length is an unknown and whose angle
+    /// is one's (the slide's length error turns with that angle's rate, and the angle's error
+    /// with the slide's rate); none for a length along a fixed direction. Where a term's angle
+    /// holds several unknowns, or one times other than ±1, or a length unknown has a factor
+    /// other than ±1, these second derivatives are not bounded by the columns (terms can
+    /// cancel in a column and not in its derivative): two per unknown and per term there, on
+    /// top, as a margin rather than a bound.
+    pub(super) fn moving_columns(&self) -> f64 {
+        let unknown = |symbol: &SymbolRef| matches!(symbol, SymbolRef::Unknown(_));
+        let angles = self
+            .model
+            .unknowns
+            .iter()
+            .filter(|u| u.kind == crate::model::Kind::Angle)
+            .count();
+        let mut moving = angles as f64;
+        let mut irregular = 0usize;
+        for term in self.model.loops.iter().flat_map(|sum| &sum.terms) {
+            let turning: Vec<f64> = term
+                .angle
+                .coefficients
+                .iter()
+                .filter(|(symbol, _)| unknown(symbol))
+                .map(|(_, c)| *c)
+                .collect();
+            let sliding: Vec<f64> = term
+                .magnitude
+                .coefficients
+                .iter()
+                .filter(|(symbol, _)| unknown(symbol))
+                .map(|(_, c)| *c)
+                .collect();
+            if turning.is_empty() {
+                continue;
+            }
+            if turning.len() > 1
+                || turning.iter().chain(&sliding).any(|c| c.abs() != 1.0)
+                || sliding.len() > 1
+            {
+                irregular += 1;
+            }
+            if !sliding.is_empty() {
+                moving += 2.0;
+            }
+        }
+        if irregular > 0 {
+            moving += (2 * irregular * self.model.unknowns.len()) as f64;
+        }
+        moving
     }
 
     /// Whether no loop's magnitudes can sum to more than [`Self::accuracy_size`]: every

@@ -222,12 +222,13 @@ impl Errors {
 }
 
 /// A mechanism as [`Errors`] needs it: its lengths (whose sum is its size), which unknowns
-/// are angles, whether its positions come from Newton, and the input's rate and
-/// acceleration.
+/// are angles, whether its positions come from Newton (and then how many of the unknowns'
+/// columns a position's error moves, `Accuracy::estimate_at`'s `moving`), and the input's
+/// rate and acceleration.
 struct Sizes {
     lengths: Vec<f64>,
     angles: &'static [bool],
-    newton: bool,
+    newton: Option<f64>,
     rate: f64,
     accel: f64,
 }
@@ -267,10 +268,9 @@ impl Sizes {
             .filter(|(_, angle)| **angle)
             .fold(f64::INFINITY, |m, (c, _)| m.min(*c));
         let aspect = (size / shortest).max(1.0);
-        let accuracy = if self.newton {
-            Accuracy::estimate_at(condition, aspect, 0.0)
-        } else {
-            Accuracy::estimate(condition, aspect)
+        let accuracy = match self.newton {
+            Some(moving) => Accuracy::estimate_at(condition, aspect, 0.0, moving),
+            None => Accuracy::estimate(condition, aspect),
         };
         let weighted = |values: Option<[f64; N]>| {
             values.map_or(0.0, |values| {
@@ -513,7 +513,7 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
     let sizes = Sizes {
         lengths: vec![l1, l2, l3, l4],
         angles: &[true, true],
-        newton: false,
+        newton: None,
         rate: args.rate,
         accel: args.accel,
     };
@@ -664,7 +664,7 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
     let sizes = Sizes {
         lengths: vec![l2, l3, c],
         angles: &[true, false],
-        newton: false,
+        newton: None,
         rate: args.rate,
         accel: args.accel,
     };
@@ -753,7 +753,7 @@ fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String
     let sizes = Sizes {
         lengths: vec![l1, l2, c],
         angles: &[true, false],
-        newton: false,
+        newton: None,
         rate: args.rate,
         accel: args.accel,
     };
@@ -944,7 +944,7 @@ fn watt(args: &Args, linkage: mechanisms::WattSixBar<f64>) -> Result<(), String>
     let sizes = Sizes {
         lengths: six_bar_lengths(d, 5),
         angles: &[true; 4],
-        newton: false,
+        newton: None,
         rate: args.rate,
         accel: args.accel,
     };
@@ -1033,7 +1033,8 @@ fn stephenson(args: &Args, linkage: StephensonSixBar<f64>) -> Result<(), String>
     let sizes = Sizes {
         lengths: six_bar_lengths(d, 5),
         angles: &[true; 4],
-        newton: true,
+        // Four angles, each turning its own columns.
+        newton: Some(4.0),
         rate: args.rate,
         accel: args.accel,
     };
