@@ -502,6 +502,56 @@ fn an_undefined_formula_is_an_error() {
     ));
 }
 
+/// A formula whose square of a length overflows as given (a length of 1e154 and more), though
+/// the formula itself (4e160 here) does not: the solvers' check of it and `branch_of` read it
+/// on the mechanism scaled by a power of two, as they solve it. An adversarial review found
+/// `assemble`, `motion`, `newton()` and the rates refusing such a mechanism as `NonFinite`,
+/// where `position` and `motion_near` solved it, and `branch_of` calling its open assembly
+/// crossed.
+#[test]
+fn a_formula_whose_square_overflows_is_read_at_the_solvers_scale() {
+    let unit = Undefined {
+        a: 5.0f64,
+        b: 3.0,
+        l2: 2.0,
+        l3: 9.0,
+    };
+    let theta2 = 0.7;
+    for scale in [1e100, 1e154, 1e160, 2f64.powi(600)] {
+        let linkage = Undefined {
+            a: 5.0 * scale,
+            b: 3.0 * scale,
+            l2: 2.0 * scale,
+            l3: 9.0 * scale,
+        };
+        for branch in [Branch::Open, Branch::Crossed] {
+            let q = linkage.assemble(theta2, branch).unwrap();
+            let expected = unit.assemble(theta2, branch).unwrap();
+            assert!((q.theta3 - expected.theta3).abs() < 1e-12, "{scale:e}");
+            assert!((q.d / scale - expected.d).abs() < 1e-12 * expected.d.abs());
+            assert_eq!(linkage.branch_of(theta2, &q), branch, "{scale:e}");
+            let motion = linkage.motion(theta2, branch, 10.0, 1.0).unwrap();
+            let unit_motion = unit.motion(theta2, branch, 10.0, 1.0).unwrap();
+            let velocity = linkage.velocity(theta2, &q, 10.0).unwrap();
+            assert!((motion.velocity.d / scale - unit_motion.velocity.d).abs() < 1e-9);
+            assert!((velocity.d / scale - unit_motion.velocity.d).abs() < 1e-9);
+        }
+        let guess = UndefinedUnknowns {
+            theta3: 0.3,
+            d: 10.0 * scale,
+        };
+        let options = NewtonOptions::default();
+        let near = linkage
+            .motion_near(theta2, &guess, &options, 10.0, 1.0)
+            .unwrap();
+        let prepared = linkage.newton().unwrap();
+        assert_eq!(
+            prepared.motion_near(theta2, &guess, &options, 10.0, 1.0),
+            Ok(near)
+        );
+    }
+}
+
 mechanism! {
     /// Example 1's four-bar with its coupler's length a formula, `sqrt(l3 * l3)`: a turning
     /// vector whose magnitude is a formula, in a scene (whose rate limits weigh it as a

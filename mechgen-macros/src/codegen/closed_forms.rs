@@ -164,9 +164,44 @@ impl Generator<'_> {
              [`Self::assemble`] documents. A raw evaluation: it does not check its arguments."
         ));
         let keeps = (self.model.loops.len() > 1).then(|| self.keeps_branches(&branching));
+        // The signs are read at any scale, but a formula of the dimensions is computed as
+        // they are, and its square of a length of 1e160 overflows: where the mechanism is
+        // not taken as given, its scaled copy's branches, which are the same.
+        if self.formula_checks().0.is_empty() {
+            return quote! {
+                #docs
+                pub fn branch_of(&self, #input_params, #position: &#unknowns) -> #output {
+                    #value
+                }
+                #keeps
+            };
+        }
+        let Normalised {
+            prologue,
+            receiver,
+            input,
+            ..
+        } = self.normalised();
+        let as_given = self.as_given();
+        let inputs = self.inputs();
+        let (ty, lengths, scale) = (&self.unknowns_type, self.length_unknowns(), local("scale"));
         quote! {
             #docs
             pub fn branch_of(&self, #input_params, #position: &#unknowns) -> #output {
+                if #as_given {
+                    self.mechgen_branch_of(#(#inputs),*, #position)
+                } else {
+                    #prologue
+                    let scaled = #ty::from_array(::mechgen::__private::scaled(
+                        #position.to_array(),
+                        [#(#lengths),*],
+                        #scale,
+                    ));
+                    #receiver.mechgen_branch_of(#input, &scaled)
+                }
+            }
+            /// [`Self::branch_of`] on the mechanism it is called on.
+            fn mechgen_branch_of(&self, #input_params, #position: &#unknowns) -> #output {
                 #value
             }
             #keeps

@@ -8,6 +8,7 @@ use syn::ext::IdentExt;
 use super::docs::doc;
 use super::{Generator, arg, matrix};
 use crate::formula::{Formula, Function};
+use crate::model::Kind;
 use crate::symbolic::ExprId;
 use proc_macro2::Literal;
 
@@ -88,7 +89,11 @@ impl Generator<'_> {
     /// Each formula of the parameters the loops and points hold (see [`crate::formula`]),
     /// once, as a value computed from `self`'s fields and a label naming it as written:
     /// checked finite with the parameters, so that a formula undefined for the dimensions
-    /// given (the square root of a negative difference) is an error, not a NaN.
+    /// given (the square root of a negative difference) is an error, not a NaN. Computed
+    /// with the lengths scaled by the power of two the solvers scale a mechanism by
+    /// (`mechgen::__private::length_scale`): a formula is of degree 1 in length (or 0), so
+    /// that it is the formula's value times that power, and finite wherever the solvers'
+    /// scaled copy of it is, though its square of a length of 1e160 overflows as given.
     pub(super) fn formula_checks(&self) -> (Vec<TokenStream>, Vec<String>) {
         let mut seen: Vec<&Formula> = Vec::new();
         let terms = self
@@ -104,12 +109,22 @@ impl Generator<'_> {
             }
         }
         let name = |i: usize| self.model.params[i].name.unraw().to_string();
+        let lengths = self.length_params();
         seen.into_iter()
             .map(|formula| {
-                (
-                    formula_tokens(formula, &|i| {
-                        let field = &self.model.params[i].name;
+                let value = formula_tokens(formula, &|i| {
+                    let param = &self.model.params[i];
+                    let field = &param.name;
+                    if param.kind == Kind::Length {
+                        quote!((self.#field * scale))
+                    } else {
                         quote!(self.#field)
+                    }
+                });
+                (
+                    quote!({
+                        let (scale, _) = ::mechgen::__private::length_scale(&[#(self.#lengths),*]);
+                        #value
                     }),
                     format!("parameter formula `{}`", formula.display(&name)),
                 )

@@ -299,7 +299,7 @@ impl<'a> Generator<'a> {
     }
 
     /// The parameters that are lengths, which a mechanism scaled to its size multiplies.
-    fn length_params(&self) -> Vec<&Ident> {
+    pub(super) fn length_params(&self) -> Vec<&Ident> {
         self.model
             .params
             .iter()
