@@ -118,13 +118,7 @@ impl<T: Real> FourBar<T> {
         branch: Branch,
         tolerances: &FourBarTolerances<T>,
     ) -> Result<FourBarDeviations<T>, Error<T>> {
-        let t = tolerances.as_array();
-        if t.iter().any(|t| !t.is_finite()) {
-            return Err(Error::NonFinite {
-                quantity: "tolerance",
-            });
-        }
-        let t = t.map(T::abs);
+        let t = finite_tolerances(tolerances)?;
         let q = self.assemble(theta2, branch)?;
         let s = self.sensitivities(theta2, &q)?;
         let p = self.point_sensitivities(theta2, &q)?;
@@ -135,6 +129,19 @@ impl<T: Real> FourBar<T> {
             coupler_point: point_deviation(&point, &t),
         })
     }
+}
+
+/// The tolerances by their magnitudes, or [`mechgen::Error::NonFinite`] for a NaN or an
+/// infinity (which no linkage can be built from: the sampled models would all fail and say
+/// nothing, an adversarial review found, where the first-order one refused).
+fn finite_tolerances<T: Real>(tolerances: &FourBarTolerances<T>) -> Result<[T; 6], Error<T>> {
+    let t = tolerances.as_array();
+    if t.iter().any(|t| !t.is_finite()) {
+        return Err(Error::NonFinite {
+            quantity: "tolerance",
+        });
+    }
+    Ok(t.map(T::abs))
 }
 
 /// The nonlinear model's deviations from a tolerance box, against which the first-order ones
@@ -167,7 +174,7 @@ impl<T: Real> FourBar<T> {
         branch: Branch,
         tolerances: &FourBarTolerances<T>,
     ) -> Result<Sampled<T>, Error<T>> {
-        let t = tolerances.as_array();
+        let t = finite_tolerances(tolerances)?;
         let (indices, count) = varied(&t);
         let mut sampled = Accumulated::new(self, theta2, branch)?;
         for corner in 0..(1u32 << count) {
@@ -198,7 +205,7 @@ impl<T: Real> FourBar<T> {
         samples: usize,
         seed: u64,
     ) -> Result<Sampled<T>, Error<T>> {
-        let t = tolerances.as_array();
+        let t = finite_tolerances(tolerances)?;
         let mut random = SplitMix64(seed);
         let mut sampled = Accumulated::new(self, theta2, branch)?;
         for _ in 0..samples {
@@ -735,14 +742,23 @@ mod tests {
             linkage.tolerance(theta2, branch, &minus),
             linkage.tolerance(theta2, branch, &plus)
         );
+        let refused = Error::NonFinite {
+            quantity: "tolerance",
+        };
         for bad in [f64::NAN, f64::INFINITY] {
             let tolerances = FourBarTolerances { angle: bad, ..plus };
+            assert_eq!(linkage.tolerance(theta2, branch, &tolerances), Err(refused));
+            // The nonlinear models too (which built no linkage and said zero before).
+            assert_eq!(linkage.corners(theta2, branch, &tolerances), Err(refused));
             assert_eq!(
-                linkage.tolerance(theta2, branch, &tolerances),
-                Err(Error::NonFinite {
-                    quantity: "tolerance"
-                })
+                linkage.monte_carlo(theta2, branch, &tolerances, 10, 1),
+                Err(refused)
             );
         }
+        // Their magnitudes: the corners are the same either way.
+        assert_eq!(
+            linkage.corners(theta2, branch, &minus),
+            linkage.corners(theta2, branch, &plus)
+        );
     }
 }

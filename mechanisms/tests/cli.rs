@@ -1397,6 +1397,23 @@ fn robot_reports_both_working_modes_and_their_singularities() {
     );
 }
 
+/// Rates whose squares overflow: the acceleration is refused, and the position and velocity
+/// printed as far as their estimate goes, the velocity's rounding as `0 (±…)` (an
+/// adversarial review found `4.3511e186` printed where the velocity is exactly zero).
+#[test]
+fn robot_prints_only_the_digits_a_failed_motion_leaves() {
+    let report = stdout_of(&["robot", "--rates", "1e200,1e200"]);
+    for value in [
+        "end effector P = (50.0000, 259.8076) mm",
+        "velocity = (-1.7321e202, 0 (±",
+        "velocity = (0 (±",
+        "acceleration: acceleration is not finite",
+    ] {
+        assert!(report.contains(value), "{value} missing from:\n{report}");
+    }
+    assert!(!report.contains("e186"), "{report}");
+}
+
 #[test]
 fn robot_inverse_kinematics_finds_every_elbow_choice() {
     let report = stdout_of(&["robot", "--point", "50,250"]);

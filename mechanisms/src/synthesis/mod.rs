@@ -361,6 +361,14 @@ pub fn path_generation(
     }
     let n = targets.len();
     let (centre, spread) = centre_and_spread(targets);
+    if all_coincide(targets) {
+        // Found by an adversarial review: with crank angles the fit made a linkage far below
+        // the rounding of its own placement, whose errors were true and meant nothing.
+        return Err(SynthesisError::BadTargets(
+            "the targets all coincide: a coupler curve through one point is any linkage's; \
+             give distinct targets",
+        ));
+    }
     let near = COINCIDENT * spread;
     match timing {
         Some(timing) => {
@@ -465,6 +473,19 @@ fn coinciding_points(targets: &[Vec2<f64>], near: f64) -> Option<(usize, usize)>
         }
     }
     None
+}
+
+/// Whether the targets are all one point: each the first, or all within the rounding of
+/// their centroid (which, summed in shares, need not be the point itself).
+pub fn all_coincide(targets: &[Vec2<f64>]) -> bool {
+    let Some(first) = targets.first() else {
+        return false;
+    };
+    if targets.iter().all(|p| p == first) {
+        return true;
+    }
+    let (centre, spread) = centre_and_spread(targets);
+    spread <= 8.0 * f64::EPSILON * (centre.x.abs() + centre.y.abs())
 }
 
 /// The targets' centroid, and their largest distance from it (0 where they all coincide):

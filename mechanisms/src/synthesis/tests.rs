@@ -1059,6 +1059,14 @@ fn repeated_and_contradictory_precision_points_are_refused() {
     copies.push(Vec2 { x: 10.0, y: 5.0 });
     let untimed = refused(path_generation(&copies, None, &quick));
     assert!(untimed.starts_with("a target is given twice"), "{untimed}");
+    // Every target the same point, at distinct crank angles: refused, not fitted (an
+    // adversarial review found a linkage of 1.9e-16 placed at (1, 2) returned).
+    let one_point = std::vec![Vec2 { x: 1.0, y: 2.0 }; 6];
+    let coincident = refused(path_generation(&one_point, Some(&timing), &quick));
+    assert!(
+        coincident.starts_with("the targets all coincide"),
+        "{coincident}"
+    );
 }
 
 /// Path generation's errors are each target's distance from the coupler point (not its x and

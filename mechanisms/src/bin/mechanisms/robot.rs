@@ -124,7 +124,7 @@ fn forward(
             // The position (and the velocity) may stand where the acceleration cannot (rates
             // whose squares leave the float's range): each order as far as it goes.
             Err(error @ (Error::Inaccurate { .. } | Error::NonFinite { .. })) => {
-                partial(robot, [t1, t4], [w1, w4], branch, error)?
+                partial(robot, lengths, [t1, t4], [w1, w4], branch, error)?
             }
             Err(error) => say!("  {}", explained(error)),
         }
@@ -142,10 +142,11 @@ fn point_errors(
     [l1, l2, l3, l4, l5]: [f64; 5],
     [w1, w4]: [f64; 2],
     [a1, a4]: [f64; 2],
-    motion: &mechgen::Motion<FiveBarUnknowns<f64>, f64>,
+    accuracy: mechgen::Accuracy<f64>,
+    v: &FiveBarUnknowns<f64>,
+    a: &FiveBarUnknowns<f64>,
 ) -> [f64; 3] {
     let size = l1 + l2 + l3 + l4 + l5;
-    let (v, a) = (&motion.velocity, &motion.acceleration);
     let links = [l2, l3];
     let speeds = [v.theta2, v.theta3];
     let spins = [a.theta2, a.theta3];
@@ -158,7 +159,6 @@ fn point_errors(
             + weighted(spins)
             + weighted(speeds.map(|w| w * w)),
     ];
-    let accuracy = motion.accuracy;
     let relative = [accuracy.position, accuracy.velocity, accuracy.acceleration];
     core::array::from_fn(|k| 4.0 * relative[k] * scales[k])
 }
@@ -174,7 +174,7 @@ fn posture(
 ) -> Result<(), String> {
     let (q, v, a) = (&motion.position, &motion.velocity, &motion.acceleration);
     let [position_error, velocity_error, acceleration_error] =
-        point_errors(lengths, [w1, w4], [a1, a4], motion);
+        point_errors(lengths, [w1, w4], [a1, a4], motion.accuracy, v, a);
     // Each distal angle off by the position's error over its link (the size's share).
     let size: f64 = lengths.iter().sum();
     let angle_error = |link: f64| 2.0 * motion.accuracy.position * size / link;
@@ -215,9 +215,12 @@ fn posture(
 }
 
 /// A posture whose motion as a whole failed for a rate or acceleration: its position, its
-/// velocity if that can be had, and why the rest cannot.
+/// velocity if that can be had, and why the rest cannot; each to the digits its estimate
+/// leaves (`mechgen::Accuracy::estimate` at the closed form's position, as
+/// [`point_errors`] reads a motion's), not rounding noise printed as figures.
 fn partial(
     robot: &FiveBar<f64>,
+    lengths: [f64; 5],
     [t1, t4]: [f64; 2],
     [w1, w4]: [f64; 2],
     branch: Branch,
@@ -234,27 +237,40 @@ fn partial(
         .points(t1, t4, &q)
         .map_err(|e| output::error(&e))?
         .end_effector;
+    // The aspect as the runtime reads it: the size over the shorter distal link (the angles'
+    // columns).
+    let size: f64 = lengths.iter().sum();
+    let aspect = size / lengths[1].min(lengths[2]);
+    let estimate = mechgen::Accuracy::estimate(robot.condition(t1, t4, &q), aspect);
+    let still = FiveBarUnknowns {
+        theta2: 0.0,
+        theta3: 0.0,
+    };
+    let [position_error, ..] = point_errors(lengths, [0.0; 2], [0.0; 2], estimate, &still, &still);
+    let angle_error = |link: f64| 2.0 * estimate.position * size / link;
     say!(
         "  distal links at θ2 = {}°, θ3 = {}°",
-        fixed(q.theta2.to_degrees(), 4),
-        fixed(q.theta3.to_degrees(), 4)
+        signed_degrees(q.theta2, angle_error(lengths[1])),
+        signed_degrees(q.theta3, angle_error(lengths[2]))
     );
     say!(
         "  end effector P = ({}, {}) mm",
-        output::figure(p.x),
-        output::figure(p.y)
+        output::within(p.x, position_error),
+        output::within(p.y, position_error)
     );
     let velocity = robot.velocity(t1, t4, &q, w1, w4).and_then(|v| {
         robot
             .point_velocities(t1, t4, &q, w1, w4, &v)
-            .map(|points| points.end_effector)
+            .map(|points| (v, points.end_effector))
     });
     match velocity {
-        Ok(p_dot) => {
+        Ok((v, p_dot)) => {
+            let [_, velocity_error, _] =
+                point_errors(lengths, [w1, w4], [0.0; 2], estimate, &v, &still);
             say!(
                 "  velocity = ({}, {}) mm/s",
-                output::figure(p_dot.x),
-                output::figure(p_dot.y)
+                output::within(p_dot.x, velocity_error),
+                output::within(p_dot.y, velocity_error)
             );
             say!("  acceleration: {}", explained(failure));
         }

@@ -347,7 +347,7 @@ impl Frame {
     /// through one point is any linkage's), or lie too far apart for a float.
     fn of(targets: &[Vec2<f64>]) -> Result<Self, String> {
         let (centre, spread) = mechanisms::synthesis::centre_and_spread(targets);
-        if spread == 0.0 {
+        if mechanisms::synthesis::all_coincide(targets) {
             return Err(format!(
                 "--x and --y give {} targets all at ({}, {}) mm: a coupler curve through one \
                  point is any linkage's; give distinct targets",
