@@ -103,6 +103,9 @@ pub struct Synthesis {
 pub enum SynthesisError {
     /// Too few targets for the unknowns, or a target that is not finite.
     BadTargets(&'static str),
+    /// Options no linkage could meet for themselves, whatever the targets: a largest link
+    /// ratio not above 1 (or NaN), transmission bounds not within [0, π] in order.
+    BadOptions(&'static str),
     /// No start converged to a linkage that meets the constraints.
     NothingFeasible {
         /// How many starts converged (each to a linkage that breaks a constraint).
@@ -113,7 +116,9 @@ pub enum SynthesisError {
 impl core::fmt::Display for SynthesisError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
-            SynthesisError::BadTargets(why) => write!(f, "{why}"),
+            SynthesisError::BadTargets(why) | SynthesisError::BadOptions(why) => {
+                write!(f, "{why}")
+            }
             SynthesisError::NothingFeasible { converged } => write!(
                 f,
                 "no linkage meets the targets and the constraints ({converged} starts converged \
@@ -256,6 +261,7 @@ pub fn function_generation(
     psi: &[f64],
     options: &Options,
 ) -> Result<Synthesis, SynthesisError> {
+    check_options(options)?;
     if phi.len() != psi.len() || phi.len() < 3 {
         return Err(SynthesisError::BadTargets(
             "function generation needs three or more pairs of input and output angles",
@@ -341,6 +347,7 @@ pub fn path_generation(
     timing: Option<&[f64]>,
     options: &Options,
 ) -> Result<Synthesis, SynthesisError> {
+    check_options(options)?;
     let needed = if timing.is_some() { 5 } else { 9 };
     if targets.len() < needed {
         return Err(SynthesisError::BadTargets(if timing.is_some() {
@@ -473,6 +480,26 @@ fn coinciding_points(targets: &[Vec2<f64>], near: f64) -> Option<(usize, usize)>
         }
     }
     None
+}
+
+/// `Ok` for options a linkage could meet, else why not (an adversarial review found such
+/// options reported as `NothingFeasible`, blaming the targets).
+fn check_options(options: &Options) -> Result<(), SynthesisError> {
+    // Above 1, and a number; infinite is no limit.
+    if options.max_ratio.is_nan() || options.max_ratio <= 1.0 {
+        return Err(SynthesisError::BadOptions(
+            "the largest ratio of the longest link to the shortest must be above 1",
+        ));
+    }
+    if let Some((low, high)) = options.transmission {
+        // In order within [0, π] (false for NaN).
+        if !(0.0 <= low && low < high && high <= core::f64::consts::PI) {
+            return Err(SynthesisError::BadOptions(
+                "the transmission angle's bounds must be in order within [0, π] radians",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Whether the targets are all one point: each the first, or all within the rounding of

@@ -1131,3 +1131,40 @@ fn freudensteins_closed_form_holds_at_every_scale() {
         }
     }
 }
+
+/// Options no linkage could meet are refused as such, not as `NothingFeasible` blaming the
+/// targets (an adversarial review found both).
+#[test]
+fn options_no_linkage_could_meet_are_refused_as_options() {
+    let phi = [0.5, 1.0, 1.5, 2.0];
+    let psi = outputs(&phi);
+    let quick = Options {
+        restarts: 2,
+        ..Options::default()
+    };
+    for max_ratio in [f64::NAN, 0.0, 1.0, -5.0] {
+        let options = Options { max_ratio, ..quick };
+        assert!(matches!(
+            function_generation(180.0, &phi, &psi, &options),
+            Err(SynthesisError::BadOptions(_))
+        ));
+    }
+    for bounds in [(f64::NAN, f64::NAN), (2.0, 1.0), (-0.1, 1.0), (1.0, 4.0)] {
+        let options = Options {
+            transmission: Some(bounds),
+            ..quick
+        };
+        let timing: Vec<f64> = (0..6).map(f64::from).collect();
+        let targets: Vec<Vec2<f64>> = timing.iter().map(|&t| target(t)).collect();
+        assert!(matches!(
+            path_generation(&targets, Some(&timing), &options),
+            Err(SynthesisError::BadOptions(_))
+        ));
+    }
+    // No limit on the ratio is an option too.
+    let unlimited = Options {
+        max_ratio: f64::INFINITY,
+        ..quick
+    };
+    assert!(function_generation(180.0, &phi, &psi, &unlimited).is_ok());
+}
