@@ -129,7 +129,8 @@ impl<T: Real> FiveBar<T> {
     /// leg's elbow on the side `elbows` chooses: `elbows[k]` positive puts the leg's elbow
     /// to the left of the line from its motor to `p` (counter-clockwise from it), negative
     /// to the right: for a point above the base, `[1, -1]` bends both elbows outward, away
-    /// from each other. `None` where `p` is outside the workspace ([`FiveBar::reaches`]).
+    /// from each other. `None` where `p` is outside the workspace ([`FiveBar::reaches`]), or
+    /// an elbow's side is NaN (which chooses neither).
     ///
     /// ```
     /// use mechanisms::FiveBar;
@@ -142,7 +143,8 @@ impl<T: Real> FiveBar<T> {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn inverse(&self, p: Vec2<T>, elbows: [T; 2]) -> Option<[T; 2]> {
-        if !self.reaches(p) {
+        // A NaN side is no choice (it once counted as the right: an adversarial review).
+        if !self.reaches(p) || elbows.iter().any(|side| side.is_nan()) {
             return None;
         }
         // Each leg is a triangle motor–elbow–P: the crank leaves the line motor → P at the
@@ -246,5 +248,9 @@ mod tests {
         }
         assert_eq!(robot.inverse(at(0.0, 50.0), [1.0, 1.0]), None);
         assert_eq!(robot.inverse(at(-60.0, -80.0), [1.0, 1.0]), None);
+        // A NaN side chooses no elbow.
+        assert_eq!(robot.inverse(at(80.0, 60.0), [f64::NAN, 1.0]), None);
+        assert_eq!(robot.inverse(at(80.0, 60.0), [1.0, f64::NAN]), None);
+        assert!(robot.inverse(at(80.0, 60.0), [1.0, 1.0]).is_some());
     }
 }
