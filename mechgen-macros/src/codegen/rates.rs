@@ -340,7 +340,15 @@ impl Generator<'_> {
     /// cancel in a column and not in its derivative): two per unknown and per term there, on
     /// top, as a margin rather than a bound.
     pub(super) fn moving_columns(&self) -> f64 {
-        let unknown = |symbol: &SymbolRef| matches!(symbol, SymbolRef::Unknown(_));
+        // The coefficients of a term's angle or magnitude on the unknowns.
+        let on_unknowns = |linear: &crate::model::Linear| -> Vec<f64> {
+            linear
+                .coefficients
+                .iter()
+                .filter(|(symbol, _)| matches!(symbol, SymbolRef::Unknown(_)))
+                .map(|(_, c)| *c)
+                .collect()
+        };
         let angles = self
             .model
             .unknowns
@@ -350,20 +358,7 @@ impl Generator<'_> {
         let mut moving = angles as f64;
         let mut irregular = 0usize;
         for term in self.model.loops.iter().flat_map(|sum| &sum.terms) {
-            let turning: Vec<f64> = term
-                .angle
-                .coefficients
-                .iter()
-                .filter(|(symbol, _)| unknown(symbol))
-                .map(|(_, c)| *c)
-                .collect();
-            let sliding: Vec<f64> = term
-                .magnitude
-                .coefficients
-                .iter()
-                .filter(|(symbol, _)| unknown(symbol))
-                .map(|(_, c)| *c)
-                .collect();
+            let (turning, sliding) = (on_unknowns(&term.angle), on_unknowns(&term.magnitude));
             if turning.is_empty() {
                 continue;
             }
