@@ -1067,6 +1067,16 @@ fn repeated_and_contradictory_precision_points_are_refused() {
         coincident.starts_with("the targets all coincide"),
         "{coincident}"
     );
+    // Within rounding of one another (an ulp apart), and a thousand copies of one point,
+    // whose centroid, summed in shares, is several ulps off it.
+    let mut nearly = one_point.clone();
+    nearly[3].y = 2.0 + 2.0 * f64::EPSILON;
+    let coincident = refused(path_generation(&nearly, Some(&timing), &quick));
+    assert!(coincident.starts_with("the targets all coincide"));
+    let many = std::vec![Vec2 { x: 0.1, y: 0.7 }; 1000];
+    let many_timing: Vec<f64> = (0..1000).map(|k| f64::from(k) * 0.006).collect();
+    let coincident = refused(path_generation(&many, Some(&many_timing), &quick));
+    assert!(coincident.starts_with("the targets all coincide"));
 }
 
 /// Path generation's errors are each target's distance from the coupler point (not its x and
@@ -1149,7 +1159,13 @@ fn options_no_linkage_could_meet_are_refused_as_options() {
             Err(SynthesisError::BadOptions(_))
         ));
     }
-    for bounds in [(f64::NAN, f64::NAN), (2.0, 1.0), (-0.1, 1.0), (1.0, 4.0)] {
+    for bounds in [
+        (f64::NAN, f64::NAN),
+        (2.0, 1.0),
+        (1.0, 1.0),
+        (-0.1, 1.0),
+        (1.0, 4.0),
+    ] {
         let options = Options {
             transmission: Some(bounds),
             ..quick
