@@ -2184,9 +2184,11 @@ pub fn valid_dimensions(kind: Kind, dims: &[f64], eta: f64) -> Option<bool> {
 ///   on the requested branch (or on a branch the oracle cannot tell from it within the bound);
 ///   its position is within `32·ε·κ` of the truth (each unknown weighted by its Jacobian
 ///   column, over the size; for Newton, over the larger of the size and each loop's
-///   magnitudes at the truth, which its stop is derived from), its rates within `16·ε·κ²·ρ` and its accelerations within
-///   `16·ε·κ³·ρ²` (over the rates' size); a tracked point within the first-order propagation
-///   of those bounds through its vectors;
+///   magnitudes at the truth, which its stop is derived from), its rates within `16·ε·κ²·ρ`
+///   and its accelerations within `16·ε·κ³·ρ²` (over the rates' size), Newton's with what its
+///   position's error carries on top (`32·m·ε·κ²·ρ` and `64·m·ε·κ³·ρ`, m the columns that
+///   error moves); a tracked point within the first-order propagation of those bounds through
+///   its vectors;
 /// - an `Ok` where the oracle finds no assembly only within rounding `16·ε` of a limit (by the
 ///   reach's slack) or, from Newton, within its own residual of one (its backward error);
 /// - every `Err` is the right one: `CannotAssemble` only where the oracle says the loops do not
@@ -3162,20 +3164,37 @@ pub mod judge {
             let kappa = self.kappa(reported_kappa);
             let rho = self.rho();
             let size = self.size();
+            // Rates at a Newton position carry its error, 32·ε·κ on its floor, through the
+            // Jacobian (README, "Accuracy"; `mechgen::Accuracy::estimate_at`): m·κ·ρ times
+            // it for a velocity, twice κ times that for an acceleration, with m the columns
+            // the position's error moves. A closed form's position carries nothing.
+            let newton = api == Api::MotionNear;
+            let carried = if newton {
+                self.model.kind.moving() * kappa * rho.max(1.0) * POSITION_FACTOR * self.eps * kappa
+            } else {
+                0.0
+            };
             for (level, (got, want)) in [(1, (&rates[0], tv)), (2, (&rates[1], ta))] {
                 if got.iter().any(|x| !x.is_finite()) {
                     v.fail(api, "not finite inside Ok", format!("{got:?}"));
                     return;
                 }
                 let rate_scale = rate_size(truth, want, size, level as usize);
+                let carried = if level == 1 {
+                    carried
+                } else {
+                    2.0 * kappa * carried
+                };
                 let bound = FACTOR * self.eps * kappa.powi(level + 1) * rho.powi(level)
+                    + carried
                     + self.range_floor(level);
                 let error = weighted_error(truth, &vec![false; self.n()], got, want, &rate_scale);
                 if error > bound {
-                    let what = if level == 1 {
-                        "velocity error beyond 16·ε·κ²·ρ"
-                    } else {
-                        "acceleration error beyond 16·ε·κ³·ρ²"
+                    let what = match (level, newton) {
+                        (1, false) => "velocity error beyond 16·ε·κ²·ρ",
+                        (1, true) => "velocity error beyond 16·ε·κ²·ρ + 32·m·ε·κ²·ρ",
+                        (_, false) => "acceleration error beyond 16·ε·κ³·ρ²",
+                        (_, true) => "acceleration error beyond 16·ε·κ³·ρ² + 64·m·ε·κ³·ρ",
                     };
                     v.fail(
                         api,

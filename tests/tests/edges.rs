@@ -259,6 +259,106 @@ fn a_link_below_rounding_at_a_singular_position_is_singular_not_unassemblable() 
     drawn_cases_keep_the_contract("everything", 28, &[286727], true);
 }
 
+/// The two cases of the million at `84c749d` (seed 30, `everything`) that broke the contract,
+/// both there at every commit before:
+/// - 105700: an f32 Stephenson six-bar of size 1e-21 whose `C D`, 2e-5 of the size, is a few
+///   roundings of it, from a guess at which the loops close to their floor at κ 7. The reduced
+///   iteration's closed form for that link's dyad gives its angle to rounding only, and the
+///   reduced Jacobian, which carries that dyad's sensitivity, came out singular: `position`
+///   said `Singular`. A singular reduced Jacobian now leaves the solve to Newton on every
+///   unknown, as a stall does, and that answers.
+/// - 780517: an f64 slider-crank whose rod is 4,300 times shorter than its crank, 1e-6 rad
+///   inside a limit: `motion_near`'s velocity, off by 2.1e-9 where it states 7.2e-9, was 1.2
+///   times the judge's bound for a closed form's rates (16·ε·κ²·ρ), which left out what the
+///   Newton position's error carries into them (32·m·ε·κ²·ρ on its floor, README
+///   "Accuracy"); the judge now counts it, as `Accuracy::estimate_at` does.
+#[test]
+fn the_seed_30_runs_reproducers_keep_the_contract() {
+    drawn_cases_keep_the_contract("everything", 30, &[105700, 780517], true);
+}
+
+/// The Stephenson six-bar of case 105700 (seed 30) in f32, at its size of 1e-21 and scaled by
+/// 2^72 to about 1: `position` from the guess answers, with the f64 solution to the
+/// contract's accuracy, and `motion_near` says its rates are inaccurate, where the reduced
+/// iteration alone said `Singular`.
+#[test]
+fn a_link_within_rounding_of_the_size_leaves_the_reduced_iteration_to_newton_on_every_unknown() {
+    use mechanisms::{StephensonSixBar, StephensonSixBarUnknowns};
+    let build = |k: f32| {
+        StephensonSixBar::<f32>::new(
+            1.3439952e-22 * k,
+            1.5512778e-22 * k,
+            1.4059252e-22 * k,
+            [2.8610718e-22 * k, 2.7253128e-27 * k],
+            -0.5992459,
+            4.2351647e-22 * k,
+            7.801294e-24 * k,
+            (-2.9408444e-22 * k, -2.104783e-23 * k),
+        )
+        .expect("valid dimensions")
+    };
+    let guess = StephensonSixBarUnknowns {
+        theta3: 0.986_947_4,
+        theta4: -3.079_489_7,
+        theta5: -2.430_595,
+        theta6: -0.736_139_8,
+    };
+    // The f64 solution of the same (f32) dimensions.
+    let truth = [
+        0.986_946_432_680_462_1,
+        -3.079_487_703_093_704,
+        -2.430_596_318_453_203_3,
+        -0.736_139_526_976_125_4,
+    ];
+    // Each angle's column over the size (the sum of the declared lengths, 1.44e-21): l3;
+    // l4 in both loops; bc and cd; l6.
+    let size = 1.3439952
+        + 1.5512778
+        + 1.4059252
+        + 2.8610718
+        + 2.7253128e-5
+        + 4.2351647
+        + 0.07801294
+        + 2.9408444f64.hypot(0.2104783);
+    let columns = [
+        1.4059252 / size,
+        4.2351647 * 2f64.sqrt() / size,
+        2.8610718 / size,
+        0.07801294 / size,
+    ];
+    for k in [1.0, 2f32.powi(72)] {
+        let linkage = build(k);
+        let options = NewtonOptions::default();
+        let solved = linkage
+            .position(2.859_905_2, &guess, &options)
+            .expect("an assembly at κ 7");
+        assert!((solved.condition - 7.25).abs() < 0.01, "{solved:?}");
+        // Its rates, in f32 with a rocker 1/180 of the size, are beyond what is required by
+        // default: `Inaccurate`, from the same position.
+        let motion = linkage.motion_near(2.859_905_2, &guess, &options, 1.0, 0.0);
+        assert!(
+            matches!(
+                motion,
+                Err(Error::Inaccurate {
+                    order: mechgen::Order::Velocity,
+                    ..
+                })
+            ),
+            "{motion:?}"
+        );
+        {
+            let got = solved.value;
+            let got = [got.theta3, got.theta4, got.theta5, got.theta6];
+            for ((got, want), column) in got.iter().zip(truth).zip(columns) {
+                // Within the contract's 32·ε·κ of the size, each angle by its column.
+                let bound = 32.0 * f64::from(f32::EPSILON) * 7.25 / column;
+                let error = (f64::from(*got) - want).abs();
+                assert!(error < bound, "{got} against {want}: {error:e} > {bound:e}");
+            }
+        }
+    }
+}
+
 /// Judges cases `indices` of the large run with `seed` (`everything`), requiring no finding.
 /// Those runs stated no Newton tolerance, which the draw has done since (drawn last, so the
 /// case is otherwise as it was).

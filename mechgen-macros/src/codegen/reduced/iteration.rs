@@ -313,10 +313,16 @@ impl Generator<'_> {
                 }
                 // The reduced evaluation rounds where its closed forms start, which can stall
                 // it short of a root that Newton on every unknown reaches from the same guess:
-                // that answers, or the reduced iteration's verdict stands.
+                // that answers, or the reduced iteration's verdict stands. So can its Jacobian,
+                // whose columns carry a closed form's sensitivity: a link within a few
+                // roundings of the size leaves that closed form's angle to rounding, and the
+                // reduced Jacobian singular where the loops' is not (edge run seed 30, case
+                // 105700: an f32 Stephenson six-bar whose `C D` is 2e-5 of its size, singular
+                // reduced Jacobian, loops' κ 7).
                 ::core::result::Result::Err(
                     #failure @ (::mechgen::Error::NoConvergence { .. }
-                    | ::mechgen::Error::CannotAssemble { .. }),
+                    | ::mechgen::Error::CannotAssemble { .. }
+                    | ::mechgen::Error::Singular { .. }),
                 ) => {
                     let #reduced = ::core::option::Option::Some(#failure);
                     #fall_back

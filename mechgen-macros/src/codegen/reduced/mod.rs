@@ -425,8 +425,10 @@ impl Generator<'_> {
              residual can stall above the floor or short of a root: a default solve that \
              stops above the floor `16 ε Σ|r|` is polished by Newton on every unknown from \
              its solution, and one that stalls (no convergence, or a toggle it cannot pass) \
-             is tried again by Newton on every unknown from `guess`, whose verdict stands \
-             only if it finds a solution.\n\n\
+             or meets a singular Jacobian of its own (which carries the closed forms' \
+             sensitivities: a link within a few roundings of the size leaves its closed \
+             form's angle to rounding) is tried again by Newton on every unknown from \
+             `guess`, whose verdict stands only if it finds a solution.\n\n\
              The stopping rules are those of Newton on every unknown, applied to the residual \
              of {residual_loops} (the loops solved in closed form close to rounding): at most \
              the tolerance in every component, each loop's components at the rounding floor \
