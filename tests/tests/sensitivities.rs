@@ -377,3 +377,87 @@ fn sensitivities_agree_with_a_high_precision_solve() {
         "every sensitivity exact: the comparison compared nothing"
     );
 }
+
+mechgen::mechanism! {
+    /// A slider whose line is offset by `sqrt(a² − b²)` and tilted by `gamma`, with a point
+    /// on its rod: a formula of the lengths, whose derivative `a/√(a² − b²)` squares them.
+    pub struct TiltedSlider {
+        params: a, b, l2, l3, gamma: angle;
+        input: theta2: angle;
+        unknowns: theta3: angle, d: length;
+        loop: l2 @ theta2 + l3 @ theta3 - sqrt(a * a - b * b) @ (pi / 2 + gamma) - d @ 0;
+        point rod_end = l2 @ theta2 + l3 @ theta3;
+        generate: position, velocity, acceleration, sensitivities;
+    }
+}
+
+/// `[∂θ3/∂a, ∂d/∂a, ∂θ3/∂γ, ∂d/∂γ, ∂P.x/∂a, ∂P.y/∂γ]` of the tilted slider with every length
+/// times `s`, each taken back to the unit slider's units (an angle's by a length times `s`,
+/// a length's by an angle over `s`).
+fn tilted_sensitivities<T: mechgen::Real>(s: T) -> Result<[f64; 6], Error<T>> {
+    let c = T::constant;
+    let linkage = TiltedSlider {
+        a: c(5.0) * s,
+        b: c(3.0) * s,
+        l2: c(2.0) * s,
+        l3: c(9.0) * s,
+        gamma: c(0.1),
+    };
+    let q = linkage.assemble(c(0.7), Branch::Open)?;
+    let x = linkage.sensitivities(c(0.7), &q)?;
+    let p = linkage.point_sensitivities(c(0.7), &q)?;
+    let f = |v: T| v.to_f64().expect("a float");
+    Ok([
+        f(x.a.theta3 * s),
+        f(x.a.d),
+        f(x.gamma.theta3),
+        f(x.gamma.d / s),
+        f(p.a.rod_end.x),
+        f(p.gamma.rod_end.y / s),
+    ])
+}
+
+/// A declaration whose loop holds a formula of its lengths has the same sensitivities at
+/// every size, as its solvers have the same positions: at 1e154 and beyond `a²` overflows
+/// and the formula's derivative did, `NonFinite`; at 1e-160 it underflowed into the
+/// subnormals and the derivative came back `Ok` five digits off. The sensitivities now
+/// compute on the mechanism scaled by a power of two where its size is far from 1.
+#[test]
+fn sensitivities_of_a_formula_are_the_same_at_every_size() {
+    let unit = tilted_sensitivities(1.0f64).expect("an ordinary slider");
+    // ∂θ3/∂a against central differences, to check the unit values themselves.
+    let theta3 = |a: f64| {
+        let linkage = TiltedSlider {
+            a,
+            b: 3.0,
+            l2: 2.0,
+            l3: 9.0,
+            gamma: 0.1,
+        };
+        linkage
+            .assemble(0.7, Branch::Open)
+            .expect("assembles")
+            .theta3
+    };
+    let h = 1e-5;
+    assert!((unit[0] - (theta3(5.0 + h) - theta3(5.0 - h)) / (2.0 * h)).abs() < 1e-9);
+    for s in [1e-300, 1e-160, 1e-100, 1e100, 1e154, 1e160, 1e300] {
+        let scaled = tilted_sensitivities(s).expect("the same slider, scaled");
+        for (got, want) in scaled.iter().zip(unit) {
+            assert!(
+                (got - want).abs() <= 1e-13 * want.abs(),
+                "{s:e}: {got} against {want}"
+            );
+        }
+    }
+    let unit = tilted_sensitivities(1.0f32).expect("an ordinary slider");
+    for s in [1e-30f32, 1e-20, 1e20, 1e30] {
+        let scaled = tilted_sensitivities(s).expect("the same slider, scaled");
+        for (got, want) in scaled.iter().zip(unit) {
+            assert!(
+                (got - want).abs() <= 1e-5 * want.abs(),
+                "{s:e}: {got} against {want}"
+            );
+        }
+    }
+}

@@ -101,6 +101,38 @@ impl Generator<'_> {
              leaves fewer digits than [`mechgen::Accuracy::required`] asks of a velocity \
              ([`mechgen::Error::Inaccurate`]): the same solve, and the same estimate.";
         let output = quote!(#ty<#unknowns<T>>);
+        if self.has_formulas() {
+            let value = local("value");
+            let lengths = self.length_unknowns();
+            let fields = self.model.params.iter().map(|param| {
+                let field = &param.name;
+                let components: Vec<Ident> = (0..lengths.len())
+                    .map(|j| local(&format!("component_{j}")))
+                    .collect();
+                let rescaled = components.iter().zip(&lengths).map(|(component, length)| {
+                    let factor = rescaling(param.kind == Kind::Length, *length);
+                    quote!(#component #factor)
+                });
+                quote! {
+                    #field: {
+                        let [#(#components),*] = #value.#field.to_array();
+                        #unknowns::from_array(::mechgen::__private::finite(
+                            [#(#rescaled),*],
+                            "sensitivity",
+                        )?)
+                    }
+                }
+            });
+            return self.normalised_sensitivities(
+                "sensitivities",
+                docs,
+                &output,
+                body,
+                quote! {
+                    #ty { #(#fields,)* #phantom }
+                },
+            );
+        }
         self.checked_function("sensitivities", docs, 2, &output, body, None)
     }
 
@@ -178,6 +210,39 @@ impl Generator<'_> {
              input held, the unknowns' part from [`Self::sensitivities`]' solve.\n\nErrors: as \
              [`Self::sensitivities`].";
         let output = quote!(#ty<#points_type<::mechgen::Vec2<T>>>);
+        if self.has_formulas() {
+            let value = local("value");
+            let (mut names, mut components, mut fields) = (Vec::new(), Vec::new(), Vec::new());
+            for param in &self.model.params {
+                let field = &param.name;
+                // A point is a length.
+                let factor = rescaling(param.kind == Kind::Length, true);
+                let mut points = Vec::new();
+                for point in &self.model.points {
+                    let point_name = &point.name;
+                    let [x, y] = sensitivity_components(point_name, field).map(|name| local(&name));
+                    components.push(quote!(#value.#field.#point_name.x #factor));
+                    components.push(quote!(#value.#field.#point_name.y #factor));
+                    points.push(quote!(#point_name: ::mechgen::Vec2 { x: #x, y: #y }));
+                    names.extend([x, y]);
+                }
+                fields.push(quote!(#field: #points_type { #(#points),* }));
+            }
+            let rescaled = quote! {{
+                let [#(#names),*] = ::mechgen::__private::finite(
+                    [#(#components),*],
+                    "point sensitivity",
+                )?;
+                #ty { #(#fields,)* #phantom }
+            }};
+            return self.normalised_sensitivities(
+                "point_sensitivities",
+                docs,
+                &output,
+                body,
+                rescaled,
+            );
+        }
         self.checked_function("point_sensitivities", docs, 2, &output, body, None)
     }
 
@@ -249,6 +314,126 @@ impl Generator<'_> {
             #(#checks)*
         };
         ((prologue, extra_outputs), solves, solutions)
+    }
+}
+
+impl Generator<'_> {
+    /// Whether a loop or a point holds a formula of the parameters: its derivatives (the
+    /// square root's `a/√(a² − b²)`, say) square the lengths, which overflow or lose digits
+    /// to underflow where the linear solves, scaling their own rows, do not.
+    fn has_formulas(&self) -> bool {
+        let sums = self
+            .model
+            .loops
+            .iter()
+            .chain(self.model.points.iter().map(|point| &point.position));
+        sums.flat_map(|sum| &sum.terms)
+            .any(|term| !term.magnitude.formulas.is_empty() || !term.angle.formulas.is_empty())
+    }
+
+    /// `sensitivities` or `point_sensitivities` (`name`, with `docs` and `output`) for a
+    /// declaration with formulas: `body` on the mechanism as given where its size is well
+    /// inside the float's range, else, out of line, on the mechanism scaled by a power of two
+    /// (exact), the position's lengths with it, and the results scaled back by `rescaled`
+    /// (which reads them as `value`). With every length times `s`, a derivative of a length
+    /// by an angle is `s` times as large and one of an angle by a length `1/s` times; the
+    /// rest do not change.
+    fn normalised_sensitivities(
+        &self,
+        name: &str,
+        docs: &str,
+        output: &TokenStream,
+        body: TokenStream,
+        rescaled: TokenStream,
+    ) -> TokenStream {
+        let (input_params, inputs) = (self.input_params(), self.input_args());
+        let (unknowns, _, _) = self.signature_types();
+        let ty = &self.unknowns_type;
+        let position = super::arg("position");
+        let value = local("value");
+        let super::normalise::Normalised {
+            prologue,
+            receiver,
+            input: scaled_input,
+            restore,
+            ..
+        } = self.normalised();
+        let scale = local("scale");
+        let lengths = self.length_unknowns();
+        let as_given = self.as_given();
+        let public = Ident::new(name, proc_macro2::Span::call_site());
+        let solve = format_ident!("mechgen_{}_solve", name);
+        let normalised = format_ident!("mechgen_{}_normalised", name);
+        let docs = doc(docs);
+        let normalised_doc = doc(&format!(
+            "[`Self::{name}`] on the mechanism scaled by a power of two, for a mechanism whose \
+             size is far from 1: its formulas' derivatives in range."
+        ));
+        let solve_doc = doc(&format!(
+            "[`Self::{name}`] on the mechanism it is called on: the mechanism as given, or \
+             scaled by a power of two."
+        ));
+        quote! {
+            #docs
+            pub fn #public(
+                &self,
+                #input_params,
+                #position: &#unknowns,
+            ) -> ::core::result::Result<#output, ::mechgen::Error<T>> {
+                self.mechgen_check_finite(#inputs)?;
+                ::mechgen::__private::finite(#position.to_array(), "position")?;
+                if #as_given {
+                    self.#solve(#inputs, #position)
+                } else {
+                    self.#normalised(#inputs, #position)
+                }
+            }
+
+            #normalised_doc
+            #[cold]
+            #[inline(never)]
+            fn #normalised(
+                &self,
+                #input_params,
+                #position: &#unknowns,
+            ) -> ::core::result::Result<#output, ::mechgen::Error<T>> {
+                #prologue
+                let #position = #ty::from_array(::mechgen::__private::scaled(
+                    #position.to_array(),
+                    [#(#lengths),*],
+                    #scale,
+                ));
+                let #value = #receiver.#solve(#scaled_input, &#position)#restore?;
+                ::core::result::Result::Ok(#rescaled)
+            }
+
+            #solve_doc
+            #[inline(always)]
+            fn #solve(
+                &self,
+                #input_params,
+                #position: &#unknowns,
+            ) -> ::core::result::Result<#output, ::mechgen::Error<T>> {
+                #body
+            }
+        }
+    }
+}
+
+/// The factor that takes a derivative computed with every length times `scale` back to the
+/// mechanism's own units: of a length by an angle, `unscale`; of an angle by a length,
+/// `scale`; else none.
+fn rescaling(by_length: bool, of_length: bool) -> TokenStream {
+    match (by_length, of_length) {
+        (true, false) => {
+            let scale = local("scale");
+            quote!(* #scale)
+        }
+        (false, true) => {
+            let unscale = local("unscale");
+            quote!(* #unscale)
+        }
+        _ => TokenStream::new(),
     }
 }
 
