@@ -2748,6 +2748,17 @@ pub mod judge {
             self.model.size
         }
 
+        /// The size with a four-bar's coupler point's distance: how far a point it tracks
+        /// reaches, which a point far off makes far more than the loops (its rates with it).
+        fn reach_size(&self) -> f64 {
+            let coupler = if self.model.kind == Kind::FourBar {
+                self.params.get_or("a", 0.0).abs()
+            } else {
+                0.0
+            };
+            self.size() + coupler
+        }
+
         fn n(&self) -> usize {
             self.model.unknowns()
         }
@@ -3292,7 +3303,7 @@ pub mod judge {
                     fastest = fastest.max(spin(w.to_f64(), a.to_f64()));
                 }
             }
-            unknowns || self.size() * fastest > largest
+            unknowns || self.reach_size() * fastest > largest
         }
 
         /// Whether, within rounding of a limit (where the oracle has no truth to size the rates
@@ -3719,7 +3730,9 @@ pub mod judge {
         let Some(m) = S::build(&dims, coupler) else {
             verdict.outcome = "rejected".into();
             let eta = FACTOR * T::epsilon().to_f64().unwrap_or(f64::NAN);
-            if valid_dimensions(case.kind, &case.dims, eta) == Some(true) {
+            // A coupler point scaled beyond the float (a far one, rescaled) is not valid.
+            let coupler_valid = coupler.is_none_or(|(a, _)| a.is_finite());
+            if coupler_valid && valid_dimensions(case.kind, &case.dims, eta) == Some(true) {
                 verdict.fail(
                     case.api,
                     "constructor refuses valid dimensions",
@@ -3958,7 +3971,7 @@ pub mod judge {
             // whose rod is 1e6 times shorter than its crank, κ 5, its slider's acceleration
             // 1.6e9 times the size).
             let kappa = e.truth.as_ref().map_or(1.0, |t| t.condition.max(1.0));
-            let by_kappa = e.size()
+            let by_kappa = e.reach_size()
                 * kappa.powi(3)
                 * (1.0 + case.omega.abs() + case.omega.powi(2) + case.alpha.abs());
             let by_truth = e.truth.as_ref().map_or(0.0, |t| {
@@ -3979,7 +3992,7 @@ pub mod judge {
                         fastest = fastest.max(spin(w.to_f64(), a.to_f64()));
                     }
                 }
-                speed.max(acceleration).max(size * fastest)
+                speed.max(acceleration).max(e.reach_size() * fastest)
             });
             let largest = by_kappa.max(by_truth) * factor.max(1.0);
             let rates_overflow = (before == "NonFinite" || again.outcome == "NonFinite")
@@ -4777,6 +4790,27 @@ pub mod draw {
             float.round(size * rng.log(lo, hi))
         } else {
             0.0
+        };
+        // A tenth of the four-bars' coupler points far off or close in, 1e-12 to 1e120 times
+        // the coupler (1e-6 to 1e20 in f32), within the float's range: the scenes scale the
+        // loops, not the point (an adversarial review found points from 1e80 times the links
+        // in f64, 1e12 in f32, shrinking them into underflow). Drawn last, so the case is
+        // otherwise as it was.
+        let coupler = match coupler {
+            Some((_, angle)) if rng.chance(0.1) => {
+                let (lo, hi, smallest, largest) = match float {
+                    Float::F64 => (1e-12, 1e120, f64::MIN_POSITIVE, f64::MAX),
+                    Float::F32 => (
+                        1e-6,
+                        1e20,
+                        f64::from(f32::MIN_POSITIVE),
+                        f64::from(f32::MAX),
+                    ),
+                };
+                let distance = (rng.log(lo, hi) * dims[2]).clamp(smallest * 1e6, largest / 1e6);
+                Some((float.round(distance), angle))
+            }
+            coupler => coupler,
         };
         Case {
             kind,

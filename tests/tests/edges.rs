@@ -150,6 +150,15 @@ fn everything_keeps_the_contract() {
     keeps_the_contract("everything", 3000);
 }
 
+/// The four-bar's closed forms and scenes with a tenth of the coupler points drawn 1e-12 to
+/// 1e120 times the coupler (1e-6 to 1e20 in f32): the scene kernels scale the loops by their
+/// own lengths, not by a point's. With the kernels scaled by every length, a point included
+/// (as before an adversarial review's fix), 294 of 40,000 of these cases broke the contract.
+#[test]
+fn scenes_keep_the_contract_with_the_coupler_point_far_off_or_close_in() {
+    keeps_the_contract("everything/closed/four-bar", 2000);
+}
+
 /// Cases of the large run (`cargo run --release -p mechgen-tests --bin edges`, seed 12,
 /// `everything`) that once broke the contract, each the first of its class:
 /// - 3481: a Stephenson six-bar whose reduced Newton stopped four units of rounding above its
