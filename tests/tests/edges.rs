@@ -767,3 +767,56 @@ fn the_extreme_rate_draw_reaches_both_ends_of_the_floats_range() {
         "{huge_and_fast_f64} f64 and {huge_and_fast_f32} f32 huge cases turning fast"
     );
 }
+
+/// The judge's count of the columns a Newton position's error moves (`Kind::moving`, which
+/// its bounds on Newton's rates and its verdicts on `Inaccurate` read) is the one the macro
+/// counts from each shipped mechanism's loops: the constant every generated call of the
+/// rates' accuracy passes before its highest order, in the reviewed expansion snapshots.
+#[test]
+fn the_judges_moving_columns_are_the_generated_ones() {
+    let expansions = [
+        (
+            Kind::FourBar,
+            include_str!("../snapshots/expansion/FourBar.snap"),
+        ),
+        (
+            Kind::SliderCrank,
+            include_str!("../snapshots/expansion/SliderCrank.snap"),
+        ),
+        (
+            Kind::InvertedSliderCrank,
+            include_str!("../snapshots/expansion/InvertedSliderCrank.snap"),
+        ),
+        (
+            Kind::WattSixBar,
+            include_str!("../snapshots/expansion/WattSixBar.snap"),
+        ),
+        (
+            Kind::StephensonSixBar,
+            include_str!("../snapshots/expansion/StephensonSixBar.snap"),
+        ),
+        (
+            Kind::JansenLeg,
+            include_str!("../snapshots/expansion/JansenLeg.snap"),
+        ),
+    ];
+    for (kind, expansion) in expansions {
+        let lines: Vec<&str> = expansion.lines().map(str::trim).collect();
+        let counts: std::collections::BTreeSet<String> = lines
+            .windows(2)
+            .filter(|pair| pair[1].starts_with("::mechgen::Order::") && pair[1].ends_with(','))
+            .filter_map(|pair| {
+                pair[0]
+                    .strip_prefix("T::constant(")
+                    .and_then(|rest| rest.strip_suffix("f64),"))
+                    .map(str::to_owned)
+            })
+            .collect();
+        let expected = format!("{}", kind.moving());
+        assert_eq!(
+            counts.into_iter().collect::<Vec<_>>(),
+            [expected],
+            "{kind:?}"
+        );
+    }
+}
