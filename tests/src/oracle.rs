@@ -2229,6 +2229,8 @@ pub mod judge {
         /// `"Ok"`, the error's name, or `"rejected"` (the constructor refused).
         pub outcome: String,
         pub findings: Vec<Finding>,
+        /// Whether the outcome's error came from a scene that tracks the coupler point.
+        pub point_scene: bool,
     }
 
     impl Verdict {
@@ -2741,6 +2743,8 @@ pub mod judge {
         guess_near_none: bool,
         /// Newton's stated tolerance (0 for the default options).
         tolerance: f64,
+        /// Whether the call judged tracks the coupler point (a scene of it).
+        point_scene: bool,
     }
 
     impl Expect {
@@ -2748,10 +2752,11 @@ pub mod judge {
             self.model.size
         }
 
-        /// The size with a four-bar's coupler point's distance: how far a point it tracks
-        /// reaches, which a point far off makes far more than the loops (its rates with it).
-        fn reach_size(&self) -> f64 {
-            let coupler = if self.model.kind == Kind::FourBar {
+        /// The size, with a four-bar's coupler point's distance where the call judged tracks
+        /// the point (`point_scene`): how far what it computes reaches, which a point far off
+        /// makes far more than the loops (its rates with it).
+        fn reach_size(&self, point_scene: bool) -> f64 {
+            let coupler = if point_scene && self.model.kind == Kind::FourBar {
                 self.params.get_or("a", 0.0).abs()
             } else {
                 0.0
@@ -3303,7 +3308,7 @@ pub mod judge {
                     fastest = fastest.max(spin(w.to_f64(), a.to_f64()));
                 }
             }
-            unknowns || self.reach_size() * fastest > largest
+            unknowns || self.reach_size(self.point_scene) * fastest > largest
         }
 
         /// Whether, within rounding of a limit (where the oracle has no truth to size the rates
@@ -3604,6 +3609,7 @@ pub mod judge {
                 params: p.clone(),
                 guess_near_none: false,
                 tolerance: case.tolerance,
+                point_scene: false,
                 reach: Some(o.reach),
                 truth: o.truth,
                 others: o.others,
@@ -3628,6 +3634,7 @@ pub mod judge {
                     params: p.clone(),
                     guess_near_none: false,
                     tolerance: case.tolerance,
+                    point_scene: false,
                     reach: None,
                     truth,
                     others: Vec::new(),
@@ -3870,10 +3877,13 @@ pub mod judge {
                                     e.quantities(&mut verdict, api, scene, &qs, kappa);
                                 }
                                 Err(err) => {
+                                    e.point_scene = scene.starts_with("coupler");
                                     e.error(&mut verdict, api, &err, false);
                                     if first.is_ok() {
+                                        verdict.point_scene = e.point_scene;
                                         first = Err(err);
                                     }
+                                    e.point_scene = false;
                                 }
                             }
                         }
@@ -3971,7 +3981,10 @@ pub mod judge {
             // whose rod is 1e6 times shorter than its crank, κ 5, its slider's acceleration
             // 1.6e9 times the size).
             let kappa = e.truth.as_ref().map_or(1.0, |t| t.condition.max(1.0));
-            let by_kappa = e.reach_size()
+            // A far coupler point's rates overflow where the loops' do not: only in a scene
+            // that tracks it, on either side.
+            let point_scene = verdict.point_scene || again.point_scene;
+            let by_kappa = e.reach_size(point_scene)
                 * kappa.powi(3)
                 * (1.0 + case.omega.abs() + case.omega.powi(2) + case.alpha.abs());
             let by_truth = e.truth.as_ref().map_or(0.0, |t| {
@@ -3992,7 +4005,9 @@ pub mod judge {
                         fastest = fastest.max(spin(w.to_f64(), a.to_f64()));
                     }
                 }
-                speed.max(acceleration).max(e.reach_size() * fastest)
+                speed
+                    .max(acceleration)
+                    .max(e.reach_size(point_scene) * fastest)
             });
             let largest = by_kappa.max(by_truth) * factor.max(1.0);
             let rates_overflow = (before == "NonFinite" || again.outcome == "NonFinite")

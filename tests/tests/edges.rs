@@ -270,12 +270,12 @@ fn a_link_below_rounding_at_a_singular_position_is_singular_not_unassemblable() 
 
 /// The two cases of the million at `84c749d` (seed 30, `everything`) that broke the contract,
 /// both there at every commit before:
-/// - 105700: an f32 Stephenson six-bar of size 1e-21 whose `C D`, 2e-5 of the size, is a few
-///   roundings of it, from a guess at which the loops close to their floor at κ 7. The reduced
-///   iteration's closed form for that link's dyad gives its angle to rounding only, and the
-///   reduced Jacobian, which carries that dyad's sensitivity, came out singular: `position`
-///   said `Singular`. A singular reduced Jacobian now leaves the solve to Newton on every
-///   unknown, as a stall does, and that answers.
+/// - 105700: an f32 Stephenson six-bar of size 1e-21 whose `C D`, 2e-6 of the size, is 16
+///   roundings of it (f32's ε), from a guess at which the loops close to their floor at κ 7.
+///   The reduced iteration's closed form for that link's dyad gives its angle to rounding
+///   only, and the reduced Jacobian, which carries that dyad's sensitivity, came out
+///   singular: `position` said `Singular`. A singular reduced Jacobian now leaves the solve
+///   to Newton on every unknown, as a stall does, and that answers.
 /// - 780517: an f64 slider-crank whose rod is 4,300 times shorter than its crank, 1e-6 rad
 ///   inside a limit: `motion_near`'s velocity, off by 2.1e-9 where it states 7.2e-9, was 1.2
 ///   times the judge's bound for a closed form's rates (16·ε·κ²·ρ), which left out what the

@@ -317,7 +317,7 @@ impl Generator<'_> {
                 // whose columns carry a closed form's sensitivity: a link within a few
                 // roundings of the size leaves that closed form's angle to rounding, and the
                 // reduced Jacobian singular where the loops' is not (edge run seed 30, case
-                // 105700: an f32 Stephenson six-bar whose `C D` is 2e-5 of its size, singular
+                // 105700: an f32 Stephenson six-bar whose `C D` is 2e-6 of its size, singular
                 // reduced Jacobian, loops' κ 7).
                 ::core::result::Result::Err(
                     #failure @ (::mechgen::Error::NoConvergence { .. }
