@@ -461,3 +461,45 @@ fn sensitivities_of_a_formula_are_the_same_at_every_size() {
         }
     }
 }
+
+mechgen::mechanism! {
+    /// A slider-crank whose tracked point hangs off the rod at `(px, py)` in the rod's frame:
+    /// its formulas (`hypot`, `atan2`) are the point's alone, the loop has none.
+    pub struct OffsetRodPoint {
+        params: l2, l3, c, px, py;
+        input: theta2: angle;
+        unknowns: theta3: angle, d: length;
+        loop: l2 @ theta2 + l3 @ theta3 - c @ (pi / 2) - d @ 0;
+        point p = l2 @ theta2 + hypot(px, py) @ (theta3 + atan2(py, px));
+        generate: position, velocity, acceleration, sensitivities;
+    }
+}
+
+/// A formula only in a point scales as one in a loop does: `∂P/∂px` of the point's
+/// `atan2(py, px)` squares `px`, which at lengths of 1e160 overflowed and made the derivative
+/// zero where it is not.
+#[test]
+fn sensitivities_of_a_point_formula_are_the_same_at_every_size() {
+    let point_sensitivities = |s: f64| {
+        let linkage = OffsetRodPoint {
+            l2: 2.0 * s,
+            l3: 7.0 * s,
+            c: 0.5 * s,
+            px: 3.0 * s,
+            py: 1.5 * s,
+        };
+        let q = linkage.assemble(0.9, Branch::Open).expect("assembles");
+        let p = linkage.point_sensitivities(0.9, &q).expect("finite");
+        [p.px.p.x, p.px.p.y, p.py.p.x, p.py.p.y, p.l3.p.x, p.c.p.y]
+    };
+    let unit = point_sensitivities(1.0);
+    assert!(unit.iter().all(|v| v.abs() > 1e-3), "{unit:?}");
+    for s in [1e-300, 1e-160, 1e160, 1e300] {
+        for (got, want) in point_sensitivities(s).iter().zip(unit) {
+            assert!(
+                (got - want).abs() <= 1e-13 * want.abs(),
+                "{s:e}: {got} against {want}"
+            );
+        }
+    }
+}
