@@ -69,8 +69,10 @@ pub enum Stop<T> {
 /// centres included) to within an eighth. Otherwise the piece is halved (and grows again,
 /// doubling, after each accepted one); no piece is longer than one unit of the input (a
 /// radian: no piece spans a turn, whose ends alone cannot tell a full turn from a gap in the
-/// motion); a step of more than 2¹⁶ units is walked in pieces of `step/2¹⁶`, checked only for
-/// the branch and Newton's convergence (past 96 refused pieces in one step, the sweep ends:
+/// motion), or than `4·ε·|input|` where that is longer (from 3e8 in f32, whose neighbours are
+/// 32 apart, `x + 1` is `x`); a step of more than 2¹⁶ units is walked in pieces of
+/// `step/2¹⁶`, checked only for the branch and Newton's convergence (past 96 refused pieces
+/// in one step, the sweep ends:
 /// [`Stop::Toggle`] with Newton's error, for from a predictor that far off Newton lands on
 /// either branch, or on none). Only the requested inputs are yielded. So the
 /// sweep follows the motion around sharp turns, never steps over inputs where the loops do
@@ -239,10 +241,14 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         // that a step of more than 2^16 units is walked in 2^16 pieces, each accepted if
         // Newton converges on the branch, so that the work is bounded.
         let coarse = direction.abs() * T::constant(COARSE_PIECE);
+        // Nor shorter than the input's rounding where it is coarser than a unit (a start of
+        // 3e8 in f32, whose neighbours are 32 apart): `x + 1` would be `x`, and the walk
+        // would accept the same input for ever.
+        let resolution = T::constant(4.0) * T::epsilon() * from.input.abs().max(target.abs());
         let (longest, roughest) = if coarse > T::one() {
             (coarse, coarse)
         } else {
-            (direction.abs().min(T::one()), smallest)
+            (direction.abs().min(T::one().max(resolution)), smallest)
         };
         let longest = if direction < T::zero() {
             -longest

@@ -298,3 +298,112 @@ fn motion_is_assemble_velocity_and_acceleration_in_one() {
         }
     }
 }
+
+/// A mechanism that counts its solves and refuses past `limit` of them: a sweep that would
+/// spin on one input stops, saying so, rather than hang the test.
+struct Counted<'a, M> {
+    mechanism: &'a M,
+    solves: std::cell::Cell<u32>,
+    limit: u32,
+}
+
+impl<T: mechgen::Real, M: mechgen::Kinematics<T, N>, const N: usize> mechgen::Kinematics<T, N>
+    for Counted<'_, M>
+{
+    fn solve_near(
+        &self,
+        input: T,
+        guess: [T; N],
+        options: &NewtonOptions<T>,
+    ) -> Result<Solved<[T; N], T>, mechgen::Error<T>> {
+        self.solves.set(self.solves.get() + 1);
+        if self.solves.get() > self.limit {
+            return Err(mechgen::Error::NoConvergence {
+                iterations: 0,
+                residual_norm: T::nan(),
+            });
+        }
+        self.mechanism.solve_near(input, guess, options)
+    }
+
+    fn slope(&self, input: T, position: [T; N]) -> Result<[T; N], mechgen::Error<T>> {
+        self.mechanism.slope(input, position)
+    }
+
+    fn same_branch(&self, input_a: T, a: [T; N], input_b: T, b: [T; N]) -> bool {
+        self.mechanism.same_branch(input_a, a, input_b, b)
+    }
+}
+
+mechgen::mechanism! {
+    /// A slider-crank driven by its slider: the slide `d`, the crank and rod angles unknown.
+    pub struct SlideDriven {
+        params: l2, l3, c;
+        input: d: length;
+        unknowns: theta2: angle, theta3: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - c @ (pi / 2) - d @ 0;
+        generate: position, velocity, acceleration;
+    }
+}
+
+/// From an input so large that one unit of it is lost in rounding (a slide of 3e8 in f32,
+/// whose neighbours are 32 apart), the walk's pieces are as long as the input's rounding: an
+/// adversarial review found the sweep accepting `x + 1 = x` for ever (a million solves, all
+/// at the start), there and from a crank angle of 1e16 rad in f64, which now stops (a turn
+/// of the input is then a few of its roundings: the walk cannot resolve it).
+#[test]
+fn a_sweep_from_an_input_coarser_than_a_unit_goes_on_or_stops() {
+    let linkage = SlideDriven {
+        l2: 1e8f32,
+        l3: 3e8,
+        c: 0.0,
+    };
+    let counted = Counted {
+        mechanism: &linkage,
+        solves: std::cell::Cell::new(0),
+        limit: 10_000,
+    };
+    let guess = SlideDrivenUnknowns {
+        theta2: 1.4,
+        theta3: -0.33,
+    };
+    let start = linkage
+        .position(3e8, &guess, &NewtonOptions::default())
+        .unwrap()
+        .value;
+    let samples: Vec<_> = Sweep::new(
+        &counted,
+        3e8,
+        start.to_array(),
+        100.0,
+        3,
+        NewtonOptions::default(),
+    )
+    .collect::<Result<_, _>>()
+    .expect("the slide moves the crank smoothly here");
+    assert_eq!(samples.len(), 4);
+    for sample in samples {
+        let q = SlideDrivenUnknowns::from_array(sample.position);
+        let residual = linkage.residual(sample.input, &q);
+        assert!(residual.iter().all(|r| r.abs() < 1e-5 * 4e8), "{sample:?}");
+    }
+    assert!(
+        counted.solves.get() < 100,
+        "{} solves",
+        counted.solves.get()
+    );
+    let crank_rocker = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+    let counted = Counted {
+        mechanism: &crank_rocker,
+        solves: std::cell::Cell::new(0),
+        limit: 10_000,
+    };
+    let start = 1e16f64;
+    let position = crank_rocker
+        .assemble(start, Branch::Open)
+        .unwrap()
+        .to_array();
+    let outcomes: Vec<_> =
+        Sweep::new(&counted, start, position, 4.0, 3, NewtonOptions::default()).collect();
+    assert!(counted.solves.get() < 10_000, "{outcomes:?}");
+}
