@@ -32,7 +32,10 @@ pub struct Sample<T, const N: usize> {
 
 /// Why a sweep stopped before its last step. The sweep never crosses to another branch
 /// silently, nor steps over inputs where the mechanism cannot be assembled: it stops and
-/// says so.
+/// says so. (A known exception, open: in f32, a change point where an angle unknown turns
+/// by π at once on the same branch while a length unknown moves by hundreds of units in the
+/// same piece, as the isosceles inverted slider-crank's rocker and slide do, can pass the
+/// smoothness test, which weighs the unknowns together.)
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Stop<T> {
     /// Between `last_input` and `next_input` the mechanism meets a toggle (its Jacobian is
