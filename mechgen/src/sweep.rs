@@ -677,6 +677,29 @@ mod tests {
         }
     }
 
+    #[test]
+    fn a_walk_from_an_input_coarser_than_a_unit_goes_on() {
+        // From 1e17, whose neighbours are 16 apart, `x + 1` is `x`: pieces as long as the
+        // input's rounding, not a unit accepted for ever (the solves are counted, and fail
+        // past a thousand, so that a walk that spins stops rather than hang the test).
+        let solves = core::cell::Cell::new(0u32);
+        let counted = Failing {
+            inner: Line,
+            fail: |_| {
+                solves.set(solves.get() + 1);
+                (solves.get() > 1000).then_some(Error::NoConvergence {
+                    iterations: 0,
+                    residual_norm: 0.0,
+                })
+            },
+        };
+        let (samples, stop) = sweep(&counted, 1e17, 1e17, 64.0, 3);
+        assert!(stop.is_none(), "{stop:?}");
+        let inputs: Vec<f64> = samples.iter().map(|s| s.input).collect();
+        assert_eq!(inputs, [1e17, 1e17 + 64.0, 1e17 + 128.0, 1e17 + 192.0]);
+        assert!(solves.get() < 20, "{} solves", solves.get());
+    }
+
     /// `inner`, but its solve failing with `fail`'s error where `fail` gives one.
     struct Failing<M, F> {
         inner: M,
