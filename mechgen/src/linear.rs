@@ -342,6 +342,22 @@ impl<T: Real, const N: usize> Factored<T, N> {
         self.relative
     }
 
+    /// How far each unknown may lie from the solution of `a·x = b` when each component of `b`
+    /// may be off by `error`: `Σ_k |(a⁻¹)_ik|·error`, the bound that holds for every such
+    /// error (not finite where it overflows: nothing is fixed there). The sweep reads it
+    /// through `Kinematics::slope_within`.
+    pub fn uncertainty(&self, error: T) -> [T; N] {
+        let mut bound = [T::zero(); N];
+        for k in 0..N {
+            let mut unit = [T::zero(); N];
+            unit[k] = error;
+            for (b, v) in bound.iter_mut().zip(self.solve(unit)) {
+                *b = *b + v.abs();
+            }
+        }
+        bound
+    }
+
     /// The solution of `a·x = b`.
     #[inline(always)]
     pub fn solve(&self, b: [T; N]) -> [T; N] {

@@ -1,6 +1,6 @@
 //! Walking a mechanism through its motion on one assembly branch.
 
-use crate::{Error, NewtonOptions, Real, Solved};
+use crate::{Error, NewtonOptions, Order, Real, Solved};
 
 /// What the sweep needs of a mechanism: generated code implements it for every declaration
 /// that asks for velocities, with positions as arrays of the unknowns in declaration order.
@@ -19,6 +19,32 @@ pub trait Kinematics<T: Real, const N: usize> {
     /// Whether two solved positions are on the same assembly branch (by the generated
     /// `branch_of`; always true for a mechanism without closed-form branches).
     fn same_branch(&self, input_a: T, a: [T; N], input_b: T, b: [T; N]) -> bool;
+
+    /// [`slope`](Self::slope), with how far each unknown of the solved `position` may lie from
+    /// the loops' root when each component of their residual may be off by `residual` plus
+    /// the rounding of its evaluation: `Σ_k |J⁻¹_ik|` times that, in the
+    /// unknown's own units. By default (a hand implementation) zeros: nothing known.
+    ///
+    /// Generated code computes both from one factored Jacobian. Where an unknown's link
+    /// shrinks to nothing (a slide through its pivot, the isosceles inverted slider-crank's
+    /// change point), the loops stop fixing its angle, and a position that closes them to
+    /// rounding may hold any angle there: the sweep must not read a path from such positions.
+    fn slope_within(
+        &self,
+        input: T,
+        position: [T; N],
+        residual: T,
+    ) -> Result<([T; N], [T; N]), Error<T>> {
+        let _ = residual;
+        Ok((self.slope(input, position)?, [T::zero(); N]))
+    }
+
+    /// What counts as a unit of each unknown for the sweep's tests: a radian for an angle, the
+    /// sum of the loops' declared lengths for a length (generated code); by default 1 for
+    /// every unknown.
+    fn units(&self) -> [T; N] {
+        [T::one(); N]
+    }
 }
 
 /// A solved position of a sweep.
@@ -31,17 +57,17 @@ pub struct Sample<T, const N: usize> {
 }
 
 /// Why a sweep stopped before its last step. The sweep never crosses to another branch
-/// silently, nor steps over inputs where the mechanism cannot be assembled: it stops and
-/// says so. (A known exception, open: in f32, a change point where an angle unknown turns
-/// by π at once on the same branch while a length unknown moves by hundreds of units in the
-/// same piece, as the isosceles inverted slider-crank's rocker and slide do, can pass the
-/// smoothness test, which weighs the unknowns together.)
+/// silently, nor steps over inputs where the mechanism cannot be assembled, nor reads a path
+/// through positions the loops do not fix: it stops and says so.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Stop<T> {
     /// Between `last_input` and `next_input` the mechanism meets a toggle (its Jacobian is
     /// singular, and beyond it the loops do not close): the input cannot drive it further.
-    /// Also what a sweep whose start cannot be solved reports, with both inputs the start, and
-    /// one whose next input is not finite (`Error::NonFinite` naming `"sweep input"`).
+    /// Also what a sweep whose start cannot be solved reports, with both inputs the start; one
+    /// whose next input is not finite (`Error::NonFinite` naming `"sweep input"`); and one
+    /// stuck where the loops fix some unknown more loosely than the walk's resolution (a
+    /// sixteenth of a unit, see [`Kinematics::units`]) and nothing beyond says which
+    /// (`Error::Inaccurate` of the position).
     Toggle {
         /// The last input solved on the branch.
         last_input: T,
@@ -66,10 +92,13 @@ pub enum Stop<T> {
 /// on, one `Err(Stop)`.
 ///
 /// Each step is a predictor-corrector walk: Newton starts from the previous position moved
-/// along its velocity, and the result is accepted if it is on the same branch and the path
-/// between is smooth: the change in the unknowns agrees with the piece's length times the
-/// mean of the velocities at its two ends (the trapezoidal rule, exact to third order, dead
-/// centres included) to within an eighth. Otherwise the piece is halved (and grows again,
+/// along its velocity, and the result is accepted if it is on the same branch, the loops fix
+/// it (no unknown can be off by a sixteenth of its unit, from Newton's residual and rounding
+/// through the Jacobian's inverse: near a change point where a link shrinks to nothing, its
+/// angle is free, in f32 for some 1e-3 rad of input), and the path between is smooth: the
+/// change in the unknowns agrees with the piece's length times the mean of the velocities at
+/// its two ends (the trapezoidal rule, exact to third order, dead centres included) to
+/// within an eighth. Otherwise the piece is halved (and grows again,
 /// doubling, after each accepted one); no piece is longer than one unit of the input (a
 /// radian: no piece spans a turn, whose ends alone cannot tell a full turn from a gap in the
 /// motion), or than `4·ε·|input|` where that is longer (from 3e8 in f32, whose neighbours are
@@ -123,6 +152,8 @@ pub struct Sweep<'a, T, M, const N: usize> {
     /// solved.
     last: Option<(Sample<T, N>, Option<[T; N]>)>,
     start_guess: [T; N],
+    /// The mechanism's [`Kinematics::units`].
+    units: [T; N],
     finished: bool,
 }
 
@@ -140,6 +171,12 @@ const COARSE_REFUSALS: u32 = 96;
 /// How far the change over a piece may differ from the trapezoidal rule's, relative to the
 /// sizes of the change and of the two velocity terms.
 const SMOOTHNESS: f64 = 0.125;
+
+/// The most a piece's landing may be uncertain by (in units of each unknown, see
+/// [`Kinematics::units`]) for the walk to read a path from it: a sixteenth of a radian, far
+/// below the distance between assemblies (π, for a rocker turned over), far above what
+/// rounding leaves of a position wherever the loops fix it.
+const RESOLUTION: f64 = 1.0 / 16.0;
 
 /// Why a piece of a step was refused.
 #[derive(Clone, Copy, Debug)]
@@ -173,6 +210,7 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             next: 0,
             last: None,
             start_guess: position,
+            units: mechanism.units(),
             finished: false,
         }
     }
@@ -346,8 +384,9 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
     /// `4·piece`, or `√ε`, if larger) to four times `reach` (and at least four of them), and
     /// counts the answers that say: a position on the other branch, from a guess the
     /// predictor places near the motion (the motion goes on there: a change point), or a
-    /// failure other than a singular Jacobian (it goes on nowhere: a toggle). The more
-    /// frequent answer, with the nearest such failure, or `None` if none says. Nearer than `√ε`, rounding lets Newton converge a hair past a toggle,
+    /// failure other than a singular Jacobian or a position the loops do not fix (it goes on
+    /// nowhere: a toggle). The more frequent answer, with the nearest such failure, or `None`
+    /// if none says. Nearer than `√ε`, rounding lets Newton converge a hair past a toggle,
     /// and fail at a change point itself; farther, one answer alone could see past a narrow
     /// gap, hence the count.
     fn beyond(&self, x: T, q: [T; N], m: [T; N], piece: T, reach: T) -> Option<Refusal<T>> {
@@ -366,18 +405,23 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         let (mut branches, mut failures) = (0u32, 0u32);
         let mut first_failure = None;
         while distance <= farthest {
-            // Where the predictor moves some unknown by more than its own size (and a unit:
-            // a radian, for an angle), its guess is no place on the motion: near a toggle,
+            // Where the predictor moves some unknown by more than its own size and a unit (a
+            // radian, or the loops' length: the same at every scale), its guess is no place
+            // on the motion: near a toggle,
             // whose velocities grow without bound, it is thousands of radians off, and Newton
             // from it lands on any assembly. Such a landing says nothing of a change point.
             let placed = q
                 .iter()
                 .zip(m)
-                .all(|(q, m)| (m * distance).abs() <= T::one() + q.abs());
+                .zip(self.units)
+                .all(|((q, m), unit)| (m * distance).abs() <= unit + q.abs());
             match self.piece(x, q, m, x + sign * distance) {
                 Err(Refusal::OtherBranch) if placed => branches += 1,
                 Err(Refusal::OtherBranch) => {}
-                Err(Refusal::Failed(Error::Singular { .. })) | Ok(_) => {}
+                // Singular, or with an unknown the loops do not fix there: no more a verdict
+                // than a position on the branch is.
+                Err(Refusal::Failed(Error::Singular { .. } | Error::Inaccurate { .. })) | Ok(_) => {
+                }
                 Err(Refusal::Failed(error)) => {
                     failures += 1;
                     first_failure = first_failure.or(Some(error));
@@ -406,15 +450,41 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         for (g, s) in guess.iter_mut().zip(m) {
             *g = *g + s * h;
         }
-        let position = match self.mechanism.solve_near(y, guess, &self.options) {
-            Ok(solved) => solved.value,
+        let (position, residual) = match self.mechanism.solve_near(y, guess, &self.options) {
+            Ok(solved) => (solved.value, solved.residual_norm),
             Err(Error::OtherBranch) => return Err(Refusal::OtherBranch),
             Err(error) => return Err(Refusal::Failed(error)),
         };
         if !self.mechanism.same_branch(x, q, y, position) {
             return Err(Refusal::OtherBranch);
         }
-        let velocity = self.mechanism.slope(y, position).map_err(Refusal::Failed)?;
+        let (velocity, uncertainty) = self
+            .mechanism
+            .slope_within(y, position, residual)
+            .map_err(Refusal::Failed)?;
+        // A landing the loops fix only loosely (near a change point where a link shrinks to
+        // nothing, in f32 some 1e-3 rad of input wide) may hold any value of the loose
+        // unknown, and a path read from such landings may turn it over on the same branch:
+        // refused, so the walk stops short and looks beyond.
+        let resolution = T::constant(RESOLUTION);
+        let relative = uncertainty
+            .iter()
+            .zip(self.units)
+            .map(|(u, unit)| *u / unit);
+        // NaN (from an uncertainty that overflows) refuses too.
+        if !relative.clone().all(|r| r <= resolution) {
+            return Err(Refusal::Failed(Error::Inaccurate {
+                order: Order::Position,
+                estimate: relative.fold(T::zero(), |loosest, r| {
+                    if r.is_nan() {
+                        T::infinity()
+                    } else {
+                        loosest.max(r)
+                    }
+                }),
+                required: resolution,
+            }));
+        }
         // The trapezoidal rule, Δq ≈ h·(m_x + m_y)/2, holds to third order in h for a smooth
         // path, through dead centres (where m_x or m_y vanishes) too.
         let half = T::constant(0.5);
@@ -1279,6 +1349,96 @@ mod tests {
         let (samples, stop) = sweep(&offset, 0.0, 1e8, 1.0, 10);
         assert_eq!((samples.len(), stop, offset.work()), (11, None, (11, 11)));
         assert!(samples.iter().all(|s| s.position == [1e8]));
+    }
+
+    /// `q = input`, which the loops fix only loosely (to a unit) within 0.01 of 1, and to the
+    /// rounding of the line elsewhere, with the residual as given.
+    struct Loose;
+
+    impl Kinematics<f64, 1> for Loose {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            Line.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Line.slope(input, position)
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            Line.same_branch(a, p, b, q)
+        }
+
+        fn slope_within(
+            &self,
+            input: f64,
+            position: [f64; 1],
+            residual: f64,
+        ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
+            let loose = if (input - 1.0).abs() < 0.01 {
+                1.0
+            } else {
+                1e-15
+            };
+            Ok((self.slope(input, position)?, [loose + residual]))
+        }
+    }
+
+    /// A walk into inputs where the loops do not fix the position stops short of them, with
+    /// the position's `Inaccurate` (the landings beyond, on the branch or as loose, say
+    /// neither a toggle nor a change point); with units of 100, a looseness of 1 is within the
+    /// resolution, and the walk goes on.
+    #[test]
+    fn a_walk_stops_short_of_positions_the_loops_do_not_fix() {
+        let (samples, stop) = sweep(&Loose, 0.0, 0.0, 0.5, 4);
+        assert_eq!(samples.len(), 2);
+        assert_eq!(
+            stop,
+            Some(Stop::Toggle {
+                last_input: 0.5,
+                next_input: 1.0,
+                error: Error::Inaccurate {
+                    order: crate::Order::Position,
+                    estimate: 1.0,
+                    required: 1.0 / 16.0,
+                },
+            })
+        );
+
+        struct Wide;
+        impl Kinematics<f64, 1> for Wide {
+            fn solve_near(
+                &self,
+                input: f64,
+                guess: [f64; 1],
+                options: &NewtonOptions<f64>,
+            ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+                Loose.solve_near(input, guess, options)
+            }
+            fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+                Loose.slope(input, position)
+            }
+            fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+                Loose.same_branch(a, p, b, q)
+            }
+            fn slope_within(
+                &self,
+                input: f64,
+                position: [f64; 1],
+                residual: f64,
+            ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
+                Loose.slope_within(input, position, residual)
+            }
+            fn units(&self) -> [f64; 1] {
+                [100.0]
+            }
+        }
+        let (samples, stop) = sweep(&Wide, 0.0, 0.0, 0.5, 4);
+        assert_eq!((samples.len(), stop), (5, None));
     }
 
     /// The last two of `u32::MAX + 1` samples, then the end: no overflow of the index.

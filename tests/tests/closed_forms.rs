@@ -237,6 +237,71 @@ fn change_point_linkages_report_the_flat_position() {
     );
 }
 
+/// A change point is a `BranchChange` at every size, in f64 and f32, and no sweep reads a path
+/// through it: the isosceles inverted slider-crank (crank as long as the ground, the slide
+/// through the rocker's pivot at θ2 = 0) and the isosceles slider-crank (rod as long as the
+/// crank, the slider at the crank's pivot at θ2 = 90°), swept through them in steps of 0.25.
+/// In f32 the first went on `Ok` with its rocker turned over on the same branch (near θ2 = 0
+/// the slide, some 1e-6 of the linkage, left the rocker's angle to rounding, and the walk
+/// read a smooth half-turn from it); at sizes from 1e7 in f64 (1e3 in f32) the second said
+/// `Toggle` (its predictor's guesses, a slide of a few units, were taken for no place on the
+/// motion, as they would be for a mechanism of size 1).
+#[test]
+fn change_points_are_branch_changes_at_every_size() {
+    fn through<T: mechgen::Real + std::fmt::Debug, M: mechgen::Kinematics<T, 2>>(
+        linkage: &M,
+        start: T,
+        position: [T; 2],
+        change_point: T,
+    ) {
+        let step = T::constant(0.25);
+        let mut samples = Vec::new();
+        let mut stop = None;
+        for item in Sweep::new(linkage, start, position, step, 6, NewtonOptions::default()) {
+            match item {
+                Ok(sample) => samples.push(sample),
+                Err(event) => stop = Some(event),
+            }
+        }
+        // The angle (the first unknown) moves by at most the crank's quarter radian a step,
+        // never by a half-turn.
+        for pair in samples.windows(2) {
+            let turned = (pair[1].position[0] - pair[0].position[0]).abs();
+            assert!(turned < T::constant(0.3), "{samples:?}");
+        }
+        let last = samples.last().expect("the start solves").input;
+        match stop {
+            Some(Stop::BranchChange {
+                last_input,
+                next_input,
+            }) => assert!(
+                last_input == last && last < change_point && change_point < next_input,
+                "{last_input:?} {next_input:?}"
+            ),
+            other => panic!("{other:?} after {samples:?}"),
+        }
+    }
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    for exponent in [-298, -150, -20, -3, 0, 2, 3, 7, 8, 20, 150, 298] {
+        let size = 10f64.powi(exponent);
+        let inverted = InvertedSliderCrank::new(size, size, 0.0, 0.0).unwrap();
+        let start = inverted.assemble(-0.49, Branch::Open).unwrap().to_array();
+        through(&inverted, -0.49, start, 0.0);
+        let slider = SliderCrank::new(size, size, 0.0).unwrap();
+        let start = slider.assemble(1.0, Branch::Open).unwrap().to_array();
+        through(&slider, 1.0, start, half_pi);
+    }
+    for exponent in [-30, -20, -3, 0, 2, 3, 7, 20, 30] {
+        let size = 10f32.powi(exponent);
+        let inverted = InvertedSliderCrank::new(size, size, 0.0, 0.0).unwrap();
+        let start = inverted.assemble(-0.49, Branch::Open).unwrap().to_array();
+        through(&inverted, -0.49, start, 0.0);
+        let slider = SliderCrank::new(size, size, 0.0).unwrap();
+        let start = slider.assemble(1.0, Branch::Open).unwrap().to_array();
+        through(&slider, 1.0, start, std::f32::consts::FRAC_PI_2);
+    }
+}
+
 #[test]
 fn sweeps_work_in_f32() {
     let linkage = FourBar::new(180.0f32, 80.0, 200.0, 150.0).unwrap();

@@ -185,6 +185,29 @@ impl Generator<'_> {
             arg("position"),
         );
         let (a, b, input_a, input_b) = (local("a"), local("b"), local("input_a"), local("input_b"));
+        let residual = local("residual");
+        let size = self.accuracy_size(quote!(self));
+        let units = self
+            .model
+            .unknowns
+            .iter()
+            .map(|unknown| match unknown.kind {
+                Kind::Angle => quote!(T::one()),
+                Kind::Length => quote!(length),
+            });
+        let length_unit = self
+            .model
+            .unknowns
+            .iter()
+            .any(|unknown| unknown.kind == Kind::Length)
+            .then(|| {
+                quote! {
+                    let size = #size;
+                    // Declared lengths that sum to nothing measurable leave no unit of
+                    // length but the float's.
+                    let length = if size > T::zero() && size.is_finite() { size } else { T::one() };
+                }
+            });
         let same_branch = if self
             .equations
             .closed_form
@@ -243,6 +266,29 @@ impl Generator<'_> {
                     #b: [T; #count],
                 ) -> bool {
                     #same_branch
+                }
+
+                fn slope_within(
+                    &self,
+                    #input: T,
+                    #position: [T; #count],
+                    #residual: T,
+                ) -> ::core::result::Result<([T; #count], [T; #count]), ::mechgen::Error<T>> {
+                    let #position = #ty::from_array(#position);
+                    let along = self.input_jacobian(#input, &#position).map(|v| -v);
+                    let factored = ::mechgen::__private::Factored::new(
+                        self.jacobian(#input, &#position),
+                    )?;
+                    let slope = ::mechgen::__private::finite(factored.solve(along), "velocity")?;
+                    // The residual's own rounding: Newton's floor, 16·ε per unit of the loops'
+                    // declared lengths.
+                    let rounding = T::constant(16.0) * T::epsilon() * (#size);
+                    ::core::result::Result::Ok((slope, factored.uncertainty(#residual + rounding)))
+                }
+
+                fn units(&self) -> [T; #count] {
+                    #length_unit
+                    [#(#units),*]
                 }
             }
         }
