@@ -737,6 +737,24 @@ mod tests {
         assert!(Factored::quick([[1.0, 1.0], [0.0, 4.0 * e]]).is_some());
     }
 
+    /// Row sums of the inverse's magnitudes, times the error: for a 2×2 matrix (its kept
+    /// inverse) and a 3×3 one (LU), with a column scaled by a power of two.
+    #[test]
+    fn uncertainty_is_the_inverse_rows_magnitudes_times_the_error() {
+        // Inverse [[1, −1], [0, 0.5]].
+        let two = Factored::new([[1.0, 2.0], [0.0, 2.0]]).unwrap();
+        assert_eq!(two.uncertainty(1.0), [2.0, 0.5]);
+        assert_eq!(two.uncertainty(3.0), [6.0, 1.5]);
+        // Inverse [[0.5, 0, 0], [0, 1, −1], [0, 0, 1]], then the first column scaled by 2⁻⁶⁰⁰
+        // (its unknown's row by 2⁶⁰⁰), which LU scales back.
+        let tiny = 2f64.powi(-600);
+        let three =
+            Factored::new([[2.0 * tiny, 0.0, 0.0], [0.0, 1.0, 1.0], [0.0, 0.0, 1.0]]).unwrap();
+        assert_eq!(three.uncertainty(0.25), [0.125 / tiny, 0.5, 0.25]);
+        // An error too large for the float: nothing is fixed.
+        assert!(two.uncertainty(f64::MAX)[0].is_infinite());
+    }
+
     #[test]
     fn non_finite_matrices_are_errors() {
         let a = [[f64::NAN, 0.0], [0.0, 1.0]];

@@ -1319,6 +1319,65 @@ mod tests {
         );
     }
 
+    /// [`Cross`] with `y` in units of `unit`: `y = ±unit·|x|`, which cannot be assembled
+    /// below −0.5.
+    struct Steep {
+        unit: f64,
+        /// What [`Kinematics::units`] says (the default's 1 where `None`).
+        told: Option<f64>,
+    }
+
+    impl Kinematics<f64, 1> for Steep {
+        fn solve_near(
+            &self,
+            input: f64,
+            [guess]: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            if input < -0.5 {
+                return Err(Error::CannotAssemble { input });
+            }
+            let solved = Cross.solve_near(input, [guess], options)?;
+            Ok(solved.map(|[y]| [y * self.unit]))
+        }
+
+        fn slope(&self, input: f64, [y]: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Ok([Cross.slope(input, [y])?[0] * self.unit])
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            Cross.same_branch(a, p, b, q)
+        }
+
+        fn units(&self) -> [f64; 1] {
+            [self.told.unwrap_or(1.0)]
+        }
+    }
+
+    /// The look beyond a change point weighs the predictor's move in the unknowns' units: a
+    /// motion of 1e8 units a radian is [`Cross`] at another size, a change point; taken in
+    /// units of 1, every guess beyond is "no place", and the one failure says a toggle.
+    #[test]
+    fn what_lies_beyond_is_placed_in_the_unknowns_units() {
+        let change = Stop::BranchChange {
+            last_input: 0.0,
+            next_input: -0.5,
+        };
+        let told = Steep {
+            unit: 1e8,
+            told: Some(1e8),
+        };
+        assert_eq!(sweep(&told, 1.0, 1e8, -0.5, 4).1, Some(change));
+        let untold = Steep {
+            unit: 1e8,
+            told: None,
+        };
+        assert!(matches!(
+            sweep(&untold, 1.0, 1e8, -0.5, 4).1,
+            Some(Stop::Toggle { .. })
+        ));
+    }
+
     /// `q = 10⁸ + 10⁻¹⁰·input`: a motion far below the rounding of the position.
     struct Offset;
 
