@@ -45,6 +45,13 @@ pub trait Kinematics<T: Real, const N: usize> {
     fn units(&self) -> [T; N] {
         [T::one(); N]
     }
+
+    /// What counts as a unit of the input, as [`units`](Self::units) for the unknowns: a radian
+    /// for a crank, the loops' declared lengths for a slide (generated code); 1 by default.
+    /// No piece of a step is longer, and the look beyond a stuck walk starts `√ε` of it away.
+    fn input_unit(&self) -> T {
+        T::one()
+    }
 }
 
 /// A solved position of a sweep.
@@ -101,8 +108,9 @@ pub enum Stop<T> {
 /// within an eighth. Otherwise the piece is halved (and grows again,
 /// doubling, after each accepted one); no piece is longer than one unit of the input (a
 /// radian: no piece spans a turn, whose ends alone cannot tell a full turn from a gap in the
-/// motion), or than `4·ε·|input|` where that is longer (from 3e8 in f32, whose neighbours are
-/// 32 apart, `x + 1` is `x`); a step of more than 2¹⁶ units is walked in pieces of
+/// motion; for a slide, the loops' declared lengths, [`Kinematics::input_unit`]), or than
+/// `4·ε·|input|` where that is longer (from 3e8 rad in f32, whose neighbours are 32 apart,
+/// `x + 1` is `x`); a step of more than 2¹⁶ units is walked in pieces of
 /// `step/2¹⁶`, checked only for the branch and Newton's convergence (past 96 refused pieces
 /// in one step, the sweep ends:
 /// [`Stop::Toggle`] with Newton's error, for from a predictor that far off Newton lands on
@@ -110,7 +118,7 @@ pub enum Stop<T> {
 /// sweep follows the motion around sharp turns, never steps over inputs where the loops do
 /// not close, and stops where no piece down to `step·2⁻⁴⁰` (or the input's rounding) gets
 /// further. There it solves at inputs beyond, at distances growing fourfold from
-/// `√ε·max(1, |input|)`, and counts what they say:
+/// `√ε·max(unit, |input|)`, and counts what they say:
 /// - mostly that the loops cannot be solved there: [`Stop::Toggle`], with the nearest such
 ///   error;
 /// - mostly a position on the other branch: [`Stop::BranchChange`].
@@ -154,6 +162,8 @@ pub struct Sweep<'a, T, M, const N: usize> {
     start_guess: [T; N],
     /// The mechanism's [`Kinematics::units`].
     units: [T; N],
+    /// The mechanism's [`Kinematics::input_unit`].
+    input_unit: T,
     finished: bool,
 }
 
@@ -211,6 +221,7 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             last: None,
             start_guess: position,
             units: mechanism.units(),
+            input_unit: mechanism.input_unit(),
             finished: false,
         }
     }
@@ -277,19 +288,21 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             });
         }
         let smallest = direction.abs() * T::constant(SMALLEST_PIECE);
-        // No piece is longer than one unit of the input (a radian), so none can span a turn
-        // of an angle input, from whose ends alone a full turn and a gap look alike; except
-        // that a step of more than 2^16 units is walked in 2^16 pieces, each accepted if
-        // Newton converges on the branch, so that the work is bounded.
+        // No piece is longer than one unit of the input (a radian, or the loops' length for a
+        // slide), so none can span a turn of an angle input, from whose ends alone a full
+        // turn and a gap look alike; except that a step of more than 2^16 units is walked in
+        // 2^16 pieces, each accepted if Newton converges on the branch, so that the work is
+        // bounded.
+        let unit = self.input_unit;
         let coarse = direction.abs() * T::constant(COARSE_PIECE);
         // Nor shorter than the input's rounding where it is coarser than a unit (a start of
-        // 3e8 in f32, whose neighbours are 32 apart): `x + 1` would be `x`, and the walk
+        // 3e8 rad in f32, whose neighbours are 32 apart): `x + 1` would be `x`, and the walk
         // would accept the same input for ever.
         let resolution = T::constant(4.0) * T::epsilon() * from.input.abs().max(target.abs());
-        let (longest, roughest) = if coarse > T::one() {
+        let (longest, roughest) = if coarse > unit {
             (coarse, coarse)
         } else {
-            (direction.abs().min(T::one().max(resolution)), smallest)
+            (direction.abs().min(unit.max(resolution)), smallest)
         };
         let longest = if direction < T::zero() {
             -longest
@@ -333,7 +346,7 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             // needs some forty halvings to be found), but past `COARSE_REFUSALS` of them the
             // walk would crawl, halving and doubling, for longer than any sweep may. It ends
             // there, saying what Newton said.
-            if coarse > T::one() && refusal.is_some() {
+            if coarse > unit && refusal.is_some() {
                 coarse_refusals += 1;
                 if let Some(refusal) = refusal
                     .as_ref()
@@ -381,7 +394,8 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
 
     /// What lies beyond the singular point the walk is stuck at, just past `x` (within
     /// `piece`): solves (from the predictor) at distances growing fourfold from `√ε·|x|` (or
-    /// `4·piece`, or `√ε`, if larger) to four times `reach` (and at least four of them), and
+    /// `4·piece`, or `√ε` of the input's unit, if larger) to four times `reach` (and at least
+    /// four of them), and
     /// counts the answers that say: a position on the other branch, from a guess the
     /// predictor places near the motion (the motion goes on there: a change point), or a
     /// failure other than a singular Jacobian or a position the loops do not fix (it goes on
@@ -399,7 +413,7 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         };
         let nearest = (piece * four)
             .abs()
-            .max(root_epsilon * x.abs().max(T::one()));
+            .max(root_epsilon * x.abs().max(self.input_unit));
         let farthest = (reach * four).abs().max(nearest * T::constant(256.0));
         let mut distance = nearest;
         let (mut branches, mut failures) = (0u32, 0u32);
@@ -1106,6 +1120,107 @@ mod tests {
         fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
             self.mechanism.same_branch(a, p, b, q)
         }
+
+        // `slope_within` is the default's, which counts through `slope`.
+
+        fn units(&self) -> [f64; 1] {
+            self.mechanism.units()
+        }
+
+        fn input_unit(&self) -> f64 {
+            self.mechanism.input_unit()
+        }
+    }
+
+    /// [`Line`] with an input whose unit is 1e20 (the slide of a linkage that long).
+    struct LongLine;
+
+    impl Kinematics<f64, 1> for LongLine {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            Line.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Line.slope(input, position)
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            Line.same_branch(a, p, b, q)
+        }
+
+        fn input_unit(&self) -> f64 {
+            1e20
+        }
+    }
+
+    /// [`Circle`] of radius 1e-20, in units of its radius: `x² + y² = 1e-40`.
+    struct SmallCircle;
+
+    impl Kinematics<f64, 1> for SmallCircle {
+        fn solve_near(
+            &self,
+            input: f64,
+            [guess]: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            match Circle.solve_near(input * 1e20, [guess], options) {
+                Ok(solved) => Ok(solved.map(|[y]| [y * 1e-20])),
+                Err(Error::CannotAssemble { .. }) => Err(Error::CannotAssemble { input }),
+                Err(error) => Err(error),
+            }
+        }
+
+        fn slope(&self, input: f64, [y]: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Circle.slope(input * 1e20, [y * 1e20])
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            Circle.same_branch(a, p, b, q)
+        }
+
+        fn units(&self) -> [f64; 1] {
+            [1e-20]
+        }
+
+        fn input_unit(&self) -> f64 {
+            1e-20
+        }
+    }
+
+    /// Stuck at the toggle of a circle of 1e-20, the walk looks beyond from `√ε` of the
+    /// input's unit, and names the nearest failure there; in units of 1 it would look from
+    /// 1.5e-8, a million million radii away.
+    #[test]
+    fn what_lies_beyond_starts_at_the_input_s_unit() {
+        let (samples, stop) = sweep(&SmallCircle, 0.0, 1e-20, 1e-21, 15);
+        assert_eq!(samples.len(), 10);
+        let Some(Stop::Toggle {
+            error: Error::CannotAssemble { input },
+            ..
+        }) = stop
+        else {
+            panic!("{stop:?}");
+        };
+        let past = input * 1e20 - 1.0;
+        assert!(past > 0.0 && past < 1e-7, "{input}");
+    }
+
+    /// Steps of 1e18 on an input whose unit is 1e20 take one piece each; in units of 1 they
+    /// would take 2¹⁶ coarse pieces each.
+    #[test]
+    fn a_step_is_walked_in_pieces_of_the_input_s_unit() {
+        let long = Counted::new(LongLine);
+        let (samples, stop) = sweep(&long, 0.0, 0.0, 1e18, 2);
+        assert_eq!((samples.len(), stop, long.work()), (3, None, (3, 3)));
+        let line = Counted::new(Line);
+        let (samples, stop) = sweep(&line, 0.0, 0.0, 1e18, 2);
+        assert_eq!((samples.len(), stop), (3, None));
+        assert!(line.work().0 > 1 << 17, "{:?}", line.work());
     }
 
     #[test]

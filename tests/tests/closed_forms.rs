@@ -398,6 +398,23 @@ impl<T: mechgen::Real, M: mechgen::Kinematics<T, N>, const N: usize> mechgen::Ki
     fn same_branch(&self, input_a: T, a: [T; N], input_b: T, b: [T; N]) -> bool {
         self.mechanism.same_branch(input_a, a, input_b, b)
     }
+
+    fn slope_within(
+        &self,
+        input: T,
+        position: [T; N],
+        residual: T,
+    ) -> Result<([T; N], [T; N]), mechgen::Error<T>> {
+        self.mechanism.slope_within(input, position, residual)
+    }
+
+    fn units(&self) -> [T; N] {
+        self.mechanism.units()
+    }
+
+    fn input_unit(&self) -> T {
+        self.mechanism.input_unit()
+    }
 }
 
 mechgen::mechanism! {
@@ -471,4 +488,64 @@ fn a_sweep_from_an_input_coarser_than_a_unit_goes_on_or_stops() {
     let outcomes: Vec<_> =
         Sweep::new(&counted, start, position, 4.0, 3, NewtonOptions::default()).collect();
     assert!(counted.solves.get() < 10_000, "{outcomes:?}");
+}
+
+/// A slide-driven sweep to the toggle where rod and crank line up (slide 3 times the crank's
+/// length), at every size: pieces of at most the loops' length (a slide's unit), and the look
+/// beyond starting `√ε` of that length away. At 1e20 the walk took 2¹⁶ pieces a step (pieces
+/// of at most 1, then coarse ones: three seconds for a hundred steps), and at 1e-20 it looked
+/// 1.5e-8 beyond, a million times the linkage, and named that input in its error.
+#[test]
+fn a_slide_driven_sweep_walks_and_looks_in_the_linkage_s_units() {
+    for exponent in [-20, 0, 20] {
+        let size = 10f64.powi(exponent);
+        let linkage = SlideDriven {
+            l2: size,
+            l3: 2.0 * size,
+            c: 0.0,
+        };
+        let guess = SlideDrivenUnknowns {
+            theta2: 1.0,
+            theta3: -0.4,
+        };
+        let start = linkage
+            .position(2.0 * size, &guess, &NewtonOptions::default())
+            .unwrap()
+            .value;
+        let counted = Counted {
+            mechanism: &linkage,
+            solves: std::cell::Cell::new(0),
+            limit: 100_000,
+        };
+        let stop = Sweep::new(
+            &counted,
+            2.0 * size,
+            start.to_array(),
+            0.01 * size,
+            150,
+            NewtonOptions::default(),
+        )
+        .find_map(Result::err);
+        let Some(Stop::Toggle {
+            last_input,
+            error: mechgen::Error::CannotAssemble { input },
+            ..
+        }) = stop
+        else {
+            panic!("1e{exponent}: {stop:?}");
+        };
+        // The last input, 3·size less rounding, and the nearest failure past it within
+        // √ε·3·size.
+        assert!(
+            (last_input / size - 3.0).abs() < 1e-12,
+            "1e{exponent}: {last_input}"
+        );
+        let past = input / size - 3.0;
+        assert!(past > 0.0 && past < 1e-7, "1e{exponent}: {input}");
+        assert!(
+            counted.solves.get() < 1_000,
+            "1e{exponent}: {}",
+            counted.solves.get()
+        );
+    }
 }

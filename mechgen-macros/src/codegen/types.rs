@@ -195,19 +195,22 @@ impl Generator<'_> {
                 Kind::Angle => quote!(T::one()),
                 Kind::Length => quote!(length),
             });
+        let length = quote! {
+            let size = #size;
+            // Declared lengths that sum to nothing measurable leave no unit of length but the
+            // float's.
+            let length = if size > T::zero() && size.is_finite() { size } else { T::one() };
+        };
         let length_unit = self
             .model
             .unknowns
             .iter()
             .any(|unknown| unknown.kind == Kind::Length)
-            .then(|| {
-                quote! {
-                    let size = #size;
-                    // Declared lengths that sum to nothing measurable leave no unit of
-                    // length but the float's.
-                    let length = if size > T::zero() && size.is_finite() { size } else { T::one() };
-                }
-            });
+            .then(|| length.clone());
+        let input_unit = match self.model.inputs.first().map(|input| input.kind) {
+            Some(Kind::Length) => quote!(#length length),
+            _ => quote!(T::one()),
+        };
         let same_branch = if self
             .equations
             .closed_form
@@ -289,6 +292,10 @@ impl Generator<'_> {
                 fn units(&self) -> [T; #count] {
                     #length_unit
                     [#(#units),*]
+                }
+
+                fn input_unit(&self) -> T {
+                    #input_unit
                 }
             }
         }
