@@ -342,13 +342,13 @@ impl<T: Real, const N: usize> Factored<T, N> {
         self.relative
     }
 
-    /// How far each unknown may lie from the solution of `a·x = b` when each component of `b`
-    /// may be off by `error`: `Σ_k |(a⁻¹)_ik|·error`, the bound that holds for every such
-    /// error (not finite where it overflows: nothing is fixed there). The sweep reads it
+    /// How far each unknown may lie from the solution of `a·x = b` when component `k` of `b`
+    /// may be off by `errors[k]`: `Σ_k |(a⁻¹)_ik|·errors[k]`, the bound that holds for every
+    /// such error (not finite where it overflows: nothing is fixed there). The sweep reads it
     /// through `Kinematics::slope_within`.
-    pub fn uncertainty(&self, error: T) -> [T; N] {
+    pub fn uncertainty(&self, errors: [T; N]) -> [T; N] {
         let mut bound = [T::zero(); N];
-        for k in 0..N {
+        for (k, error) in errors.into_iter().enumerate() {
             let mut unit = [T::zero(); N];
             unit[k] = error;
             for (b, v) in bound.iter_mut().zip(self.solve(unit)) {
@@ -737,22 +737,24 @@ mod tests {
         assert!(Factored::quick([[1.0, 1.0], [0.0, 4.0 * e]]).is_some());
     }
 
-    /// Row sums of the inverse's magnitudes, times the error: for a 2×2 matrix (its kept
+    /// Row sums of the inverse's magnitudes, times the errors: for a 2×2 matrix (its kept
     /// inverse) and a 3×3 one (LU), with a column scaled by a power of two.
     #[test]
     fn uncertainty_is_the_inverse_rows_magnitudes_times_the_error() {
         // Inverse [[1, −1], [0, 0.5]].
         let two = Factored::new([[1.0, 2.0], [0.0, 2.0]]).unwrap();
-        assert_eq!(two.uncertainty(1.0), [2.0, 0.5]);
-        assert_eq!(two.uncertainty(3.0), [6.0, 1.5]);
+        assert_eq!(two.uncertainty([1.0, 1.0]), [2.0, 0.5]);
+        assert_eq!(two.uncertainty([3.0, 3.0]), [6.0, 1.5]);
+        // Each component's error through its own column of the inverse.
+        assert_eq!(two.uncertainty([0.0, 4.0]), [4.0, 2.0]);
         // Inverse [[0.5, 0, 0], [0, 1, −1], [0, 0, 1]], then the first column scaled by 2⁻⁶⁰⁰
         // (its unknown's row by 2⁶⁰⁰), which LU scales back.
         let tiny = 2f64.powi(-600);
         let three =
             Factored::new([[2.0 * tiny, 0.0, 0.0], [0.0, 1.0, 1.0], [0.0, 0.0, 1.0]]).unwrap();
-        assert_eq!(three.uncertainty(0.25), [0.125 / tiny, 0.5, 0.25]);
+        assert_eq!(three.uncertainty([0.25; 3]), [0.125 / tiny, 0.5, 0.25]);
         // An error too large for the float: nothing is fixed.
-        assert!(two.uncertainty(f64::MAX)[0].is_infinite());
+        assert!(two.uncertainty([f64::MAX; 2])[0].is_infinite());
     }
 
     #[test]

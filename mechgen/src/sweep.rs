@@ -21,21 +21,16 @@ pub trait Kinematics<T: Real, const N: usize> {
     fn same_branch(&self, input_a: T, a: [T; N], input_b: T, b: [T; N]) -> bool;
 
     /// [`slope`](Self::slope), with how far each unknown of the solved `position` may lie from
-    /// the loops' root when each component of their residual may be off by `residual` plus
-    /// the rounding of its evaluation: `Σ_k |J⁻¹_ik|` times that, in the
-    /// unknown's own units. By default (a hand implementation) zeros: nothing known.
+    /// the loops' root: `Σ_k |J⁻¹_ik|·e_k` for each residual component's error `e_k`, its
+    /// value there plus the rounding of its evaluation (generated code: 4·ε of its own
+    /// loop's declared lengths), in the unknown's own units. By default (a hand
+    /// implementation) zeros: nothing known.
     ///
     /// Generated code computes both from one factored Jacobian. Where an unknown's link
     /// shrinks to nothing (a slide through its pivot, the isosceles inverted slider-crank's
     /// change point), the loops stop fixing its angle, and a position that closes them to
     /// rounding may hold any angle there: the sweep must not read a path from such positions.
-    fn slope_within(
-        &self,
-        input: T,
-        position: [T; N],
-        residual: T,
-    ) -> Result<([T; N], [T; N]), Error<T>> {
-        let _ = residual;
+    fn slope_within(&self, input: T, position: [T; N]) -> Result<([T; N], [T; N]), Error<T>> {
         Ok((self.slope(input, position)?, [T::zero(); N]))
     }
 
@@ -100,7 +95,7 @@ pub enum Stop<T> {
 ///
 /// Each step is a predictor-corrector walk: Newton starts from the previous position moved
 /// along its velocity, and the result is accepted if it is on the same branch, the loops fix
-/// it (no unknown can be off by a sixteenth of its unit, from Newton's residual and rounding
+/// it (no unknown can be off by a sixteenth of its unit, from each loop's residual and rounding
 /// through the Jacobian's inverse: near a change point where a link shrinks to nothing, its
 /// angle is free, in f32 for some 1e-3 rad of input), and the path between is smooth: the
 /// change in the unknowns agrees with the piece's length times the mean of the velocities at
@@ -464,8 +459,8 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         for (g, s) in guess.iter_mut().zip(m) {
             *g = *g + s * h;
         }
-        let (position, residual) = match self.mechanism.solve_near(y, guess, &self.options) {
-            Ok(solved) => (solved.value, solved.residual_norm),
+        let position = match self.mechanism.solve_near(y, guess, &self.options) {
+            Ok(solved) => solved.value,
             Err(Error::OtherBranch) => return Err(Refusal::OtherBranch),
             Err(error) => return Err(Refusal::Failed(error)),
         };
@@ -474,7 +469,7 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         }
         let (velocity, uncertainty) = self
             .mechanism
-            .slope_within(y, position, residual)
+            .slope_within(y, position)
             .map_err(Refusal::Failed)?;
         // A landing the loops fix only loosely (near a change point where a link shrinks to
         // nothing, in f32 some 1e-3 rad of input wide) may hold any value of the loose
@@ -1526,7 +1521,7 @@ mod tests {
     }
 
     /// `q = input`, which the loops fix only loosely (to a unit) within 0.01 of 1, and to the
-    /// rounding of the line elsewhere, with the residual as given.
+    /// rounding of the line elsewhere.
     struct Loose;
 
     impl Kinematics<f64, 1> for Loose {
@@ -1551,14 +1546,13 @@ mod tests {
             &self,
             input: f64,
             position: [f64; 1],
-            residual: f64,
         ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
             let loose = if (input - 1.0).abs() < 0.01 {
                 1.0
             } else {
                 1e-15
             };
-            Ok((self.slope(input, position)?, [loose + residual]))
+            Ok((self.slope(input, position)?, [loose]))
         }
     }
 
@@ -1603,9 +1597,8 @@ mod tests {
                 &self,
                 input: f64,
                 position: [f64; 1],
-                residual: f64,
             ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
-                Loose.slope_within(input, position, residual)
+                Loose.slope_within(input, position)
             }
             fn units(&self) -> [f64; 1] {
                 [100.0]

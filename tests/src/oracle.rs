@@ -2010,8 +2010,9 @@ pub struct Case {
     /// A position near the one wanted, where the oracle has no closed form (the Stephenson
     /// six-bar): the oracle polishes it.
     pub near: Option<Vec<f64>>,
-    /// Where Newton starts, as fractions in [−1, 1] of the distance from the true position at
-    /// which Kantorovich still certifies convergence.
+    /// Where Newton starts, as multiples of the distance from the true position at which
+    /// Kantorovich still certifies convergence: within [−1, 1] inside its ball, beyond for a
+    /// guess Newton promises nothing from.
     pub nudge: Vec<f64>,
     /// How the input was placed: `"anywhere"`, or how far from a limit.
     pub placement: String,
@@ -2726,6 +2727,7 @@ pub mod judge {
     }
 
     /// What the oracle says about a case.
+    #[derive(Clone)]
     struct Expect {
         model: Model,
         params: Params,
@@ -3817,16 +3819,36 @@ pub mod judge {
                         // root need not be the oracle's geometric sides, and promises no
                         // particular root from an uncertified guess. So the root it found is
                         // judged, once certified.
+                        // (Judged by a copy: the case's own expectation makes the rescaled
+                        // call's guess.)
+                        let mut judged = None;
                         if outside && e.reach.is_none() {
                             let found = polish(&e.model, e.input, &rates[0], e.omega, e.alpha);
                             if let Some(t) = found.truth.filter(|_| found.kantorovich <= 0.5) {
-                                e.truth = Some(t);
+                                judged = Some(Expect {
+                                    truth: Some(t),
+                                    ..e.clone()
+                                });
                             }
                         }
-                        e.position(&mut verdict, api, &rates[0], kappa, &wanted);
+                        // From a guess outside the ball on another branch than the case's
+                        // (a far one), the root to be is the guess's branch's: judged
+                        // against it, so that an `Ok` on the case's is a silent switch.
+                        if outside && switched && e.reach.is_some() {
+                            let theirs = Case {
+                                branches: wanted.clone(),
+                                ..case.clone()
+                            };
+                            judged = Some(Expect {
+                                guess_near_none: e.guess_near_none,
+                                ..expect::<T>(&theirs, &p)
+                            });
+                        }
+                        let judged = judged.as_mut().unwrap_or(&mut e);
+                        judged.position(&mut verdict, api, &rates[0], kappa, &wanted);
                         if let Some(stated) = stated {
-                            e.rates(&mut verdict, api, &rates[1..], kappa);
-                            e.within_stated(&mut verdict, api, &rates, &stated);
+                            judged.rates(&mut verdict, api, &rates[1..], kappa);
+                            judged.within_stated(&mut verdict, api, &rates, &stated);
                         }
                         Ok(())
                     }
@@ -4827,6 +4849,17 @@ pub mod draw {
             }
             coupler => coupler,
         };
+        // A tenth of Newton's guesses beyond Kantorovich's ball, 2 to 10⁴ times as far
+        // (angles off by up to thousands of radians): Newton promises no root from there,
+        // but any `Ok` must be a root on the guess's own branch, as accurate as stated.
+        // Drawn last, so the case is otherwise as it was.
+        let mut nudge: Vec<f64> = nudge;
+        if matches!(api, Api::Position | Api::MotionNear) && rng.chance(0.1) {
+            let far = rng.log(2.0, 1e4);
+            for n in &mut nudge {
+                *n *= far;
+            }
+        }
         Case {
             kind,
             float,

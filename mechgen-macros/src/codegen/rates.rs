@@ -403,13 +403,27 @@ impl Generator<'_> {
     /// The size [`Self::rates_check`] weighs the columns against: the sum of the lengths the
     /// loops declare (1 without one), read from the mechanism `receiver`.
     pub(super) fn accuracy_size(&self, receiver: TokenStream) -> TokenStream {
+        self.declared_size(receiver, None)
+    }
+
+    /// The sum of the lengths loop `loop_index` declares (every loop's where `None`; 1
+    /// without one), read from the mechanism `receiver`: its rounding's scale.
+    pub(super) fn declared_size(
+        &self,
+        receiver: TokenStream,
+        loop_index: Option<usize>,
+    ) -> TokenStream {
+        let loops = || {
+            self.model
+                .loops
+                .iter()
+                .enumerate()
+                .filter(move |(k, _)| loop_index.is_none_or(|only| *k == only))
+                .flat_map(|(_, sum)| &sum.terms)
+        };
         // The lengths of the loops' vectors only: a tracked point's distance (a coupler
         // point far off its link) does not make the loops' rates any less accurate.
-        let in_loops: std::collections::BTreeSet<usize> = self
-            .model
-            .loops
-            .iter()
-            .flat_map(|sum| &sum.terms)
+        let in_loops: std::collections::BTreeSet<usize> = loops()
             .flat_map(|term| term.magnitude.coefficients.keys())
             .filter_map(|symbol| match symbol {
                 SymbolRef::Param(i) => Some(*i),
@@ -427,8 +441,14 @@ impl Generator<'_> {
                 quote!(#receiver.#name.abs())
             });
         // A formula in a magnitude is a length of the loop's own (which a product or a
-        // quotient of parameters can make far longer than any of them).
-        let formulas = self.loop_length_formulas().into_iter().map(|formula| {
+        // quotient of parameters can make far longer than any of them), counted once.
+        let mut formulas = Vec::new();
+        for (_, formula) in loops().flat_map(|term| &term.magnitude.formulas) {
+            if !formulas.contains(&formula) {
+                formulas.push(formula);
+            }
+        }
+        let formulas = formulas.into_iter().map(|formula| {
             let value = super::evaluators::formula_tokens(formula, &|i| {
                 let field = &self.model.params[i].name;
                 quote!(#receiver.#field)

@@ -185,8 +185,11 @@ impl Generator<'_> {
             arg("position"),
         );
         let (a, b, input_a, input_b) = (local("a"), local("b"), local("input_a"), local("input_b"));
-        let residual = local("residual");
         let size = self.accuracy_size(quote!(self));
+        let rounding = (0..self.model.loops.len()).flat_map(|k| {
+            let own = self.declared_size(quote!(self), Some(k));
+            [own.clone(), own]
+        });
         let units = self
             .model
             .unknowns
@@ -275,7 +278,6 @@ impl Generator<'_> {
                     &self,
                     #input: T,
                     #position: [T; #count],
-                    #residual: T,
                 ) -> ::core::result::Result<([T; #count], [T; #count]), ::mechgen::Error<T>> {
                     let #position = #ty::from_array(#position);
                     let along = self.input_jacobian(#input, &#position).map(|v| -v);
@@ -283,10 +285,17 @@ impl Generator<'_> {
                         self.jacobian(#input, &#position),
                     )?;
                     let slope = ::mechgen::__private::finite(factored.solve(along), "velocity")?;
-                    // The residual's own rounding: Newton's floor, 16·ε per unit of the loops'
-                    // declared lengths.
-                    let rounding = T::constant(16.0) * T::epsilon() * (#size);
-                    ::core::result::Result::Ok((slope, factored.uncertainty(#residual + rounding)))
+                    // Each row's residual as it is, and what rounding may hide of it: a few
+                    // ε (each vector's sine or cosine and product, and the sum) per unit of its
+                    // own loop's declared lengths.
+                    let residual = self.residual(#input, &#position);
+                    let floor = T::constant(4.0) * T::epsilon();
+                    let rounding = [#(#rounding),*];
+                    let mut errors = residual;
+                    for (error, rounding) in errors.iter_mut().zip(rounding) {
+                        *error = error.abs() + floor * rounding;
+                    }
+                    ::core::result::Result::Ok((slope, factored.uncertainty(errors)))
                 }
 
                 fn units(&self) -> [T; #count] {
