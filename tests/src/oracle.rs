@@ -1107,8 +1107,23 @@ pub fn branch_signs(model: &Model, state: &State) -> (Vec<Branch>, Vec<f64>) {
 /// the loop's other vectors at this position (equal to [`branch_signs`]' sine at a solution,
 /// not elsewhere).
 pub fn guess_branches(model: &Model, state: &State) -> Vec<Branch> {
+    guess_sides(model, state)
+        .into_iter()
+        .map(|(branch, _)| branch)
+        .collect()
+}
+
+/// [`guess_branches`], each loop's with how far its moving point lies from its mirror image
+/// across the loop's chord (twice its height over the chord, a length) for the loop-by-loop
+/// mechanisms, and infinity for the others: where that is within a solution's error, the
+/// runtime takes the guess's loop as on neither branch (`mechgen::__private::same_sides`).
+pub fn guess_sides(model: &Model, state: &State) -> Vec<(Branch, f64)> {
     if !matches!(model.kind, Kind::WattSixBar | Kind::JansenLeg) {
-        return branch_signs(model, state).0;
+        return branch_signs(model, state)
+            .0
+            .into_iter()
+            .map(|branch| (branch, f64::INFINITY))
+            .collect();
     }
     model
         .loops
@@ -1126,11 +1141,19 @@ pub fn guess_branches(model: &Model, state: &State) -> Vec<Branch> {
                 }
             }
             let chord = C::new(-known.re, -known.im);
-            if chord.cross(&p1).is_negative() {
+            let cross = chord.cross(&p1);
+            let norm = chord.norm();
+            let mirror = if norm.is_zero() {
+                0.0
+            } else {
+                (cross.abs() * Big::from_f64(2.0) / norm).to_f64()
+            };
+            let branch = if cross.is_negative() {
                 Branch::Crossed
             } else {
                 Branch::Open
-            }
+            };
+            (branch, mirror)
         })
         .collect()
 }
@@ -2197,7 +2220,9 @@ pub fn valid_dimensions(kind: Kind, dims: &[f64], eta: f64) -> Option<bool> {
 ///   some position within the bound of the truth is at the documented threshold,
 ///   `1/κ ≤ √ε + N·16·ε·κ·ρ`, or the loops are within rounding of a limit; Newton's
 ///   `OtherBranch` and `NoConvergence` only where its guess was outside the basin Kantorovich
-///   certifies (rounding the guess to the float put it there); nothing else;
+///   certifies (rounding the guess to the float put it there, or the draw, a tenth of the
+///   time, 2 to 10⁴ times as far); from there, an `Ok` on the guess's own branch (a loop
+///   whose guess lies within the answer's error of its mirror image on either); nothing else;
 /// - scaling every length by a power of two changes no outcome and no angle's bits (lengths
 ///   scale exactly); by another factor, outcomes change only within rounding of a limit or the
 ///   threshold, and results agree to the sum of their bounds and the data's rounding.
@@ -3797,7 +3822,8 @@ pub mod judge {
                 let guess_t: Vec<T> = guess.iter().map(|x| T::constant(*x)).collect();
                 // Newton keeps to its guess's branch, which near a toggle a certified guess may
                 // be on the other side of: then `OtherBranch` is the answer.
-                let wanted = guess_branches(&e.model, &State::from_f64(&e.model, e.input, &guess));
+                let guess_state = State::from_f64(&e.model, e.input, &guess);
+                let mut wanted = guess_branches(&e.model, &guess_state);
                 e.guess_near_none = e.truth.is_none();
                 let switched = e.truth.as_ref().is_some_and(|t| t.branches != wanted);
                 let tolerance = T::constant(case.tolerance);
@@ -3811,6 +3837,31 @@ pub mod judge {
                 let before = verdict.findings.len();
                 let result = match r {
                     Ok((rates, kappa, stated)) => {
+                        // A loop whose guess lies within the answer's error of its mirror image
+                        // is on neither branch at the guess (the runtime's `same_sides`): from
+                        // a guess outside the ball (a far one, a loop's point almost on its
+                        // chord: edge run seed 33, case 1111, an f32 Jansen leg with a stated
+                        // tolerance of 1% of its links), its answer may be on either.
+                        if outside {
+                            let error = 4.0
+                                * kappa.max(1.0)
+                                * (64.0 * e.eps * e.size()
+                                    + residual_norm(&e.model, e.input, &rates[0]));
+                            let found = branch_signs(
+                                &e.model,
+                                &State::from_f64(&e.model, e.input, &rates[0]),
+                            )
+                            .0;
+                            for ((want, (_, mirror)), got) in wanted
+                                .iter_mut()
+                                .zip(guess_sides(&e.model, &guess_state))
+                                .zip(found)
+                            {
+                                if mirror <= error {
+                                    *want = got;
+                                }
+                            }
+                        }
                         // From a guess outside the truth's basin (rounding of a guess that
                         // counts turns, in f32: edge run seed 14, case 2723) the Stephenson
                         // six-bar's Newton may find another root: its contract keeps the
@@ -3834,6 +3885,7 @@ pub mod judge {
                         // From a guess outside the ball on another branch than the case's
                         // (a far one), the root to be is the guess's branch's: judged
                         // against it, so that an `Ok` on the case's is a silent switch.
+                        let switched = e.truth.as_ref().is_some_and(|t| t.branches != wanted);
                         if outside && switched && e.reach.is_some() {
                             let theirs = Case {
                                 branches: wanted.clone(),

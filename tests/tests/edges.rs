@@ -286,6 +286,18 @@ fn the_seed_30_runs_reproducers_keep_the_contract() {
     drawn_cases_keep_the_contract("everything", 30, &[105700, 780517], true);
 }
 
+/// A case of the first run with a tenth of Newton's guesses drawn 2 to 10⁴ times beyond
+/// Kantorovich's ball (`everything/newton`, seed 33, 30,000 cases): case 1111, an f32 Jansen
+/// leg with a stated tolerance of 1% of its links, whose far guess has one loop's moving point
+/// within the answer's error of its mirror image across the chord. The runtime takes that
+/// loop as on neither branch at the guess (`same_sides`), and its `Ok` on the loop's other
+/// branch keeps the contract; the judge, reading the guess's sign alone, called it a wrong
+/// branch, and now reads the loop as the runtime does.
+#[test]
+fn a_far_guess_whose_loop_lies_on_its_chord_keeps_the_contract() {
+    drawn_cases_keep_the_contract("everything/newton", 33, &[1111], true);
+}
+
 /// The Stephenson six-bar of case 105700 (seed 30) in f32, at its size of 1e-21 and scaled by
 /// 2^72 to about 1: `position` from the guess answers, with the f64 solution to the
 /// contract's accuracy, and `motion_near` says its rates are inaccurate, where the reduced
