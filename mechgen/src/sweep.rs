@@ -495,15 +495,20 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             }));
         }
         // The trapezoidal rule, Δq ≈ h·(m_x + m_y)/2, holds to third order in h for a smooth
-        // path, through dead centres (where m_x or m_y vanishes) too.
+        // path, through dead centres (where m_x or m_y vanishes) too. Each unknown in its own
+        // units, so that an angle and a slide weigh alike at any size, and rounding is that
+        // of a unit at least: a slide that stays at 0 still moves by the rounding of the
+        // loops' lengths (the crossed isosceles slider-crank's, whose every piece was refused
+        // as rough against a noise of the angles' rounding: a crawl, from sizes of 1e16).
         let half = T::constant(0.5);
-        let (mut error, mut size, mut magnitude) = (T::zero(), T::zero(), T::zero());
+        let (mut error, mut size, mut magnitude) = (T::zero(), T::zero(), T::one());
         for i in 0..N {
-            let change = position[i] - q[i];
-            let (before, after) = (m[i] * h, velocity[i] * h);
+            let unit = self.units[i];
+            let change = (position[i] - q[i]) / unit;
+            let (before, after) = (m[i] * h / unit, velocity[i] * h / unit);
             error = error.max((change - (before + after) * half).abs());
             size = size.max(change.abs() + before.abs() + after.abs());
-            magnitude = magnitude.max(q[i].abs().max(position[i].abs()));
+            magnitude = magnitude.max(q[i].abs().max(position[i].abs()) / unit);
         }
         let noise = T::constant(64.0) * T::epsilon() * magnitude;
         let smooth = error <= T::constant(SMOOTHNESS) * size + noise;

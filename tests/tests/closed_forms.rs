@@ -586,3 +586,46 @@ fn a_slide_driven_sweep_walks_and_looks_in_the_linkage_s_units() {
         );
     }
 }
+
+/// The crossed isosceles slider-crank keeps its slider at the crank's pivot (`d` = 0 to the
+/// rounding of its lengths) while the rod turns: a sweep of it goes on at every size, a
+/// solve or two a step. Its smoothness test weighed that rounding, some ε of the linkage,
+/// against the angle's, and refused every piece down to 2⁻⁴⁰ of a step: a crawl, a hang from
+/// sizes of 1e16 in f64 (an adversarial review's catch).
+#[test]
+fn a_slide_at_rest_to_rounding_does_not_make_a_sweep_crawl() {
+    for size in [1.0f64, 1e10, 1e16, 1e18, 1e100, 1e-100] {
+        let slider = SliderCrank::new(size, size, 0.0).unwrap();
+        for (branch, start, step) in [(Branch::Crossed, 0.3, 0.01), (Branch::Open, 2.0, -0.001)] {
+            let position = slider.assemble(start, branch).unwrap().to_array();
+            let counted = Counted {
+                mechanism: &slider,
+                solves: std::cell::Cell::new(0),
+                limit: 10_000,
+            };
+            let samples: Vec<_> = Sweep::new(
+                &counted,
+                start,
+                position,
+                step,
+                10,
+                NewtonOptions::default(),
+            )
+            .collect::<Result<_, _>>()
+            .unwrap_or_else(|stop| panic!("{size:e}, {branch:?}: {stop:?}"));
+            for sample in &samples {
+                let closed = slider.assemble(sample.input, branch).unwrap().to_array();
+                assert!(
+                    (sample.position[0] - closed[0]).abs() < 1e-9
+                        && (sample.position[1] - closed[1]).abs() < 1e-9 * size,
+                    "{size:e}, {branch:?}: {sample:?} against {closed:?}"
+                );
+            }
+            assert!(
+                counted.solves.get() < 100,
+                "{size:e}, {branch:?}: {} solves",
+                counted.solves.get()
+            );
+        }
+    }
+}
