@@ -98,9 +98,9 @@ pub enum Stop<T> {
 /// it (no unknown can be off by a sixteenth of its unit, from each loop's residual and rounding
 /// through the Jacobian's inverse: near a change point where a link shrinks to nothing, its
 /// angle is free, in f32 for some 1e-3 rad of input), and the path between is smooth: the
-/// change in the unknowns agrees with the piece's length times the mean of the velocities at
-/// its two ends (the trapezoidal rule, exact to third order, dead centres included) to
-/// within an eighth. Otherwise the piece is halved (and grows again,
+/// change in the unknowns, each in its unit ([`Kinematics::units`]), agrees with the piece's
+/// length times the mean of the velocities at its two ends (the trapezoidal rule, exact to
+/// third order, dead centres included) to within an eighth. Otherwise the piece is halved (and grows again,
 /// doubling, after each accepted one); no piece is longer than one unit of the input (a
 /// radian: no piece spans a turn, whose ends alone cannot tell a full turn from a gap in the
 /// motion; for a slide, the loops' declared lengths, [`Kinematics::input_unit`]), or than
