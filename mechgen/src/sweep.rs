@@ -34,9 +34,9 @@ pub trait Kinematics<T: Real, const N: usize> {
         Ok((self.slope(input, position)?, [T::zero(); N]))
     }
 
-    /// What counts as a unit of each unknown for the sweep's tests: a radian for an angle, the
-    /// sum of the loops' declared lengths for a length (generated code); by default 1 for
-    /// every unknown.
+    /// What counts as a unit of each unknown for the sweep's tests (positive and finite): a
+    /// radian for an angle, the sum of the loops' declared lengths for a length (generated
+    /// code); by default 1 for every unknown.
     fn units(&self) -> [T; N] {
         [T::one(); N]
     }
@@ -100,8 +100,8 @@ pub enum Stop<T> {
 /// angle is free, in f32 for some 1e-3 rad of input), and the path between is smooth: the
 /// change in the unknowns, each in its unit ([`Kinematics::units`]), agrees with the piece's
 /// length times the mean of the velocities at its two ends (the trapezoidal rule, exact to
-/// third order, dead centres included) to within an eighth. Otherwise the piece is halved (and grows again,
-/// doubling, after each accepted one); no piece is longer than one unit of the input (a
+/// third order, dead centres included) to within an eighth. Otherwise the piece is halved
+/// (and grows again, doubling, after each accepted one); no piece is longer than one unit of the input (a
 /// radian: no piece spans a turn, whose ends alone cannot tell a full turn from a gap in the
 /// motion; for a slide, the loops' declared lengths, [`Kinematics::input_unit`]), or than
 /// `4·ε·|input|` where that is longer (from 3e8 rad in f32, whose neighbours are 32 apart,
