@@ -1917,9 +1917,12 @@ pub fn relative_residual(model: &Model, input: f64, q: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The largest loop residual relative to the magnitudes of all the loops together: what
-/// Newton, which solves coupled loops at once, documents its floor against (`16·ε·Σ|r|`).
-/// A small loop that shares unknowns with a large one inherits the large one's rounding.
+/// The largest loop residual component relative to the magnitudes of all the loops together:
+/// what Newton, which solves coupled loops at once, documents its floor against
+/// (`16·ε·Σ|r|`), component by component as it tests it (the norm of a loop's two components,
+/// up to √2 times the larger, read a Watt six-bar Newton left 4 floors up, where it stops if
+/// no step lowers the residual, as 5% beyond: edge run seed 34, case 67943). A small loop that
+/// shares unknowns with a large one inherits the large one's rounding.
 pub fn coupled_relative_residual(model: &Model, input: f64, q: &[f64]) -> f64 {
     let state = State::from_f64(model, input, q);
     let total = model
@@ -1928,7 +1931,7 @@ pub fn coupled_relative_residual(model: &Model, input: f64, q: &[f64]) -> f64 {
         .fold(0.0, |sum, m| sum + m.to_f64());
     residual(model, &state)
         .iter()
-        .map(|r| r.norm().to_f64() / total)
+        .map(|r| r.re.abs().max(r.im.abs()).to_f64() / total)
         .fold(0.0, f64::max)
 }
 
