@@ -1132,29 +1132,45 @@ mod tests {
         }
     }
 
-    /// [`Line`] with an input whose unit is 1e20 (the slide of a linkage that long).
-    struct LongLine;
+    /// `inner` with its unknowns' and its input's units as given.
+    struct WithUnits<M> {
+        inner: M,
+        units: f64,
+        input_unit: f64,
+    }
 
-    impl Kinematics<f64, 1> for LongLine {
+    impl<M: Kinematics<f64, 1>> Kinematics<f64, 1> for WithUnits<M> {
         fn solve_near(
             &self,
             input: f64,
             guess: [f64; 1],
             options: &NewtonOptions<f64>,
         ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
-            Line.solve_near(input, guess, options)
+            self.inner.solve_near(input, guess, options)
         }
 
         fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
-            Line.slope(input, position)
+            self.inner.slope(input, position)
         }
 
         fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
-            Line.same_branch(a, p, b, q)
+            self.inner.same_branch(a, p, b, q)
+        }
+
+        fn slope_within(
+            &self,
+            input: f64,
+            position: [f64; 1],
+        ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
+            self.inner.slope_within(input, position)
+        }
+
+        fn units(&self) -> [f64; 1] {
+            [self.units]
         }
 
         fn input_unit(&self) -> f64 {
-            1e20
+            self.input_unit
         }
     }
 
@@ -1214,7 +1230,11 @@ mod tests {
     /// would take 2¹⁶ coarse pieces each.
     #[test]
     fn a_step_is_walked_in_pieces_of_the_input_s_unit() {
-        let long = Counted::new(LongLine);
+        let long = Counted::new(WithUnits {
+            inner: Line,
+            units: 1.0,
+            input_unit: 1e20,
+        });
         let (samples, stop) = sweep(&long, 0.0, 0.0, 1e18, 2);
         assert_eq!((samples.len(), stop, long.work()), (3, None, (3, 3)));
         let line = Counted::new(Line);
@@ -1582,34 +1602,12 @@ mod tests {
             })
         );
 
-        struct Wide;
-        impl Kinematics<f64, 1> for Wide {
-            fn solve_near(
-                &self,
-                input: f64,
-                guess: [f64; 1],
-                options: &NewtonOptions<f64>,
-            ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
-                Loose.solve_near(input, guess, options)
-            }
-            fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
-                Loose.slope(input, position)
-            }
-            fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
-                Loose.same_branch(a, p, b, q)
-            }
-            fn slope_within(
-                &self,
-                input: f64,
-                position: [f64; 1],
-            ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
-                Loose.slope_within(input, position)
-            }
-            fn units(&self) -> [f64; 1] {
-                [100.0]
-            }
-        }
-        let (samples, stop) = sweep(&Wide, 0.0, 0.0, 0.5, 4);
+        let wide = WithUnits {
+            inner: Loose,
+            units: 100.0,
+            input_unit: 1.0,
+        };
+        let (samples, stop) = sweep(&wide, 0.0, 0.0, 0.5, 4);
         assert_eq!((samples.len(), stop), (5, None));
     }
 
