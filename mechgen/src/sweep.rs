@@ -1513,6 +1513,48 @@ mod tests {
         ));
     }
 
+    /// [`Cross`] lifted by 1000: `y = 1000 ± |x|`, on the branch of `y − 1000`'s sign, which
+    /// cannot be assembled below −0.5.
+    struct Lifted;
+
+    impl Kinematics<f64, 1> for Lifted {
+        fn solve_near(
+            &self,
+            input: f64,
+            [guess]: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            if input < -0.5 {
+                return Err(Error::CannotAssemble { input });
+            }
+            let solved = Cross.solve_near(input, [guess - 1000.0], options)?;
+            Ok(solved.map(|[y]| [y + 1000.0]))
+        }
+
+        fn slope(&self, input: f64, [y]: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Cross.slope(input, [y - 1000.0])
+        }
+
+        fn same_branch(&self, a: f64, [p]: [f64; 1], b: f64, [q]: [f64; 1]) -> bool {
+            Cross.same_branch(a, [p - 1000.0], b, [q - 1000.0])
+        }
+    }
+
+    /// An unknown a thousand units from zero moves by a unit and its own size before a
+    /// predicted landing counts as no place on the motion: the change point at 0 is found by
+    /// its landings beyond, as [`Cross`]'s is (a test that took a unit less the unknown's size
+    /// would place none, and say a toggle).
+    #[test]
+    fn a_landing_is_placed_within_the_unknowns_own_size() {
+        assert_eq!(
+            sweep(&Lifted, 1.0, 1001.0, -0.5, 4).1,
+            Some(Stop::BranchChange {
+                last_input: 0.0,
+                next_input: -0.5,
+            })
+        );
+    }
+
     /// `q = 10⁸ + 10⁻¹⁰·input`: a motion far below the rounding of the position.
     struct Offset;
 
