@@ -1555,6 +1555,48 @@ mod tests {
         );
     }
 
+    /// `y = 10⁸·|x|` on one branch, in units of 10⁸: a corner at 0.
+    struct Vee;
+
+    impl Kinematics<f64, 1> for Vee {
+        fn solve_near(
+            &self,
+            input: f64,
+            _guess: [f64; 1],
+            _options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            Ok(Solved {
+                value: [1e8 * input.abs()],
+                iterations: 1,
+                residual_norm: 0.0,
+                condition: 1.0,
+            })
+        }
+
+        fn slope(&self, input: f64, _position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Ok([1e8 * input.signum()])
+        }
+
+        fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
+            true
+        }
+
+        fn units(&self) -> [f64; 1] {
+            [1e8]
+        }
+    }
+
+    /// A corner in an unknown of large units is rough in those units: the piece across it is
+    /// refused and halved (until the trapezoidal rule's eighth lets a piece with the corner
+    /// near its middle through), as at any size, in six solves; were rounding that of the
+    /// unknown's value times its unit, the step would be one piece, taken at once.
+    #[test]
+    fn a_corner_is_rough_in_the_unknowns_units() {
+        let vee = Counted::new(Vee);
+        let (samples, stop) = sweep(&vee, 0.9, 0.9e8, -1.0, 1);
+        assert_eq!((samples.len(), stop, vee.work()), (2, None, (6, 6)));
+    }
+
     /// `q = 10⁸ + 10⁻¹⁰·input`: a motion far below the rounding of the position.
     struct Offset;
 
