@@ -101,7 +101,10 @@ pub enum Stop<T> {
 /// change in the unknowns, each in its unit ([`Kinematics::units`]), agrees with the piece's
 /// length times the mean of the velocities at its two ends (the trapezoidal rule, exact to
 /// third order, dead centres included) to within an eighth. Otherwise the piece is halved
-/// (and grows again, doubling, after each accepted one); no piece is longer than one unit of the input (a
+/// (and grows again, doubling, after each accepted one); a halved piece whose landing is more
+/// than sixteen times less certain than that test's tolerance is refused too (the blur of a
+/// change point, where Newton's landings lie within rounding of either branch and their
+/// velocities turn with the noise). No piece is longer than one unit of the input (a
 /// radian: no piece spans a turn, whose ends alone cannot tell a full turn from a gap in the
 /// motion; for a slide, the loops' declared lengths, [`Kinematics::input_unit`]), or than
 /// `4·ε·|input|` where that is longer (from 3e8 rad in f32, whose neighbours are 32 apart,
@@ -182,6 +185,17 @@ const SMOOTHNESS: f64 = 0.125;
 /// below the distance between assemblies (π, for a rocker turned over), far above what
 /// rounding leaves of a position wherever the loops fix it.
 const RESOLUTION: f64 = 1.0 / 16.0;
+
+/// How many times less certain than the smoothness test's tolerance a landing of a halved
+/// piece may be (see [`Sweep::piece`]): well beyond rounding, where the test's floor and the
+/// landing's stated uncertainty agree to within a few times, far below a change point's blur,
+/// where they part by thousands.
+const BLUR: f64 = 16.0;
+
+/// How much of the rest of a step a piece must cover to go to its end: all but 2⁻²⁰, far
+/// more than the rounding of a sum of pieces, far less than what a halved piece leaves
+/// (half the rest).
+const ALL_BUT_ROUNDING: f64 = 1.0 - 1.0 / 1_048_576.0;
 
 /// Why a piece of a step was refused.
 #[derive(Clone, Copy, Debug)]
@@ -309,7 +323,11 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         let mut coarse_refusals = 0;
         loop {
             let remaining = target - x;
-            let (y, piece_used) = if piece.abs() >= remaining.abs() {
+            // A piece within rounding of the rest goes to the target: halves of a step sum to
+            // it only within rounding, and would leave a piece of a few ulps, whose change
+            // rounding alone decides (the walk cannot read it, below).
+            let (y, piece_used) = if piece.abs() >= remaining.abs() * T::constant(ALL_BUT_ROUNDING)
+            {
                 (target, remaining)
             } else {
                 (x + piece, piece)
@@ -319,7 +337,8 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             // is accepted (Newton converged on the branch: that is all that can be known).
             let last_chance = unresolved(x, shorter, smallest);
             let rough = unresolved(x, shorter, roughest);
-            let refusal = match self.piece(x, q, m, y) {
+            let halved = piece.abs() < longest.abs();
+            let refusal = match self.piece(x, q, m, y, halved) {
                 Ok((position, velocity, smooth)) if smooth || rough => {
                     if y == target {
                         return Ok((position, velocity));
@@ -424,7 +443,7 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
                 .zip(m)
                 .zip(self.units)
                 .all(|((q, m), unit)| (m * distance).abs() <= unit + q.abs());
-            match self.piece(x, q, m, x + sign * distance) {
+            match self.piece(x, q, m, x + sign * distance, false) {
                 Err(Refusal::OtherBranch) if placed => branches += 1,
                 Err(Refusal::OtherBranch) => {}
                 // Singular, or with an unknown the loops do not fix there: no more a verdict
@@ -445,14 +464,16 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         }
     }
 
-    /// One piece, from `x` (position `q`, velocity `m`) to `y`: the position and velocity at
-    /// `y`, and whether the path between is smooth, or why the piece is refused.
+    /// One piece, from `x` (position `q`, velocity `m`) to `y`, `halved` from a longer one
+    /// the walk could not read: the position and velocity at `y`, and whether the path
+    /// between is smooth, or why the piece is refused.
     fn piece(
         &self,
         x: T,
         q: [T; N],
         m: [T; N],
         y: T,
+        halved: bool,
     ) -> Result<([T; N], [T; N], bool), Refusal<T>> {
         let h = y - x;
         let mut guess = q;
@@ -476,21 +497,23 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         // unknown, and a path read from such landings may turn it over on the same branch:
         // refused, so the walk stops short and looks beyond.
         let resolution = T::constant(RESOLUTION);
-        let relative = uncertainty
+        // The loosest unknown, in its units; NaN (from an uncertainty that overflows) is
+        // taken for infinite, and refuses too.
+        let loosest = uncertainty
             .iter()
             .zip(self.units)
-            .map(|(u, unit)| *u / unit);
-        // NaN (from an uncertainty that overflows) refuses too.
-        if !relative.clone().all(|r| r <= resolution) {
+            .fold(T::zero(), |loosest, (u, unit)| {
+                let relative = *u / unit;
+                if relative.is_nan() {
+                    T::infinity()
+                } else {
+                    loosest.max(relative)
+                }
+            });
+        if loosest > resolution {
             return Err(Refusal::Failed(Error::Inaccurate {
                 order: Order::Position,
-                estimate: relative.fold(T::zero(), |loosest, r| {
-                    if r.is_nan() {
-                        T::infinity()
-                    } else {
-                        loosest.max(r)
-                    }
-                }),
+                estimate: loosest,
                 required: resolution,
             }));
         }
@@ -511,7 +534,27 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             magnitude = magnitude.max(q[i].abs().max(position[i].abs()) / unit);
         }
         let noise = T::constant(64.0) * T::epsilon() * magnitude;
-        let smooth = error <= T::constant(SMOOTHNESS) * size + noise;
+        let tolerance = T::constant(SMOOTHNESS) * size + noise;
+        // The walk halves a piece to read a path the longer one could not, and a landing far
+        // less certain than the shorter piece's own change cannot say it: within a change
+        // point's blur, Newton's landings lie anywhere within rounding of either branch, and
+        // their velocities are those of a neighbouring linkage's motion, which turns from one
+        // mode to the other (a parallelogram 1000 times as long as its cranks, stepped onto its
+        // flat position, went on `Ok` on the same branch's other mode, a path read from
+        // positions a thousand times less certain than their changes). Refused, so the walk
+        // stops short and looks beyond. A piece the walk has not halved is read where its
+        // landing agrees with the predictor, however loose (within the resolution); one a few
+        // times less certain than the test's tolerance, near its rounding floor, as before (a
+        // halved piece of an ulp of the input, in f32, is as uncertain as its change).
+        let blurred = tolerance * T::constant(BLUR);
+        if halved && loosest > blurred {
+            return Err(Refusal::Failed(Error::Inaccurate {
+                order: Order::Position,
+                estimate: loosest,
+                required: blurred,
+            }));
+        }
+        let smooth = error <= tolerance;
         Ok((position, velocity, smooth))
     }
 }
@@ -657,6 +700,68 @@ mod tests {
             } else {
                 -1.0
             }])
+        }
+
+        fn same_branch(&self, _: f64, [a]: [f64; 1], _: f64, [b]: [f64; 1]) -> bool {
+            (a < 0.0) == (b < 0.0)
+        }
+    }
+
+    /// [`Cross`] as Newton solves it: to a thousandth of the rounding floor of a loop with a
+    /// link of length 1 beside `x` and `y` (as Newton's polish goes below the floor the
+    /// uncertainty is stated from), with the residual biased by half that: within some
+    /// `√ε/30` of the change point every landing is within rounding of a solution, its
+    /// uncertainty a thousand times its distance from the change point, and its velocity,
+    /// `x/y`, that of the neighbouring curve `y² − x² = bias`, which turns smoothly from one
+    /// branch's mode to the other (a parallelogram 1000 times as long as its cranks does
+    /// this at its flat position, in f64).
+    struct BlurredCross;
+
+    impl BlurredCross {
+        /// The residual as computed, and its rounding floor.
+        fn residual(input: f64, y: f64) -> (f64, f64) {
+            let floor = 16.0 * f64::EPSILON * (1.0 + input * input + y * y);
+            (y * y - input * input - floor / 2048.0, floor)
+        }
+    }
+
+    impl Kinematics<f64, 1> for BlurredCross {
+        fn solve_near(
+            &self,
+            input: f64,
+            [mut y]: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            for iterations in 0..options.max_iterations {
+                let (residual, floor) = Self::residual(input, y);
+                // At least one update, as Newton polishes a guess already within rounding.
+                if iterations > 0 && residual.abs() <= floor.max(options.tolerance) / 1024.0 {
+                    return Ok(Solved {
+                        value: [y],
+                        iterations,
+                        residual_norm: residual.abs(),
+                        condition: 1.0,
+                    });
+                }
+                y -= residual / (2.0 * y);
+            }
+            Err(Error::NoConvergence {
+                iterations: options.max_iterations,
+                residual_norm: Self::residual(input, y).0.abs(),
+            })
+        }
+
+        fn slope(&self, input: f64, [y]: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Ok([input / y])
+        }
+
+        fn slope_within(
+            &self,
+            input: f64,
+            [y]: [f64; 1],
+        ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
+            let (residual, floor) = Self::residual(input, y);
+            Ok(([input / y], [(residual.abs() + floor) / (2.0 * y).abs()]))
         }
 
         fn same_branch(&self, _: f64, [a]: [f64; 1], _: f64, [b]: [f64; 1]) -> bool {
@@ -1012,6 +1117,36 @@ mod tests {
                 }
             })
         );
+    }
+
+    /// A step that lands on a change point, where Newton's landings lie anywhere within its
+    /// blur and their velocities turn with the noise, stops there, as a step over it does: it
+    /// went on `Ok` on the same branch's other mode, `y = −x` after `y = x`, with a smooth
+    /// path read from positions whose uncertainty was a thousand times their changes.
+    #[test]
+    fn a_step_onto_a_change_point_stops_there() {
+        // 0.5 − 50 · 0.01 is 0 exactly.
+        let (samples, stop) = sweep(&BlurredCross, 0.5, 0.5, -0.01, 100);
+        assert!(samples.len() >= 50, "{samples:?}");
+        for sample in &samples {
+            assert!(sample.input >= 0.0, "{samples:?}");
+            let [y] = sample.position;
+            assert!((y - sample.input).abs() < 1e-7, "{sample:?}");
+        }
+        match stop {
+            Some(Stop::BranchChange {
+                last_input,
+                next_input,
+            }) => assert!(
+                (0.0..0.0101).contains(&last_input) && next_input <= 0.0,
+                "{last_input} {next_input}"
+            ),
+            other => panic!("{other:?} after {samples:?}"),
+        }
+        // Stepping over the change point stops the same way.
+        let (samples, stop) = sweep(&BlurredCross, 0.5, 0.5, -0.015, 100);
+        assert!(samples.iter().all(|s| s.input > 0.0), "{samples:?}");
+        assert!(matches!(stop, Some(Stop::BranchChange { .. })), "{stop:?}");
     }
 
     #[test]
@@ -1668,7 +1803,7 @@ mod tests {
     /// A walk into inputs where the loops do not fix the position stops short of them, with
     /// the position's `Inaccurate` (the landings beyond, on the branch or as loose, say
     /// neither a toggle nor a change point); with units of 100, a looseness of 1 is within the
-    /// resolution, and the walk goes on.
+    /// resolution, and the walk goes on, in long steps or short.
     #[test]
     fn a_walk_stops_short_of_positions_the_loops_do_not_fix() {
         let (samples, stop) = sweep(&Loose, 0.0, 0.0, 0.5, 4);
@@ -1693,6 +1828,10 @@ mod tests {
         };
         let (samples, stop) = sweep(&wide, 0.0, 0.0, 0.5, 4);
         assert_eq!((samples.len(), stop), (5, None));
+        // In steps of 0.05, a hundredth of a unit is 16 times the smoothness test's eighth of
+        // a piece's change, and more: a piece the walk did not halve is read all the same.
+        let (samples, stop) = sweep(&wide, 0.0, 0.0, 0.05, 40);
+        assert_eq!((samples.len(), stop), (41, None));
     }
 
     /// The last two of `u32::MAX + 1` samples, then the end: no overflow of the index.

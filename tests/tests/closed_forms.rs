@@ -237,6 +237,63 @@ fn change_point_linkages_report_the_flat_position() {
     );
 }
 
+/// A step that lands exactly on a parallelogram's flat position stops there as a step over it
+/// does, at every ratio of ground to crank, in f64 and f32: with the ground 1000 or 1e6 times
+/// the crank (f64) the sweep went on `Ok` on the same branch's other mode (the rocker turning
+/// back, θ4 = −θ2 after θ4 = θ2), its walk reading a path from landings within the flat
+/// position's blur, a thousand times less certain than their changes.
+#[test]
+fn a_step_onto_a_change_point_stops_there() {
+    fn onto<T: mechgen::Real + std::fmt::Debug>(ratio: T, step: T) {
+        let crank = T::one();
+        let linkage = FourBar::new(ratio, crank, ratio, crank).unwrap();
+        let start = T::constant(0.5);
+        let position = linkage.assemble(start, Branch::Open).unwrap().to_array();
+        let mut samples = Vec::new();
+        let mut stop = None;
+        for item in Sweep::new(
+            &linkage,
+            start,
+            position,
+            step,
+            100,
+            NewtonOptions::default(),
+        ) {
+            match item {
+                Ok(sample) => samples.push(sample),
+                Err(event) => {
+                    stop = Some(event);
+                    break;
+                }
+            }
+        }
+        // Every sample is the open assembly, θ4 = θ2 (a parallelogram) before the flat
+        // position; none is past it.
+        for sample in &samples {
+            assert!(sample.input >= T::zero(), "{ratio:?}: {samples:?}");
+            let rocker = sample.position[1];
+            let tolerance = T::constant(1e-6).max(T::epsilon().sqrt() * T::constant(64.0));
+            assert!(
+                (rocker - sample.input).abs() <= tolerance,
+                "{ratio:?}: {sample:?}"
+            );
+        }
+        assert!(
+            matches!(stop, Some(Stop::BranchChange { .. })),
+            "{ratio:?}: {stop:?} after {samples:?}"
+        );
+    }
+    for ratio in [1.0, 3.0, 1e3, 1e6] {
+        // 0.5 − 50 · 0.01 is 0 exactly; 0.015 steps over it.
+        onto(ratio, -0.01f64);
+        onto(ratio, -0.015f64);
+    }
+    for ratio in [1.0f32, 3.0, 1e2, 1e3] {
+        onto(ratio, -0.01f32);
+        onto(ratio, -0.015f32);
+    }
+}
+
 /// A change point is a `BranchChange` at every size, in f64 and f32, and no sweep reads a path
 /// through it: the isosceles inverted slider-crank (crank as long as the ground, the slide
 /// through the rocker's pivot at θ2 = 0) and the isosceles slider-crank (rod as long as the
