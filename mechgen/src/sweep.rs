@@ -1764,6 +1764,63 @@ mod tests {
         assert!(samples.iter().all(|s| s.position == [1e8]));
     }
 
+    /// `q = input`, whose landings are uncertain by 256·ε, four times the smoothness test's
+    /// rounding floor at a unit, and whose first solve fails, so that the walk halves its
+    /// first piece.
+    struct Fuzzy {
+        solves: core::cell::Cell<u32>,
+    }
+
+    impl Kinematics<f64, 1> for Fuzzy {
+        fn solve_near(
+            &self,
+            input: f64,
+            guess: [f64; 1],
+            options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            self.solves.set(self.solves.get() + 1);
+            if self.solves.get() == 2 {
+                return Err(Error::NoConvergence {
+                    iterations: 1,
+                    residual_norm: 1.0,
+                });
+            }
+            Line.solve_near(input, guess, options)
+        }
+
+        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Line.slope(input, position)
+        }
+
+        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
+            Line.same_branch(a, p, b, q)
+        }
+
+        fn slope_within(
+            &self,
+            input: f64,
+            position: [f64; 1],
+        ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
+            Ok((self.slope(input, position)?, [256.0 * f64::EPSILON]))
+        }
+    }
+
+    /// A halved piece whose landing is a few times less certain than the smoothness test's
+    /// tolerance, near its rounding floor, is read: in steps of 1e-13, the halved first
+    /// piece's tolerance is about 3e-14 and its landing's uncertainty 6e-14 (a threshold of
+    /// the tolerance itself, or less, stops there; a tenth of the change point's blur is
+    /// thousands of times that).
+    #[test]
+    fn a_halved_piece_near_rounding_is_read() {
+        let fuzzy = Fuzzy {
+            solves: core::cell::Cell::new(0),
+        };
+        let (samples, stop) = sweep(&fuzzy, 0.0, 0.0, 1e-13, 4);
+        assert_eq!((samples.len(), stop), (5, None));
+        // The start, the refused first piece, its two halves, then a piece a step.
+        assert_eq!(fuzzy.solves.get(), 7);
+    }
+
     /// `q = input`, which the loops fix only loosely (to a unit) within 0.01 of 1, and to the
     /// rounding of the line elsewhere.
     struct Loose;
