@@ -710,8 +710,8 @@ mod tests {
     /// [`Cross`] as Newton solves it: to a thousandth of the rounding floor of a loop with a
     /// link of length 1 beside `x` and `y` (as Newton's polish goes below the floor the
     /// uncertainty is stated from), with the residual biased by half that: within some
-    /// `√ε/30` of the change point every landing is within rounding of a solution, its
-    /// uncertainty a thousand times its distance from the change point, and its velocity,
+    /// `√ε/6` of the change point every landing is within rounding of a solution, its
+    /// uncertainty hundreds of times its distance from the change point, and its velocity,
     /// `x/y`, that of the neighbouring curve `y² − x² = bias`, which turns smoothly from one
     /// branch's mode to the other (a parallelogram 1000 times as long as its cranks does
     /// this at its flat position, in f64).
@@ -1122,7 +1122,7 @@ mod tests {
     /// A step that lands on a change point, where Newton's landings lie anywhere within its
     /// blur and their velocities turn with the noise, stops there, as a step over it does: it
     /// went on `Ok` on the same branch's other mode, `y = −x` after `y = x`, with a smooth
-    /// path read from positions whose uncertainty was a thousand times their changes.
+    /// path read from positions hundreds of times less certain than their changes.
     #[test]
     fn a_step_onto_a_change_point_stops_there() {
         // 0.5 − 50 · 0.01 is 0 exactly.
