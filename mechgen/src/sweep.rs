@@ -1764,36 +1764,28 @@ mod tests {
         assert!(samples.iter().all(|s| s.position == [1e8]));
     }
 
-    /// `q = input`, whose landings are uncertain by 256·ε, four times the smoothness test's
-    /// rounding floor at a unit, and whose first solve fails, so that the walk halves its
-    /// first piece.
-    struct Fuzzy {
-        solves: core::cell::Cell<u32>,
+    /// `inner`, its landings uncertain by `within(input)`.
+    struct Uncertain<M, F> {
+        inner: M,
+        within: F,
     }
 
-    impl Kinematics<f64, 1> for Fuzzy {
+    impl<M: Kinematics<f64, 1>, F: Fn(f64) -> f64> Kinematics<f64, 1> for Uncertain<M, F> {
         fn solve_near(
             &self,
             input: f64,
             guess: [f64; 1],
             options: &NewtonOptions<f64>,
         ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
-            self.solves.set(self.solves.get() + 1);
-            if self.solves.get() == 2 {
-                return Err(Error::NoConvergence {
-                    iterations: 1,
-                    residual_norm: 1.0,
-                });
-            }
-            Line.solve_near(input, guess, options)
+            self.inner.solve_near(input, guess, options)
         }
 
         fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
-            Line.slope(input, position)
+            self.inner.slope(input, position)
         }
 
         fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
-            Line.same_branch(a, p, b, q)
+            self.inner.same_branch(a, p, b, q)
         }
 
         fn slope_within(
@@ -1801,7 +1793,7 @@ mod tests {
             input: f64,
             position: [f64; 1],
         ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
-            Ok((self.slope(input, position)?, [256.0 * f64::EPSILON]))
+            Ok((self.slope(input, position)?, [(self.within)(input)]))
         }
     }
 
@@ -1812,48 +1804,41 @@ mod tests {
     /// thousands of times that).
     #[test]
     fn a_halved_piece_near_rounding_is_read() {
-        let fuzzy = Fuzzy {
-            solves: core::cell::Cell::new(0),
+        // `q = input`, whose landings are uncertain by 256·ε, four times the smoothness
+        // test's rounding floor at a unit, and whose second solve (the first piece's) fails,
+        // so that the walk halves its first piece.
+        let solves = core::cell::Cell::new(0);
+        let fuzzy = Uncertain {
+            inner: Failing {
+                inner: Line,
+                fail: |_| {
+                    solves.set(solves.get() + 1);
+                    (solves.get() == 2).then_some(Error::NoConvergence {
+                        iterations: 1,
+                        residual_norm: 1.0,
+                    })
+                },
+            },
+            within: |_| 256.0 * f64::EPSILON,
         };
         let (samples, stop) = sweep(&fuzzy, 0.0, 0.0, 1e-13, 4);
         assert_eq!((samples.len(), stop), (5, None));
         // The start, the refused first piece, its two halves, then a piece a step.
-        assert_eq!(fuzzy.solves.get(), 7);
+        assert_eq!(solves.get(), 7);
     }
 
     /// `q = input`, which the loops fix only loosely (to a unit) within 0.01 of 1, and to the
     /// rounding of the line elsewhere.
-    struct Loose;
-
-    impl Kinematics<f64, 1> for Loose {
-        fn solve_near(
-            &self,
-            input: f64,
-            guess: [f64; 1],
-            options: &NewtonOptions<f64>,
-        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
-            Line.solve_near(input, guess, options)
-        }
-
-        fn slope(&self, input: f64, position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
-            Line.slope(input, position)
-        }
-
-        fn same_branch(&self, a: f64, p: [f64; 1], b: f64, q: [f64; 1]) -> bool {
-            Line.same_branch(a, p, b, q)
-        }
-
-        fn slope_within(
-            &self,
-            input: f64,
-            position: [f64; 1],
-        ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
-            let loose = if (input - 1.0).abs() < 0.01 {
-                1.0
-            } else {
-                1e-15
-            };
-            Ok((self.slope(input, position)?, [loose]))
+    fn loose() -> impl Kinematics<f64, 1> {
+        Uncertain {
+            inner: Line,
+            within: |input: f64| {
+                if (input - 1.0).abs() < 0.01 {
+                    1.0
+                } else {
+                    1e-15
+                }
+            },
         }
     }
 
@@ -1863,7 +1848,7 @@ mod tests {
     /// resolution, and the walk goes on, in long steps or short.
     #[test]
     fn a_walk_stops_short_of_positions_the_loops_do_not_fix() {
-        let (samples, stop) = sweep(&Loose, 0.0, 0.0, 0.5, 4);
+        let (samples, stop) = sweep(&loose(), 0.0, 0.0, 0.5, 4);
         assert_eq!(samples.len(), 2);
         assert_eq!(
             stop,
@@ -1879,7 +1864,7 @@ mod tests {
         );
 
         let wide = WithUnits {
-            inner: Loose,
+            inner: loose(),
             units: 100.0,
             input_unit: 1.0,
         };
