@@ -308,7 +308,10 @@ pub fn length_and_own_direction<T: Real>(
     let (u, norm) = direction_and_length(w1)?;
     let s = to_unit_scale(&[k, w0])?;
     let (k, w0) = (scaled(k, s), scaled(w0, s));
-    let [radius] = nonzero_lengths([k])?;
+    let radius = match nonzero_lengths([k]) {
+        Ok([radius]) => radius,
+        Err(_) => return Err(line_through_centre(w0, u)),
+    };
     let (along, point) = line_meets_circle(w0, u, radius, sign)?;
     let direction = turn(scaled(k, -T::one()), point)?;
     closes(
@@ -432,7 +435,10 @@ pub fn two_directions<T: Real>(
     let s = to_unit_scale(&[k, w1, w2])?;
     let (k, w1, w2) = (scaled(k, s), scaled(w1, s), scaled(w2, s));
     let chord = scaled(k, -T::one());
-    let [span, r1, r2] = nonzero_lengths([chord, w1, w2])?;
+    let [span, r1, r2] = match nonzero_lengths([chord, w1, w2]) {
+        Ok(lengths) => lengths,
+        Err(failure) => return Err(concentric(chord, w1, w2, failure)),
+    };
     // The triangle of sides r1, r2 and the chord, by Kahan's formula for its area, which
     // keeps every digit of a thin triangle: with the sides sorted a ≥ b ≥ c,
     // 16·area² = (a + (b + c))·(c − (a − b))·(c + (a − b))·(a + (b − c)), where only
@@ -495,6 +501,43 @@ fn thin_triangle<T: Real>(
         sum_of([span, r1, r2]),
     )?;
     Ok((direction1, direction2))
+}
+
+/// Why two circles whose centres coincide (`chord`, at unit scale, is zero) cannot be met at
+/// one point: their radii differ (beyond rounding), so they never meet, or they are the same
+/// circle, met everywhere, and the angles are undetermined. `failure` where the chord is not
+/// zero (a link of zero length). (A crank pin on the rocker's pivot: a four-bar whose ground
+/// is its crank, at zero.)
+#[cold]
+#[inline(never)]
+fn concentric<T: Real>(chord: Vec2<T>, w1: Vec2<T>, w2: Vec2<T>, failure: Failure) -> Failure {
+    if chord != Vec2::new(T::zero(), T::zero()) {
+        return failure;
+    }
+    match nonzero_lengths([w1, w2]) {
+        Ok([r1, r2]) => meets_where_undetermined(-(r1 - r2).abs(), r1.max(r2)),
+        Err(failure) => failure,
+    }
+}
+
+/// Why the point `w0 + L·u` (`u` a unit vector, `w0` at unit scale) cannot be placed on a
+/// circle of radius zero about the origin at one solution: the line misses the centre (beyond
+/// rounding), or passes through it, where the turn about the centre is undetermined. (An
+/// inverted slider-crank whose crank pin is on the slide's pivot.)
+#[cold]
+#[inline(never)]
+fn line_through_centre<T: Real>(w0: Vec2<T>, u: Vec2<T>) -> Failure {
+    meets_where_undetermined(-cross(u, w0).abs(), length(w0))
+}
+
+/// [`Failure::Degenerate`] where a gap that is zero for a loop that closes is zero to
+/// rounding of `scale` (the loop closes, at a solution it does not determine), else
+/// [`Failure::CannotClose`].
+fn meets_where_undetermined<T: Real>(gap: T, scale: T) -> Failure {
+    match gap_closes(gap, scale) {
+        Ok(_) => Failure::Degenerate,
+        Err(failure) => failure,
+    }
 }
 
 /// `(x, y, z)` in descending order.
@@ -631,6 +674,51 @@ mod tests {
             assert_eq!(sorted_descending(x, y, z), (3.0, 2.0, 1.0));
         }
         assert_eq!(sorted_descending(2.0, 2.0, 1.0), (2.0, 2.0, 1.0));
+    }
+
+    /// A loop turning about a point of zero length: two circles about one centre meet
+    /// nowhere unless their radii are equal (to rounding), and then everywhere; a line meets
+    /// a circle of radius zero only if it passes through its centre, and then turns about it
+    /// freely. `CannotClose` where they do not meet (a four-bar whose crank, as long as its
+    /// ground, lays its pin on the rocker's pivot, at zero, said `Singular` where it cannot
+    /// assemble), `Degenerate` where the solution is undetermined.
+    #[test]
+    fn a_loop_about_a_point_closes_only_where_it_is_undetermined() {
+        let zero = v(0.0, 0.0);
+        for sign in [1.0, -1.0] {
+            assert_eq!(
+                two_directions(zero, v(100.0, 0.0), v(0.0, -80.0), sign),
+                Err(Failure::CannotClose)
+            );
+            assert_eq!(
+                two_directions(zero, v(100.0, 0.0), v(0.0, -100.0), sign),
+                Err(Failure::Degenerate)
+            );
+            // Equal to rounding.
+            let nearly = 100.0 * (1.0 + 2.0 * f64::EPSILON);
+            assert_eq!(
+                two_directions(zero, v(100.0, 0.0), v(-nearly, 0.0), sign),
+                Err(Failure::Degenerate)
+            );
+            // The slide 5 from the pivot its crank pin is on; along a line through it.
+            assert_eq!(
+                length_and_own_direction(zero, v(0.0, 5.0), v(1.0, 0.0), sign),
+                Err(Failure::CannotClose)
+            );
+            assert_eq!(
+                length_and_own_direction(zero, v(3.0, 0.0), v(1.0, 0.0), sign),
+                Err(Failure::Degenerate)
+            );
+            assert_eq!(
+                length_and_own_direction(zero, v(3.0, 1e-17), v(1.0, 0.0), sign),
+                Err(Failure::Degenerate)
+            );
+            // A link of zero length is not a chord of zero length.
+            assert_eq!(
+                two_directions(v(1.0, 0.0), zero, v(0.0, -1.0), sign),
+                Err(Failure::Degenerate)
+            );
+        }
     }
 
     /// A loop whose vectors differ by more than the float's normal range can square: the
@@ -847,10 +935,10 @@ mod tests {
     #[test]
     fn length_and_own_angle_fails_as_it_should() {
         let (w0, w1) = (v(0.5, -1.5), v(2.0, 1.0));
-        // Nothing to reach: the circle's radius |K| is zero.
+        // A circle of radius |K| = 0 that the line l·w1 + w0 misses.
         assert_eq!(
             length_and_own_angle(v(0.0, 0.0), w0, w1, 1.0),
-            Err(Failure::Degenerate)
+            Err(Failure::CannotClose)
         );
         // The line l·w1 + w0 passes farther from the origin than |K|.
         assert_eq!(
@@ -1150,8 +1238,12 @@ mod tests {
             two_angles(v(-0.5, 0.0), w1, w2, 1.0),
             Err(Failure::CannotClose)
         );
+        // Links of 2 and 3 about one centre never meet.
+        assert_eq!(
+            two_angles(v(0.0, 0.0), w1, w2, 1.0),
+            Err(Failure::CannotClose)
+        );
         for (k, w1, w2) in [
-            (v(0.0, 0.0), w1, w2),
             (v(-5.0, 0.0), v(0.0, 0.0), w2),
             (v(-5.0, 0.0), w1, v(0.0, 0.0)),
         ] {

@@ -313,3 +313,51 @@ fn newton_on_several_loops_keeps_each_loop_s_branch_or_says_other_branch() {
     assert!(solved > 40, "{solved} solved");
     assert!(other_branch > 0, "no guess needed OtherBranch");
 }
+
+/// A loop that turns about a point of zero length: a four-bar whose crank is as long as its
+/// ground lays the crank pin on the rocker's pivot at zero, where coupler and rocker (circles
+/// about one centre) meet only if they are as long as each other; an inverted slider-crank
+/// likewise, whose slide must then pass through its pivot. Where they cannot meet the answer is
+/// `CannotAssemble` (the closed forms and the scenes said `Singular`, "a toggle or change
+/// point", at an input the linkage cannot reach); where they can, everywhere, `Singular`.
+#[test]
+fn a_loop_about_a_point_cannot_assemble_unless_it_is_undetermined() {
+    use mechanisms::{FourBar, InvertedSliderCrank};
+    use mechgen::Branch;
+    let cannot = Error::CannotAssemble { input: 0.0 };
+    let is_singular = |e: Error<f64>| matches!(e, Error::Singular { .. });
+    // A triple-rocker, from 23.07° to 180°; and a kite (rocker as long as coupler).
+    let triple_rocker = FourBar::new(50.0, 50.0, 100.0, 80.0).unwrap();
+    let kite = FourBar::new(50.0, 50.0, 100.0, 100.0).unwrap();
+    let (rocker_scenes, kite_scenes) = (triple_rocker.scenes().unwrap(), kite.scenes().unwrap());
+    for branch in [Branch::Open, Branch::Crossed] {
+        assert_eq!(triple_rocker.assemble(0.0, branch), Err(cannot));
+        assert_eq!(
+            triple_rocker.motion(0.0, branch, 1.0, 0.0).err(),
+            Some(cannot)
+        );
+        assert_eq!(
+            rocker_scenes.angles(0.0, branch, 1.0, 0.0).err(),
+            Some(cannot)
+        );
+        assert_eq!(rocker_scenes.joints(0.0, branch).err(), Some(cannot));
+        assert!(is_singular(kite.assemble(0.0, branch).unwrap_err()));
+        assert!(is_singular(
+            kite_scenes.angles(0.0, branch, 1.0, 0.0).unwrap_err()
+        ));
+        assert!(is_singular(kite_scenes.joints(0.0, branch).unwrap_err()));
+        // Newton from the assembly at 30°: no position at zero either.
+        let guess = triple_rocker.assemble(30f64.to_radians(), branch).unwrap();
+        let newton = triple_rocker.position(0.0, &guess, &NewtonOptions::default());
+        assert_eq!(newton.err(), Some(cannot), "{branch:?}");
+    }
+    // The slide 10·sin 30° = 5 from its pivot, on which the crank pin lies at zero; a slide
+    // through it (no offset).
+    let offset = InvertedSliderCrank::new(50.0, 50.0, 10.0, 30f64.to_radians()).unwrap();
+    let through = InvertedSliderCrank::new(50.0, 50.0, 0.0, 0.0).unwrap();
+    for branch in [Branch::Open, Branch::Crossed] {
+        assert_eq!(offset.assemble(0.0, branch).err(), Some(cannot));
+        assert_eq!(offset.motion(0.0, branch, 1.0, 0.0).err(), Some(cannot));
+        assert!(is_singular(through.assemble(0.0, branch).unwrap_err()));
+    }
+}

@@ -299,7 +299,6 @@ impl Builder<'_> {
                 // them whole.
                 let chord = self.negated(k).map(|c| self.bound(c));
                 let chord_squared = self.dot(chord, chord);
-                let inverse = self.aux(AuxKind::Inverse(chord_squared));
                 let (r1, r2) = (self.dot(w1, w1), self.dot(w2, w2));
                 // ∂/∂q1 = i·e^{iq1}·w1, ∂/∂q2 = i·e^{iq2}·w2.
                 self.block_columns([r1, r2], [true, true]);
@@ -328,6 +327,10 @@ impl Builder<'_> {
                     branch: *branch,
                 });
                 *branch += 1;
+                // After the triangle's test, so that circles about one centre (a zero chord)
+                // that never meet say so (`CannotClose`), and only the same circle, met
+                // everywhere, leaves the angles undetermined.
+                let inverse = self.aux(AuxKind::Inverse(chord_squared));
                 // The block's columns are i·P1 and i·P2, so its determinant is
                 // P1 × P2 = P1 × chord = −height (P1 = (chord·along + i·chord·height)/c²).
                 let det = self.graph.neg(height);
