@@ -1940,6 +1940,124 @@ fn a_sweep_ends_where_it_began() {
     assert!(!std::path::Path::new(same).exists());
 }
 
+/// Two outputs to one file however their paths are spelled (through a directory and back out
+/// of it, or a link to the other), refused before anything is written, as is an output whose
+/// directory does not exist (the table was written, then the chart failed).
+#[test]
+fn outputs_to_one_file_are_refused_however_they_are_spelled() {
+    let scratch = Scratch::new("spelled");
+    std::fs::create_dir_all(scratch.0.join("sub")).unwrap();
+    let sweep = |tail: &[&str]| {
+        with(
+            &[
+                "sweep",
+                "four-bar",
+                "180",
+                "80",
+                "200",
+                "150",
+                "--out-dir",
+                scratch.path(),
+            ],
+            tail,
+        )
+    };
+    fails_with(
+        &strings(&sweep(&["--csv", "a.csv", "--svg", "sub/../a.csv"])),
+        "--csv and --svg both write",
+    );
+    fails_with(
+        &strings(&sweep(&["--csv", "b.csv", "--svg", "missing/../b.svg"])),
+        "cannot write",
+    );
+    #[cfg(unix)]
+    {
+        std::os::unix::fs::symlink("drawn.svg", scratch.0.join("link.svg")).unwrap();
+        fails_with(
+            &strings(&sweep(&["--svg", "link.svg", "--animation", "drawn.svg"])),
+            "--svg and --animation both write",
+        );
+    }
+    let written: Vec<_> = std::fs::read_dir(&scratch.0)
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().into_string().unwrap())
+        .filter(|name| name != "sub" && name != "link.svg")
+        .collect();
+    assert!(written.is_empty(), "{written:?}");
+}
+
+/// A linkage near the float's largest (1e308 mm), or a coupler point 1.5e308 mm out, is drawn
+/// like any other: the animation's extent overflowed, and every coordinate in it was NaN.
+#[test]
+fn the_largest_linkages_are_drawn() {
+    let scratch = Scratch::new("largest");
+    for dimensions in [
+        &["1e308", "1e308", "1e308", "1e308"][..],
+        &[
+            "1e300",
+            "0.8e300",
+            "1e300",
+            "1e300",
+            "--coupler-point",
+            "1.5e308,30",
+        ],
+    ] {
+        let mut args = vec!["sweep", "four-bar"];
+        args.extend(dimensions);
+        args.extend(["--out-dir", scratch.path()]);
+        stdout_of(&args);
+        for file in ["sweep.csv", "sweep.svg", "animation.svg"] {
+            let text = std::fs::read_to_string(scratch.0.join(file)).unwrap();
+            assert!(
+                !text.contains("NaN") && !text.contains("inf"),
+                "{dimensions:?}: {file}"
+            );
+        }
+    }
+}
+
+/// With its chart on standard output (`--svg -`), a report goes to standard error: standard
+/// output is the SVG alone.
+#[test]
+fn a_chart_on_standard_output_is_alone_there() {
+    for args in [
+        &[
+            "tolerance",
+            "four-bar",
+            "180",
+            "80",
+            "200",
+            "150",
+            "--step",
+            "30",
+            "--svg",
+            "-",
+        ][..],
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "0,45,90",
+            "--rocker",
+            "76,67,87",
+            "--svg",
+            "-",
+        ],
+    ] {
+        let output = program().args(args).output().unwrap();
+        assert!(output.status.success(), "{args:?}");
+        let (stdout, stderr) = (
+            String::from_utf8_lossy(&output.stdout),
+            String::from_utf8_lossy(&output.stderr),
+        );
+        assert!(
+            stdout.starts_with("<svg") && stdout.trim_end().ends_with("</svg>"),
+            "{args:?}: {stdout}"
+        );
+        assert!(stderr.contains("Four-bar"), "{args:?}: {stderr}");
+    }
+}
+
 /// A Watt six-bar whose second pivot is 1e200 mm away cannot be assembled, and says so (its
 /// short links' squares underflowed in the second loop, and it said "singular"); dimensions
 /// below the float's normal range are refused, whatever the command.

@@ -31,8 +31,33 @@ pub fn tell_line(line: std::fmt::Arguments) {
     let _ = err.write_fmt(line).and_then(|()| err.write_all(b"\n"));
 }
 
-/// Writes one line to standard output (see [`say!`]).
+/// Whether the report goes to standard error: where a chart is written to standard output,
+/// the report must not be mixed into it (see [`report_on_stderr`]).
+static REPORT_ON_STDERR: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Sends the report ([`say!`]) to standard error from now on, where it cannot be mistaken for
+/// an output written to standard output ([`drawing_to_stdout`]).
+pub fn report_on_stderr() {
+    REPORT_ON_STDERR.store(true, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// Writes one line of the report (see [`say!`]): to standard output, or to standard error
+/// after [`report_on_stderr`].
 pub fn say_line(line: std::fmt::Arguments) {
+    if REPORT_ON_STDERR.load(std::sync::atomic::Ordering::Relaxed) {
+        tell_line(line);
+        return;
+    }
+    stdout_line(line);
+}
+
+/// A drawing written to standard output, whatever the report's stream.
+pub fn drawing_to_stdout(drawing: &str) {
+    stdout_line(format_args!("{drawing}"));
+}
+
+/// Writes one line to standard output, ending the program as [`gone`] says where it cannot.
+fn stdout_line(line: std::fmt::Arguments) {
     let mut out = io::stdout().lock();
     if let Err(error) = out.write_fmt(line).and_then(|()| out.write_all(b"\n")) {
         gone(error);

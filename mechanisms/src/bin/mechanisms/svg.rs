@@ -208,13 +208,16 @@ pub fn animation(
     traced: usize,
     seconds: f64,
 ) -> String {
+    // In half units (exact but for subnormals, which a drawing cannot tell from zero): the
+    // extent of a linkage 1e308 across, or of one between −1e308 and 1e308, overflows.
+    let half = |v: f64| v * 0.5;
     let all = frames.iter().flatten();
-    let (x0, x1) = range(all.clone().map(|p| p.0));
-    let (y0, y1) = range(all.map(|p| p.1));
+    let (x0, x1) = range(all.clone().map(|p| half(p.0)));
+    let (y0, y1) = range(all.map(|p| half(p.1)));
     let size = (x1 - x0).max(y1 - y0);
     let scale = (WIDTH - 2.0 * MARGIN) / size;
-    let px = |x: f64| MARGIN + (x - x0) * scale;
-    let py = |y: f64| MARGIN + (y1 - y) * scale;
+    let px = |x: f64| MARGIN + (half(x) - x0) * scale;
+    let py = |y: f64| MARGIN + (y1 - half(y)) * scale;
     let height = 2.0 * MARGIN + (y1 - y0) * scale;
     // A long title (a six-bar's ten dimensions) in smaller type, so it fits the width: a
     // character of sans-serif is about 0.55 of the type's size.

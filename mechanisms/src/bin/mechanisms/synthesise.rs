@@ -160,6 +160,17 @@ impl Common {
 }
 
 pub fn run(task: &Task) -> Result<(), String> {
+    let common = match task {
+        Task::Function(args) => &args.common,
+        Task::Path(args) => &args.common,
+    };
+    if common
+        .svg
+        .as_deref()
+        .is_some_and(|path| path.as_os_str() == "-")
+    {
+        output::report_on_stderr();
+    }
     match task {
         Task::Function(args) => function(args),
         Task::Path(args) => path(args),
@@ -604,7 +615,7 @@ fn wrapped(angle: f64) -> f64 {
 
 fn write(path: &PathBuf, drawing: &str) -> Result<(), String> {
     if path.as_os_str() == "-" {
-        say!("{drawing}");
+        output::drawing_to_stdout(drawing);
     } else {
         fs::write(path, drawing).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         output::tell!("wrote {}", path.display());

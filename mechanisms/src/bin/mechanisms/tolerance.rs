@@ -153,6 +153,13 @@ fn check_small(args: &Args, links: [f64; 4], lengths: [f64; 4]) -> Result<(), St
 }
 
 pub fn run(args: &Args) -> Result<(), String> {
+    if args
+        .svg
+        .as_deref()
+        .is_some_and(|path| path.as_os_str() == "-")
+    {
+        output::report_on_stderr();
+    }
     if args.mechanism != Mechanism::FourBar {
         return Err(format!(
             "tolerance analysis covers the four-bar, not the {}",
@@ -401,7 +408,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         ];
         let drawing = svg::charts("θ2 (°)", &charts, &[])?;
         if path.as_os_str() == "-" {
-            say!("{drawing}");
+            output::drawing_to_stdout(&drawing);
         } else {
             fs::write(path, drawing)
                 .map_err(|e| format!("cannot write {}: {e}", path.display()))?;

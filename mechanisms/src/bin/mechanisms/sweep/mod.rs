@@ -167,32 +167,7 @@ fn check(args: &Args) -> Result<(), String> {
     if outputs.iter().filter(|p| p.as_os_str() == "-").count() > 1 {
         return Err("only one of --csv, --svg and --animation can be - (standard output)".into());
     }
-    // Two outputs to one file: the last written would be all that is left of them.
-    let names = ["--csv", "--svg", "--animation"];
-    let files: Vec<(usize, PathBuf)> = outputs
-        .iter()
-        .enumerate()
-        .filter(|(_, p)| p.as_os_str() != "-")
-        .map(|(k, p)| (k, lexical(&args.out_dir.join(p))))
-        .collect();
-    for (i, (a, path)) in files.iter().enumerate() {
-        if let Some((b, _)) = files[i + 1..].iter().find(|(_, other)| other == path) {
-            return Err(format!(
-                "{} and {} both write {}: give each output its own file",
-                names[*a],
-                names[*b],
-                path.display()
-            ));
-        }
-    }
     Ok(())
-}
-
-/// `path` without its `.` components, so that `./x.svg` and `x.svg` are one file.
-fn lexical(path: &std::path::Path) -> PathBuf {
-    path.components()
-        .filter(|c| !matches!(c, std::path::Component::CurDir))
-        .collect()
 }
 
 /// The smallest step, as written to three significant digits, whose samples over `pieces`
@@ -268,6 +243,11 @@ pub fn run(args: &Args) -> Result<(), String> {
     let table = Target::new(&args.csv, &args.out_dir);
     let chart_target = Target::new(&args.svg, &args.out_dir);
     let animation_target = Target::new(&args.animation, &args.out_dir);
+    outputs::distinct(&[
+        ("--csv", &table),
+        ("--svg", &chart_target),
+        ("--animation", &animation_target),
+    ])?;
     let mut writer = csv::Writer::from_writer(table.open()?);
     let csv_failed = |error: csv::Error| match error.into_kind() {
         csv::ErrorKind::Io(error) => table.failed(error),

@@ -121,3 +121,53 @@ impl Target {
             .map_err(|e| self.failed(e))
     }
 }
+
+/// Refuses two outputs to one file, before anything is written (the last written would be all
+/// that is left of them): the files as the file system finds them, so that `./x.svg` and
+/// `x.svg`, `sub/../x.svg` and `x.svg`, a link and what it links to, are one. An output whose
+/// directory does not exist is refused here too, rather than after the others are written.
+pub(super) fn distinct(outputs: &[(&str, &Target)]) -> Result<(), String> {
+    let mut files: Vec<(&str, PathBuf)> = Vec::new();
+    for (flag, target) in outputs {
+        let Target::File(path) = target else {
+            continue;
+        };
+        let file = resolved(path)?;
+        if let Some((other, _)) = files.iter().find(|(_, seen)| *seen == file) {
+            return Err(format!(
+                "{other} and {flag} both write {}: give each output its own file",
+                path.display()
+            ));
+        }
+        files.push((flag, file));
+    }
+    Ok(())
+}
+
+/// The file `path` names: itself, links followed, where it exists; what a link to a file not
+/// yet written links to; else its directory's, joined with its name.
+fn resolved(path: &Path) -> Result<PathBuf, String> {
+    let mut path = path.to_path_buf();
+    // A few links deep (a loop of links is refused by the file system as it is written).
+    for _ in 0..8 {
+        if let Ok(file) = std::fs::canonicalize(&path) {
+            return Ok(file);
+        }
+        let directory = match path.parent() {
+            Some(parent) if !parent.as_os_str().is_empty() => parent.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        match std::fs::read_link(&path) {
+            Ok(target) => path = directory.join(target),
+            Err(_) => {
+                let name = path
+                    .file_name()
+                    .ok_or_else(|| format!("cannot write {}: it names no file", path.display()))?;
+                let directory = std::fs::canonicalize(&directory)
+                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                return Ok(directory.join(name));
+            }
+        }
+    }
+    Err(format!("cannot write {}: too many links", path.display()))
+}
