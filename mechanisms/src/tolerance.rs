@@ -175,6 +175,7 @@ impl<T: Real> FourBar<T> {
         tolerances: &FourBarTolerances<T>,
     ) -> Result<Sampled<T>, Error<T>> {
         let t = finite_tolerances(tolerances)?;
+        self.representable(&t, T::one())?;
         let (indices, count) = varied(&t);
         let mut sampled = Accumulated::new(self, theta2, branch)?;
         for corner in 0..(1u32 << count) {
@@ -206,6 +207,8 @@ impl<T: Real> FourBar<T> {
         seed: u64,
     ) -> Result<Sampled<T>, Error<T>> {
         let t = finite_tolerances(tolerances)?;
+        // The generator's normals are within 8.6σ = 2.9·t.
+        self.representable(&t, T::constant(3.0))?;
         let mut random = SplitMix64(seed);
         let mut sampled = Accumulated::new(self, theta2, branch)?;
         for _ in 0..samples {
@@ -213,6 +216,25 @@ impl<T: Real> FourBar<T> {
             sampled.add(self, theta2, branch, errors);
         }
         Ok(sampled.finish())
+    }
+
+    /// `Err(NonFinite)` where a dimension moved by `reach` times its tolerance `t` (`l1`, `l2`,
+    /// `l3`, `l4`, `a`, `delta`) is beyond the float's range: such a linkage is not one that
+    /// fails to assemble, and counting it so would hide the overflow.
+    fn representable(&self, t: &[T; 6], reach: T) -> Result<(), Error<T>> {
+        let (a, delta) = self.coupler_point();
+        let [l1, l2, l3, l4] = self.lengths();
+        let moved = [l1, l2, l3, l4, a, delta]
+            .iter()
+            .zip(t)
+            .all(|(d, t)| (d.abs() + reach * *t).is_finite());
+        if moved {
+            Ok(())
+        } else {
+            Err(Error::NonFinite {
+                quantity: "dimension moved by its tolerance",
+            })
+        }
     }
 
     /// This linkage with its dimensions (`l1`, `l2`, `l3`, `l4`, `a`, `delta`) moved by
@@ -562,6 +584,28 @@ mod tests {
         assert_eq!((sampled.assembled, sampled.failed), (1, 0));
         assert_eq!(sampled.output_largest, 0.0);
         assert_eq!(sampled.coupler_point_largest, 0.0);
+    }
+
+    /// A dimension its tolerance takes beyond the float's range is an overflow, not a
+    /// linkage that fails to assemble: a coupler point 1.79e308 out, ±7.9e305, had half the
+    /// box's corners counted as failed.
+    #[test]
+    fn a_box_beyond_the_float_s_range_is_an_overflow() {
+        let linkage = FourBar::new(1.8e307, 0.8e307, 2e307, 1.5e307)
+            .and_then(|l| l.with_coupler_point(1.79e308, 0.5))
+            .unwrap();
+        let tolerances = FourBarTolerances::lengths(7.9e305);
+        let overflow = Err(Error::NonFinite {
+            quantity: "dimension moved by its tolerance",
+        });
+        assert_eq!(linkage.corners(1.0, Branch::Open, &tolerances), overflow);
+        assert_eq!(
+            linkage.monte_carlo(1.0, Branch::Open, &tolerances, 10, 1),
+            overflow
+        );
+        // Three tolerances inside the range: analysed.
+        let inside = FourBarTolerances::lengths(1e305);
+        assert!(linkage.corners(1.0, Branch::Open, &inside).is_ok());
     }
 
     /// A coupler point at the crank pin (distance 0 ± t) is a linkage at either end of its

@@ -2185,6 +2185,24 @@ fn tolerance_refuses_large_tolerances_and_overflowed_figures() {
             "{report}"
         );
     }
+    // A coupler point near the float's largest whose tolerance takes it past: an overflow
+    // named, not half the box's corners counted as linkages that do not assemble.
+    refused_before_any_output(
+        &[
+            "tolerance",
+            "four-bar",
+            "1.8e307",
+            "0.8e307",
+            "2e307",
+            "1.5e307",
+            "--tolerance",
+            "7.9e305",
+            "--coupler-point",
+            "1.79e308,30",
+        ],
+        "the coupler point's distance (1.79e308 mm) with three times its tolerance (±7.9e305 \
+         mm) overflows",
+    );
     // Too small to resolve: the nominal and perturbed solutions' difference would be
     // rounding.
     run(

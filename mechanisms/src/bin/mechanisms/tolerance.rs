@@ -97,6 +97,32 @@ const COLUMNS: [&str; 8] = [
     "the coupler point's Monte Carlo rms",
 ];
 
+/// Each length and its tolerance checked against the float's range: the nonlinear model
+/// draws linkages up to three tolerances out (a Monte Carlo error of `t/3` standard
+/// deviation is within `2.9·t`), and one beyond the largest number is an overflow, not a
+/// linkage that fails to assemble.
+fn check_representable(values: [f64; 5], lengths: [f64; 4], distance: f64) -> Result<(), String> {
+    let names = [
+        "ground",
+        "crank",
+        "coupler",
+        "rocker",
+        "coupler point's distance",
+    ];
+    let tolerances = [lengths[0], lengths[1], lengths[2], lengths[3], distance];
+    for ((name, value), tolerance) in names.into_iter().zip(values).zip(tolerances) {
+        if !(value.abs() + 3.0 * tolerance).is_finite() {
+            return Err(format!(
+                "the {name} ({} mm) with three times its tolerance (±{} mm) overflows: the \
+                 nonlinear model's linkages would be beyond the largest number",
+                tidy(value),
+                tidy(tolerance)
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Each tolerance checked against what it applies to (see [`LARGEST_FRACTION`]): the four
 /// links' against their lengths, the coupler point distance's against the shortest link (the
 /// distance itself may be zero), its angle's against a radian.
@@ -203,6 +229,11 @@ pub fn run(args: &Args) -> Result<(), String> {
         return Err("a tolerance must be finite and not negative".into());
     }
     check_small(args, [ground, crank, coupler, rocker], lengths)?;
+    check_representable(
+        [ground, crank, coupler, rocker, distance],
+        lengths,
+        args.tolerance,
+    )?;
     if !(args.step.is_finite()
         && args.step > 0.0
         && args.step <= 360.0
