@@ -2185,6 +2185,7 @@ fn tolerance_refuses_large_tolerances_and_overflowed_figures() {
             "{report}"
         );
     }
+    run(&["--samples", "0"], "--samples takes at least 1");
     // A coupler point near the float's largest whose tolerance takes it past: an overflow
     // named, not half the box's corners counted as linkages that do not assemble.
     refused_before_any_output(

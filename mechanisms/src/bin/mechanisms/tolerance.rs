@@ -245,6 +245,12 @@ pub fn run(args: &Args) -> Result<(), String> {
             tidy(args.step)
         ));
     }
+    // The rms of no linkages is no number.
+    if args.samples == 0 {
+        return Err(
+            "--samples takes at least 1: the Monte Carlo rms of no linkages is undefined".into(),
+        );
+    }
     if args.samples > MOST_SAMPLES {
         return Err(format!("--samples takes at most {MOST_SAMPLES}"));
     }
