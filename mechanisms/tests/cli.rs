@@ -1986,6 +1986,66 @@ fn outputs_to_one_file_are_refused_however_they_are_spelled() {
     assert!(written.is_empty(), "{written:?}");
 }
 
+/// A value whose error bound covers every value it could take is `undetermined`, with the
+/// note that says so: a parallelogram's transmission angle at its change point (180°) was
+/// `0 (±90000)`, the rod-as-long-as-crank slider's `d` at 90° `0 (±20000)` mm. A rate near
+/// the float's largest leaves the rates' bounds finite (ω3 and ω4 at 1e308 rad/s were
+/// `undetermined`, their bounds' scale overflowing, with no note).
+#[test]
+fn a_bound_that_covers_everything_says_undetermined() {
+    for (args, row) in [
+        (
+            &[
+                "analyse", "four-bar", "100", "50", "100", "50", "--at", "180",
+            ][..],
+            "transmission angle γ",
+        ),
+        (
+            &["analyse", "slider-crank", "50", "50", "0", "--at", "90"],
+            "d (mm)",
+        ),
+        (
+            &["analyse", "slider-crank", "50", "50", "0", "--at", "90"],
+            "transmission angle μ",
+        ),
+    ] {
+        let report = stdout_of(args);
+        let line = report
+            .lines()
+            .find(|l| l.trim_start().starts_with(row))
+            .unwrap();
+        assert!(
+            line.contains("undetermined") && !line.contains('±'),
+            "{line}"
+        );
+        assert!(
+            report.contains("undetermined: no digit is known"),
+            "{report}"
+        );
+    }
+    let report = stdout_of(&[
+        "analyse", "four-bar", "180", "80", "200", "150", "--rate", "1e308",
+    ]);
+    let rates = |name: &str| {
+        let line = report
+            .lines()
+            .find(|l| l.trim_start().starts_with(name))
+            .unwrap();
+        line.split_whitespace()
+            .rev()
+            .take(2)
+            .map(|cell| cell.parse::<f64>().unwrap())
+            .collect::<Vec<_>>()
+    };
+    // Crossed, then open (read from the right): as Example 1's rates at 10 rad/s, times 1e307.
+    let omega4 = rates("ω4 (rad/s)");
+    assert!((omega4[1] / 4.2923e307 - 1.0).abs() < 1e-4, "{report}");
+    assert!(
+        rates("ω3 (rad/s)").iter().all(|w| w.is_finite()),
+        "{report}"
+    );
+}
+
 /// A linkage near the float's largest (1e308 mm), or a coupler point 1.5e308 mm out, is drawn
 /// like any other: the animation's extent overflowed, and every coordinate in it was NaN.
 #[test]

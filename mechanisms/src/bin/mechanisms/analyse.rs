@@ -280,19 +280,26 @@ impl Sizes {
                     .fold(0.0f64, |m, (v, c)| m.max(v.abs() * c))
             })
         };
-        let scales = [
-            size,
-            (size * self.rate.abs()).max(weighted(rates)),
-            (size * (self.rate * self.rate + self.accel.abs())).max(weighted(accelerations)),
+        // Each order's scale is the larger of the size times the input's (its rate, or its
+        // rate squared plus its acceleration) and the results' own, weighted.
+        let inputs = [
+            1.0,
+            self.rate.abs(),
+            self.rate * self.rate + self.accel.abs(),
         ];
+        let own = [0.0, weighted(rates), weighted(accelerations)];
         let relative = [accuracy.position, accuracy.velocity, accuracy.acceleration];
         // A length's column is a direction (in these units, 1/unit long): its error is in
-        // the length's own units; an angle's is radians.
+        // the length's own units; an angle's is radians. The small factor first: a rate near
+        // the float's largest (1e308 rad/s) times the size overflows, the bound does not.
         Errors {
             orders: core::array::from_fn(|k| {
                 columns
                     .iter()
-                    .map(|c| 2.0 * relative[k] * scales[k] / c)
+                    .map(|c| {
+                        let factor = 2.0 * relative[k] / c;
+                        (factor * size * inputs[k]).max(factor * own[k])
+                    })
                     .collect()
             }),
         }
@@ -380,8 +387,10 @@ fn notes(met: &BTreeSet<&'static str>) {
                 required.acceleration
             ),
             "undetermined" => say!(
-                "  undetermined: a link shorter than √ε (1.5e-8) of the mechanism, whose \
-                 angle's rates f64 cannot determine, or an input rate lost below the \
+                "  undetermined: no digit is known: the error bound covers every value it could \
+                 take (at or next to a toggle or change point, where the position's bound grows \
+                 without limit), or a link is shorter than √ε (1.5e-8) of the mechanism (f64 \
+                 cannot determine its angle's rates), or an input rate is lost below the \
                  float's range"
             ),
             "cannot assemble" => {
@@ -408,7 +417,13 @@ fn table<U>(rows: &[Row<U>], columns: &[(String, &Solved<U>)]) {
                 Needs::Acceleration => &solved.acceleration,
             };
             match (&solved.position, other) {
-                (Ok(q), Ok(x)) => text(q, x, &solved.errors),
+                (Ok(q), Ok(x)) => {
+                    let cell = text(q, x, &solved.errors);
+                    if cell == "undetermined" {
+                        met.insert("undetermined");
+                    }
+                    cell
+                }
                 (Err(e), _) | (_, Err(e)) => reason(e, &mut met),
             }
         };
@@ -564,9 +579,10 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
             output::degrees_within(q.theta4, e.at(0, 1))
         }),
         ("transmission angle γ (°)", Needs::Position, &|q, _, e| {
-            output::within(
+            output::within_span(
                 linkage.transmission_angle(q).to_degrees(),
                 (e.at(0, 0) + e.at(0, 1)).to_degrees(),
+                180.0,
             )
         }),
         ("ω3 (rad/s)", Needs::Velocity, &|_, v, e| {
@@ -719,12 +735,14 @@ fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
             output::degrees_within(q.theta3, e.at(0, 0))
         }),
         ("d (mm)", Needs::Position, &|q, _, e| {
-            output::within(q.d, e.at(0, 1))
+            // The slider is within the crank and rod's reach of the crank's pivot.
+            output::within_span(q.d, e.at(0, 1), 2.0 * (l2.abs() + l3.abs()))
         }),
         ("transmission angle μ (°)", Needs::Position, &|q, _, e| {
-            output::within(
+            output::within_span(
                 linkage.transmission_angle(q).to_degrees(),
                 e.at(0, 0).to_degrees(),
+                90.0,
             )
         }),
         ("ω3 (rad/s)", Needs::Velocity, &|_, v, e| {
@@ -792,7 +810,8 @@ fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String
             output::degrees_within(q.theta4, e.at(0, 0))
         }),
         ("b (mm)", Needs::Position, &|q, _, e| {
-            output::within(q.b, e.at(0, 1))
+            // The slide's point is within the ground, crank and offset's reach of its pivot.
+            output::within_span(q.b, e.at(0, 1), 2.0 * (l1.abs() + l2.abs() + c.abs()))
         }),
         ("ω4 (rad/s)", Needs::Velocity, &|_, v, e| {
             output::within(v.theta4, e.at(1, 0))

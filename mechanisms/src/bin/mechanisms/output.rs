@@ -244,6 +244,17 @@ pub fn within(value: f64, bound: f64) -> String {
     format!("{value:.precision$e}", precision = digits - 1)
 }
 
+/// [`within`] for a quantity that can take values over a range `span` wide only (a
+/// transmission angle's 180°, a slide's stroke): `undetermined` where the bound covers the
+/// whole range, which says nothing of the value (at a change point, where the position's
+/// error bound grows without limit, the parallelogram's γ was `0 (±90000)`).
+pub fn within_span(value: f64, bound: f64, span: f64) -> String {
+    if bound >= span {
+        return "undetermined".into();
+    }
+    within(value, bound)
+}
+
 /// An angle (radians) in degrees in [0, 360), to the decimals its error `bound` (radians)
 /// leaves, at most 4 (see [`within`]).
 pub fn degrees_within(radians: f64, bound: f64) -> String {
