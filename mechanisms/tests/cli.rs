@@ -2046,6 +2046,43 @@ fn a_bound_that_covers_everything_says_undetermined() {
     );
 }
 
+/// An inverted slider-crank whose crank pin lies on the slide's pivot: with the slide 5 mm
+/// off it, it cannot be assembled (it said "singular … a toggle or change point", exit 1);
+/// with the slide through it (the isosceles linkage's change point), it assembles without
+/// determining the slide's angle, and the table says `singular` on each branch, as a
+/// parallelogram's at its change point (it was an error, exit 1).
+#[test]
+fn a_crank_pin_on_the_slide_s_pivot_is_told_apart() {
+    fails_with(
+        &[
+            "analyse",
+            "inverted-slider-crank",
+            "50",
+            "50",
+            "10",
+            "30",
+            "--at",
+            "0",
+        ],
+        "the inverted slider-crank cannot be assembled at 0°",
+    );
+    let report = stdout_of(&[
+        "analyse",
+        "inverted-slider-crank",
+        "50",
+        "50",
+        "0",
+        "0",
+        "--at",
+        "0",
+    ]);
+    let line = report
+        .lines()
+        .find(|l| l.trim_start().starts_with("θ4"))
+        .unwrap();
+    assert_eq!(line.matches("singular").count(), 2, "{report}");
+}
+
 /// A linkage near the float's largest (1e308 mm), or a coupler point 1.5e308 mm out, is drawn
 /// like any other: the animation's extent overflowed, and every coordinate in it was NaN.
 #[test]

@@ -376,7 +376,8 @@ fn notes(met: &BTreeSet<&'static str>) {
         match *note {
             "singular" => say!(
                 "  singular: the loop Jacobian is singular here (a toggle or change point): \
-                 the rates are not determined by the input"
+                 the rates, and where the position is singular itself the position, are not \
+                 determined by the input"
             ),
             "inaccurate" => say!(
                 "  inaccurate e: the estimated relative error e is more than the {:.0e} \
@@ -455,7 +456,10 @@ fn advantage(ma: Result<MechanicalAdvantage<f64>, Error<f64>>) -> String {
     }
 }
 
-/// An error when no branch assembles: nothing at all could be computed.
+/// An error when no branch assembles: nothing at all could be computed. A position every
+/// branch finds singular is one the mechanism takes without determining it (the isosceles
+/// inverted slider-crank's change point, its slide free to turn about the crank pin on its
+/// pivot): the table says `singular` on each, as a parallelogram's at its own.
 fn nothing<U>(solved: &[&Solved<U>], cannot: impl Fn() -> String) -> Result<(), String> {
     if solved.iter().any(|s| s.position.is_ok()) {
         return Ok(());
@@ -464,6 +468,9 @@ fn nothing<U>(solved: &[&Solved<U>], cannot: impl Fn() -> String) -> Result<(), 
         .iter()
         .filter_map(|s| s.position.as_ref().err())
         .collect();
+    if errors.iter().all(|e| matches!(e, Error::Singular { .. })) {
+        return Ok(());
+    }
     if errors
         .iter()
         .any(|e| matches!(e, Error::CannotAssemble { .. }))
