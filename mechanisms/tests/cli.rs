@@ -245,6 +245,14 @@ fn negative_and_non_finite_numbers_are_values_not_flags() {
         &strings(&with(&strings(&sweep), &["--rate", "inf"])),
         "--rate must be a finite number of rad/s, got inf",
     );
+    // A dimension of −∞ or NaN however written: the program's refusal, not clap's (exit 2,
+    // "unexpected argument '-i'").
+    for ground in ["-inf", "-nan", "inf"] {
+        fails_with(
+            &["analyse", "four-bar", ground, "80", "200", "150"],
+            "ground",
+        );
+    }
 }
 
 #[test]
@@ -1438,7 +1446,7 @@ fn robot_refuses_bad_arguments() {
         "--point takes two finite numbers",
     );
     fails_with(&["robot", "1", "-2", "2", "1", "1"], "must be positive");
-    fails_with_code(&["robot", "1", "2", "3"], 2, "5 values required");
+    fails_with(&["robot", "1", "2", "3"], "robot takes 5 links");
 }
 
 /// Runs the program, expecting success, and returns its standard output and error.

@@ -319,14 +319,13 @@ enum Needs {
 /// by.
 type Row<'a, U> = (&'a str, Needs, &'a dyn Fn(&U, &U, &Errors) -> String);
 
-/// A value to 4 places; a very large one in exponent form.
+/// A value to 4 places; a very large or very small one in exponent form (`Z` of a linkage
+/// of 1e-300 mm was `0.0000`).
 fn value(v: f64) -> String {
-    if !v.is_finite() {
-        "not finite".into()
-    } else if v.abs() >= 1e9 {
-        format!("{v:.4e}")
+    if v.is_finite() {
+        output::figure(v)
     } else {
-        fixed(v, 4)
+        "not finite".into()
     }
 }
 

@@ -147,7 +147,8 @@ impl Mechanism {
 
 /// The program's arguments as clap is to read them: each negative number written with an
 /// exponent or a leading dot (`-2e-3`, `-.5`) rewritten in plain decimals (`-0.002`, `-0.5`,
-/// the same `f64`), which clap takes for a number.
+/// the same `f64`), which clap takes for a number; a negative infinity as `-1e999` (the same
+/// `f64`) and a NaN as `NaN`, which the program then refuses by name.
 ///
 /// clap takes `-2e-3` for a flag wherever a value could instead be a flag: its test for a
 /// negative number (`allow_negative_numbers`) accepts digits, one dot after a digit and an
@@ -160,10 +161,20 @@ fn arguments(given: impl Iterator<Item = OsString>) -> Vec<OsString> {
             let plain = argument
                 .to_str()
                 .filter(|text| text.starts_with('-'))
-                .and_then(|text| text.parse::<f64>().ok())
-                .filter(|value| value.is_finite());
-            // `Display` writes an f64 without an exponent, and reads back as the same f64.
-            plain.map_or(argument, |value| value.to_string().into())
+                .and_then(|text| text.parse::<f64>().ok());
+            plain.map_or(argument, |value| {
+                if value.is_nan() {
+                    // `-nan`: NaN, which no dash makes a flag of (its sign says nothing).
+                    "NaN".into()
+                } else if value.is_infinite() {
+                    // `-inf`: a number clap takes for one, which reads as the same f64.
+                    "-1e999".into()
+                } else {
+                    // `Display` writes an f64 without an exponent, and reads back as the same
+                    // f64.
+                    value.to_string().into()
+                }
+            })
         })
         .collect()
 }
@@ -204,11 +215,18 @@ mod tests {
             read(&["mechanisms", "-2e-3", "-.5", "-1E2", "-7", "2e-3"]),
             ["mechanisms", "-0.002", "-0.5", "-100", "-7", "2e-3"]
         );
-        // Flags, a dash for standard output, and what is not a finite number stay as they are.
+        // Flags, a dash for standard output, and what is not a number stay as they are.
         assert_eq!(
-            read(&["--at", "-h", "-", "-inf", "-nan", "--csv", "-e5"]),
-            ["--at", "-h", "-", "-inf", "-nan", "--csv", "-e5"]
+            read(&["--at", "-h", "-", "--csv", "-e5"]),
+            ["--at", "-h", "-", "--csv", "-e5"]
         );
+        // A negative infinity or NaN as a number clap takes for one, the same f64 (`-inf` and
+        // `-nan` were flags it did not know, exit 2, where `inf` is the program's refusal).
+        assert_eq!(
+            read(&["-inf", "-Infinity", "-nan"]),
+            ["-1e999", "-1e999", "NaN"]
+        );
+        assert_eq!("-1e999".parse::<f64>().unwrap(), f64::NEG_INFINITY);
         // The same f64, however small.
         assert_eq!(read(&["-1e-300"])[0].parse::<f64>().unwrap(), -1e-300);
     }

@@ -16,7 +16,7 @@ use crate::output::{self, fixed, say};
 pub struct Args {
     /// Its links in mm: left crank, left distal, right distal, right crank, base (the
     /// motors' distance apart).
-    #[arg(allow_negative_numbers = true, num_args = 5, default_values_t = [100.0, 200.0, 200.0, 100.0, 100.0])]
+    #[arg(allow_negative_numbers = true, default_values_t = [100.0, 200.0, 200.0, 100.0, 100.0])]
     pub links: Vec<f64>,
     /// The cranks' angles in degrees, left then right, joined by a comma.
     #[arg(
@@ -70,7 +70,13 @@ fn pair(name: &str, values: &[f64]) -> Result<[f64; 2], String> {
 pub fn run(args: &Args) -> Result<(), String> {
     let [l1, l2, l3, l4, l5] = match args.links[..] {
         [l1, l2, l3, l4, l5] => [l1, l2, l3, l4, l5],
-        _ => return Err("robot takes five links".to_string()),
+        ref given => {
+            return Err(format!(
+                "robot takes 5 links (left crank, left distal, right distal, right crank, base), \
+                 {} given",
+                given.len()
+            ));
+        }
     };
     let robot = FiveBar::new(l1, l2, l3, l4, l5).map_err(refused)?;
     say!(
