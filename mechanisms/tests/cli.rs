@@ -2192,7 +2192,7 @@ fn far_pivots_cannot_assemble_and_subnormal_dimensions_are_refused() {
             &[
                 command, "four-bar", "1e-321", "4e-322", "1.2e-321", "8e-322",
             ],
-            "the ground 1e-321 is below the float's normal range (2.2e-308)",
+            "the ground 1e-321 is below the float's normal range (2.2250738585072014e-308)",
         );
     }
 }
@@ -2334,7 +2334,7 @@ fn tolerance_refuses_large_tolerances_and_overflowed_figures() {
             "--tolerance",
             "1e-312",
         ],
-        "the ground 1e-310 is below the float's normal range (2.2e-308)",
+        "the ground 1e-310 is below the float's normal range (2.2250738585072014e-308)",
     );
     // Too long: the crank angles times the Monte Carlo linkages.
     run(
@@ -2493,7 +2493,21 @@ fn negative_numbers_in_any_notation_are_values() {
             "--max-ratio",
             "-1e1",
         ],
-        "--max-ratio must be a finite number, at least 1",
+        "--max-ratio must be a finite number above 1",
+    );
+    // 1 as well (the program's check said "at least 1", the library's "above 1").
+    fails_with(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "1,2,3",
+            "--rocker",
+            "1,2,3",
+            "--max-ratio",
+            "1",
+        ],
+        "--max-ratio must be a finite number above 1",
     );
     fails_with(
         &["robot", "100", "200", "200", "100", "-.5"],

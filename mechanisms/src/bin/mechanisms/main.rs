@@ -122,9 +122,10 @@ impl Mechanism {
             .find(|(_, v)| **v != 0.0 && v.abs() < f64::MIN_POSITIVE)
         {
             return Err(format!(
-                "the {name} {} is below the float's normal range (2.2e-308), where a number \
+                "the {name} {} is below the float's normal range ({:e}), where a number \
                  keeps fewer than its 53 bits: it would be computed as another dimension",
-                output::tidy(*value)
+                output::tidy(*value),
+                f64::MIN_POSITIVE
             ));
         }
         if given.len() == names.len() {

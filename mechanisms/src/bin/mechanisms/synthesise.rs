@@ -128,8 +128,9 @@ impl Common {
     }
 
     fn options(&self) -> Result<Options, String> {
-        if !(self.max_ratio.is_finite() && self.max_ratio >= 1.0) {
-            return Err("--max-ratio must be a finite number, at least 1".into());
+        // As the library requires (a ratio of 1, every link as long, leaves nothing to fit).
+        if !(self.max_ratio.is_finite() && self.max_ratio > 1.0) {
+            return Err("--max-ratio must be a finite number above 1".into());
         }
         if self.restarts > MOST_RESTARTS {
             return Err(format!("--restarts takes at most {MOST_RESTARTS}"));
