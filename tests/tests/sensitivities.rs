@@ -310,6 +310,19 @@ proptest::proptest! {
     }
 }
 
+/// `∂f/∂l` of the four-bar's loop `f = l2·e^{iθ2} + l3·e^{iθ3} − l4·e^{iθ4} − l1` for each
+/// length `l1`..`l4`, at the oracle's solved `state`.
+fn length_partials(state: &mechgen_tests::oracle::State) -> [mechgen_tests::oracle::C; 4] {
+    use mechgen_tests::oracle::{Big, C};
+    let [e3, e4] = [0, 1].map(|k| state.directions[k].clone().expect("an angle"));
+    [
+        C::new(-Big::one(), Big::zero()),
+        state.input_direction.clone(),
+        e3,
+        C::new(-e4.re, -e4.im),
+    ]
+}
+
 /// The sensitivities against the multiple-precision oracle's (`mechgen_tests::oracle`, 256
 /// bits): its position, its Jacobian and `J·x = −∂f/∂p` solved by its own elimination, on
 /// eight four-bars (crank-rockers, a triple-rocker, change-point linkages), both branches,
@@ -317,7 +330,7 @@ proptest::proptest! {
 /// answers are within 16 units of rounding times the condition (5.4 at worst when written).
 #[test]
 fn sensitivities_agree_with_a_high_precision_solve() {
-    use mechgen_tests::oracle::{self, Big, C, Params};
+    use mechgen_tests::oracle::{self, Params};
     let cases: [([f64; 4], f64, Branch); 8] = [
         ([180.0, 80.0, 200.0, 150.0], 1.0, Branch::Open),
         ([180.0, 80.0, 200.0, 150.0], 4.0, Branch::Crossed),
@@ -346,14 +359,7 @@ fn sensitivities_agree_with_a_high_precision_solve() {
         let truth = outcome.truth.expect("the oracle assembles it");
         let state = &truth.state;
         let j = oracle::jacobian(&outcome.model, state);
-        let [e3, e4] = [0, 1].map(|k| state.directions[k].clone().expect("an angle"));
-        // ∂f/∂l for f = l2·e^{iθ2} + l3·e^{iθ3} − l4·e^{iθ4} − l1.
-        let partials = [
-            C::new(-Big::one(), Big::zero()),
-            state.input_direction.clone(),
-            e3,
-            C::new(-e4.re, -e4.im),
-        ];
+        let partials = length_partials(state);
         for (k, d) in partials.iter().enumerate() {
             let (x, _) =
                 oracle::solve(j.clone(), vec![-d.re.clone(), -d.im.clone()]).expect("regular");
@@ -397,7 +403,7 @@ fn sensitivities_keep_the_velocity_s_accuracy_at_the_edges() {
         scale: f64,
     ) -> usize {
         use mechgen::Accuracy;
-        use mechgen_tests::oracle::{self, Big, C, Kind, Params, draw::Rng};
+        use mechgen_tests::oracle::{self, Big, Kind, Params, draw::Rng};
         let mut rng = Rng(seed);
         let t = |x: f64| T::from(x).unwrap();
         let mut judged = 0;
@@ -437,14 +443,7 @@ fn sensitivities_keep_the_velocity_s_accuracy_at_the_edges() {
                 [got.l1, got.l2, got.l3, got.l4].map(|u| [u.theta3.into(), u.theta4.into()]);
             let state = &truth.state;
             let jacobian = oracle::jacobian(&outcome.model, state);
-            let [e3, e4] = [0, 1].map(|k| state.directions[k].clone().expect("an angle"));
-            // ∂f/∂l for f = l2·e^{iθ2} + l3·e^{iθ3} − l4·e^{iθ4} − l1.
-            let partials = [
-                C::new(-Big::one(), Big::zero()),
-                state.input_direction.clone(),
-                e3,
-                C::new(-e4.re, -e4.im),
-            ];
+            let partials = length_partials(state);
             let condition: f64 = linkage.condition(t(theta2), &q).into();
             let kappa = condition.max(truth.condition);
             let aspect = truth.aspect(lengths.iter().sum());
