@@ -1011,6 +1011,40 @@ fn a_stephenson_six_bar_whose_crank_cannot_turn_is_swept_between_its_toggles() {
     );
 }
 
+/// A Stephenson six-bar whose circuit meets one toggle (71.29°) from both sides, a full turn
+/// apart: the piece is that full turn, down to −288.71°, not to −288° (the last whole degree
+/// the walk down took, which left 0.71° of the circuit out of the piece).
+#[test]
+fn a_stephenson_circuit_a_full_turn_below_its_toggle_is_that_turn() {
+    let scratch = Scratch::new("stephenson-full-turn-below");
+    let args: Vec<String> = [
+        "stephenson-six-bar",
+        "100",
+        "20",
+        "80",
+        "60",
+        "63",
+        "-55.577",
+        "52",
+        "85",
+        "189",
+        "-26",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let (summary, _, rows) = sweep_table(&args, &scratch);
+    assert!(
+        summary.contains("piece 1: -288.71° to 71.29° (a full turn below, a toggle above"),
+        "{summary}"
+    );
+    // Samples a step inside each end, as every piece's between toggles.
+    assert!(
+        rows[0][0] < -287.7 && rows[rows.len() - 1][0] > 70.28,
+        "{summary}"
+    );
+}
+
 #[test]
 fn bad_six_bar_input_is_a_clear_message_and_a_failure() {
     fails_with(

@@ -200,7 +200,14 @@ pub(super) fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
             let high = high.to_degrees();
             let left = 360 - ((high - start).ceil().max(0.0) as u32).min(360);
             let ((low, _), down) = walk(-degree, left);
-            let low = low.to_degrees();
+            // A walk down that did not stop went a full turn below the top, which its whole
+            // degrees fall short of by the top's fraction of one (the top itself, at a toggle,
+            // is no whole degree): the piece is that full turn.
+            let low = if down.is_none() {
+                high - 360.0
+            } else {
+                low.to_degrees()
+            };
             // Whole turns, so the piece reads as the other mechanisms' do.
             let shift = low - six_bars::normal(low, high).0;
             let mut piece = Piece::between(low - shift, high - shift);
