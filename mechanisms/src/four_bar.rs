@@ -138,10 +138,12 @@ impl<T: Real> LimitAngles<T> {
     }
 
     /// Whether the linkage assembles at `theta2`: `|θ2|`, wrapped to [0, π], lies between the
-    /// folded limit (or 0) and the extended limit (or π). The wrapping is exact for any
-    /// finite `theta2`, however large: it is `atan2(|sin θ2|, cos θ2)`, whose sine and cosine
-    /// reduce `θ2` by π itself rather than by its rounded value (`θ2 % τ` with τ rounded is
-    /// off by `θ2/τ` roundings of τ, 0.04 rad at `θ2 = 1e15`). Not finite: false.
+    /// folded limit (or 0) and the extended limit (or π). Within [−π, π], `|θ2|` itself (so
+    /// that each limit angle returned is reached: a wrapped angle may come back an ulp below
+    /// it). Beyond, the wrapping is exact for any finite `theta2`, however large: it is
+    /// `atan2(|sin θ2|, cos θ2)`, whose sine and cosine reduce `θ2` by π itself rather than
+    /// by its rounded value (`θ2 % τ` with τ rounded is off by `θ2/τ` roundings of τ, 0.04
+    /// rad at `θ2 = 1e15`). Not finite: false.
     ///
     /// ```
     /// use mechanisms::FourBar;
@@ -154,8 +156,12 @@ impl<T: Real> LimitAngles<T> {
         if !theta2.is_finite() {
             return false;
         }
-        let (sine, cosine) = theta2.sin_cos();
-        let magnitude = sine.abs().atan2(cosine);
+        let magnitude = if theta2.abs() <= T::constant(core::f64::consts::PI) {
+            theta2.abs()
+        } else {
+            let (sine, cosine) = theta2.sin_cos();
+            sine.abs().atan2(cosine)
+        };
         self.folded.is_none_or(|f| magnitude >= f) && self.extended.is_none_or(|e| magnitude <= e)
     }
 }
@@ -484,6 +490,30 @@ impl<T: Real> FourBar<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each limit angle `limit_angles` returns is reached, and so is its negative (an
+    /// adversarial review found 5% of them not: `atan2(|sin θ|, cos θ)` came back an ulp
+    /// below the limit): the reviewer's f64 and f32 linkages, and an ulp beyond a limit is not.
+    #[test]
+    fn every_limit_returned_is_reached() {
+        let double = FourBar::new(
+            0.796364489945875f64,
+            0.20712010676194054,
+            1.944736181337953,
+            2.533980564521892,
+        )
+        .unwrap()
+        .limit_angles();
+        let folded = double.folded.unwrap();
+        assert!(double.reaches(folded) && double.reaches(-folded));
+        assert!(!double.reaches(folded.next_down()));
+        let single = FourBar::new(0.7650594f32, 0.70408976, 1.9480811, 1.4051217)
+            .unwrap()
+            .limit_angles();
+        for limit in [single.folded, single.extended].into_iter().flatten() {
+            assert!(single.reaches(limit) && single.reaches(-limit), "{limit}");
+        }
+    }
 
     /// Found by mutation testing: on either branch, each dead centre is a position the
     /// linkage assembles in, with the rocker's angle as `assemble` gives it (in (−π, π]),

@@ -163,10 +163,12 @@ impl<T: Real> SliderCrank<T> {
 
     /// The slider's stroke for a crank that turns fully: the distance between its extreme
     /// positions on a branch, where crank and rod line up extended (`|O2 B| = l2 + l3`) and
-    /// folded (`|O2 B| = l3 − l2`): `√((l2 + l3)² − c²) − √((l3 − l2)² − c²)`, each root
-    /// computed as `√((r − |c|)·(r + |c|))` on the dimensions scaled by a power of two
-    /// (accurate, and no square overflows). `None` if the crank cannot turn fully, or if the stroke is too
-    /// long for `T`.
+    /// folded (`|O2 B| = l3 − l2`): `√((l2 + l3)² − c²) − √((l3 − l2)² − c²)`, computed as
+    /// `4·l2·l3 / (√((l2 + l3)² − c²) + √((l3 − l2)² − c²))` (the same, without the
+    /// difference, which a crank short against the rod cancels to nothing: a crank of 1e-17
+    /// on a rod of 1 had a stroke of 0), each root as `√((r − |c|)·(r + |c|))`, on the
+    /// dimensions scaled by a power of two (no square overflows). `None` if the crank cannot
+    /// turn fully, or if the stroke is too long for `T`.
     ///
     /// At `l3 − l2 = |c|` the folded end is the change point where the rod stands
     /// perpendicular to the slide: the slider reaches it with its velocity jumping rather than
@@ -187,7 +189,8 @@ impl<T: Real> SliderCrank<T> {
         let [l2, l3, c] = normalised([self.l2, self.l3, self.c]);
         let c = c.abs();
         let root = |r: T| ((r - c).max(T::zero()) * (r + c)).sqrt();
-        let unit = root(l2 + l3) - root(l3 - l2);
+        // (a − b) = (a² − b²)/(a + b), and a² − b² = 4·l2·l3 exactly.
+        let unit = T::constant(4.0) * l2 * l3 / (root(l2 + l3) + root(l3 - l2));
         // Back to scale: the largest dimension over the largest scaled one is the power of two.
         let largest = |values: [T; 3]| values.iter().fold(T::zero(), |m, v| m.max(v.abs()));
         let scale = largest([self.l2, self.l3, self.c]) / largest([l2, l3, c]);
@@ -319,6 +322,23 @@ mod tests {
                 .unwrap();
             assert!((stroke - 101.017_897_709_996_87).abs() < 1e-12, "{stroke}");
         }
+    }
+
+    /// A crank short against its rod: the stroke to its last digits (as a difference of the
+    /// two roots it cancelled to nothing: 0 for a crank of 1e-17, 3.7e-5 off for 1e-12).
+    /// References: `2·l2` without offset; 256-bit evaluations with an offset of 0.5.
+    #[test]
+    fn a_short_crank_s_stroke_keeps_its_digits() {
+        let relative = |got: f64, want: f64| ((got - want) / want).abs();
+        let stroke = |l2: f64, c: f64| SliderCrank::new(l2, 1.0, c).unwrap().stroke().unwrap();
+        assert_eq!(stroke(1e-17, 0.0), 2e-17);
+        assert!(relative(stroke(1e-17, 0.5), 2.309_401_076_758_503e-17) < 4.0 * f64::EPSILON);
+        assert!(relative(stroke(1e-12, 0.5), 2.309_401_076_758_503e-12) < 4.0 * f64::EPSILON);
+        let single = SliderCrank::new(1e-8f32, 1.0, 0.0)
+            .unwrap()
+            .stroke()
+            .unwrap();
+        assert_eq!(single, 2e-8);
     }
 
     /// The dead centres `asin(c/(l2 + l3))` and `π + asin(c/(l3 − l2))`, and the time ratio
