@@ -132,7 +132,16 @@ pub fn classify<T: Real>(ground: T, input: T, coupler: T, output: T) -> Grashof 
 
 /// [`classify`] with lengths counted equal when they differ by at most
 /// `relative_tolerance` times the total length. A tolerance that is negative or not a
-/// number counts as zero: lengths are then equal only exactly.
+/// number counts as zero: lengths are then equal only exactly. Lengths of which one is not
+/// positive and finite (zero, negative, infinite, NaN) make no linkage:
+/// [`Class::CannotClose`], [`Inversion::Immobile`], no special shape.
+///
+/// ```
+/// use mechgen::grashof::{classify, Class};
+/// assert_eq!(classify(f64::NAN, 1.0, 1.0, 1.0).class, Class::CannotClose);
+/// assert_eq!(classify(1.0, f64::INFINITY, f64::INFINITY, 1.0).special, None);
+/// assert_eq!(classify(-1.0, 2.0, 2.0, 2.0).class, Class::CannotClose);
+/// ```
 ///
 /// ```
 /// use mechgen::grashof::{classify_with_tolerance, Class, Special};
@@ -159,6 +168,16 @@ pub fn classify_with_tolerance<T: Real>(
     output: T,
     relative_tolerance: T,
 ) -> Grashof {
+    // Lengths that are not positive and finite make no linkage (NaN was a triple-rocker, an
+    // infinity a parallelogram, a negative length a double-crank).
+    let lengths = [ground, input, coupler, output];
+    if !lengths.iter().all(|l| *l > T::zero() && l.is_finite()) {
+        return Grashof {
+            class: Class::CannotClose,
+            inversion: Inversion::Immobile,
+            special: None,
+        };
+    }
     // Scaled exactly, so that nothing below overflows or underflows and the result is the
     // same at every scale.
     let links = normalised([ground, input, coupler, output]);
