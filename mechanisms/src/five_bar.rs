@@ -119,9 +119,19 @@ impl<T: Real> FiveBar<T> {
     /// (the workspace is the two annuli's intersection; on its boundary a leg is in a
     /// serial singularity).
     pub fn reaches(&self, p: Vec2<T>) -> bool {
-        let from_left = p.x.hypot(p.y);
-        let from_right = (p.x - self.l5).hypot(p.y);
-        let within = |distance: T, a: T, b: T| distance >= (a - b).abs() && distance <= a + b;
+        // In half units (exact, but for subnormals), so that no distance or sum of two links
+        // near the float's largest overflows (`inf <= inf` put a point at infinity, or one
+        // 2e308 away, within reach); a point that is not finite is not.
+        if !(p.x.is_finite() && p.y.is_finite()) {
+            return false;
+        }
+        let half = |v: T| v * T::constant(0.5);
+        let from_left = half(p.x).hypot(half(p.y));
+        let from_right = (half(p.x) - half(self.l5)).hypot(half(p.y));
+        let within = |distance: T, a: T, b: T| {
+            let (a, b) = (half(a), half(b));
+            distance >= (a - b).abs() && distance <= a + b
+        };
         within(from_left, self.l1, self.l2) && within(from_right, self.l4, self.l3)
     }
 
@@ -150,11 +160,13 @@ impl<T: Real> FiveBar<T> {
         // Each leg is a triangle motor–elbow–P: the crank leaves the line motor → P at the
         // triangle's angle at the motor, to the side the elbow is on. Both motors are on the
         // x axis, the left at 0 and the right at l5.
+        // In half units, as `reaches` measures (the angles are the same at any scale).
+        let half = |v: T| v * T::constant(0.5);
         let leg = |motor_x: T, proximal: T, distal: T, side: T| {
-            let dx = p.x - motor_x;
-            let reach = dx.hypot(p.y);
-            let at_motor = crate::triangle::angle(proximal, reach, distal);
-            let toward = p.y.atan2(dx);
+            let dx = half(p.x) - half(motor_x);
+            let reach = dx.hypot(half(p.y));
+            let at_motor = crate::triangle::angle(half(proximal), reach, half(distal));
+            let toward = half(p.y).atan2(dx);
             if side >= T::zero() {
                 toward + at_motor
             } else {
@@ -182,6 +194,26 @@ mod tests {
 
     fn at(x: f64, y: f64) -> Vec2<f64> {
         Vec2 { x, y }
+    }
+
+    /// A robot near the float's largest: a point at infinity, or one beyond its legs' reach
+    /// whose distance overflows, is out of reach (both were within it, `inf <= inf`, and the
+    /// first's cranks came back as `[0, 0]`); a point within reach has cranks that put the
+    /// end effector there.
+    #[test]
+    fn the_largest_robot_reaches_only_what_it_reaches() {
+        let robot = FiveBar::new(1e308, 1e308, 1e308, 1e308, 1e307).unwrap();
+        assert!(!robot.reaches(at(f64::INFINITY, 0.0)));
+        assert_eq!(robot.inverse(at(f64::INFINITY, 0.0), [1.0, -1.0]), None);
+        assert!(!robot.reaches(at(1.5e308, 1.5e308)));
+        let p = at(5e306, 1.5e308);
+        let [left, right] = robot.inverse(p, [1.0, -1.0]).unwrap();
+        let q = robot.assemble(left, right, Branch::Open).unwrap();
+        let got = robot.points(left, right, &q).unwrap().end_effector;
+        assert!(
+            (got.x - p.x).abs() < 1e294 && (got.y - p.y).abs() < 1e294,
+            "{got:?}"
+        );
     }
 
     #[test]
