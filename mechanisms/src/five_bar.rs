@@ -105,12 +105,16 @@ impl<T: Real> FiveBar<T> {
     /// How near the position `q` at the cranks' angles `theta1` and `theta4` is to each kind
     /// of singularity (see [`Singularities`]).
     pub fn singularities(&self, theta1: T, theta4: T, q: &FiveBarUnknowns<T>) -> Singularities<T> {
+        // `|sin(a − b)|` from each angle's own sine and cosine, whose reduction is exact at
+        // any size, rather than from `a − b`, which rounds away the digits of a difference
+        // between angles of many turns (0.86608 for 0.86592 at 1e12 turns).
+        let apart = |a: T, b: T| {
+            let ((sa, ca), (sb, cb)) = (a.sin_cos(), b.sin_cos());
+            (sa * cb - ca * sb).abs()
+        };
         Singularities {
-            parallel: (q.theta3 - q.theta2).sin().abs(),
-            serial: [
-                (q.theta2 - theta1).sin().abs(),
-                (q.theta3 - theta4).sin().abs(),
-            ],
+            parallel: apart(q.theta3, q.theta2),
+            serial: [apart(q.theta2, theta1), apart(q.theta3, theta4)],
         }
     }
 
@@ -213,6 +217,30 @@ mod tests {
         assert!(
             (got.x - p.x).abs() < 1e294 && (got.y - p.y).abs() < 1e294,
             "{got:?}"
+        );
+    }
+
+    /// At cranks' angles of many turns, each singularity's sine is the one the linkage's own
+    /// joints give (the cross product of a crank's and its distal link's directions, from
+    /// `points`): it was taken from a difference of angles that rounds at 1e12 turns.
+    #[test]
+    fn singularities_are_the_joints_own_at_any_number_of_turns() {
+        let robot = FiveBar::new(100.0, 200.0, 200.0, 100.0, 100.0).unwrap();
+        let turns = 1e12 * core::f64::consts::TAU;
+        let (left, right) = (120f64.to_radians() + turns, 60f64.to_radians() - turns);
+        let q = robot.assemble(left, right, Branch::Open).unwrap();
+        let p = robot.points(left, right, &q).unwrap();
+        let (elbow, effector) = (p.left_elbow, p.end_effector);
+        let distal = (
+            (effector.x - elbow.x) / 200.0,
+            (effector.y - elbow.y) / 200.0,
+        );
+        let crank = (elbow.x / 100.0, elbow.y / 100.0);
+        let joints = (crank.0 * distal.1 - crank.1 * distal.0).abs();
+        let near = robot.singularities(left, right, &q);
+        assert!(
+            (near.serial[0] - joints).abs() < 1e-12,
+            "{near:?} against {joints}"
         );
     }
 
