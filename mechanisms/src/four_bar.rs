@@ -323,8 +323,9 @@ impl<T: Real> FourBar<T> {
     /// for a crank that turns fully, else the limit angles, where γ is exactly 0 (folded) or π
     /// (extended). Both branches share them. At θ2 = 0 and π, γ is the angle opposite
     /// `Z = |l1 ∓ l2|` in the triangle of sides `l3`, `l4`, `Z`, by Kahan's formula (good to a
-    /// few units of rounding, where `acos` of the cosine rule loses half the digits near 0
-    /// and π).
+    /// few units of rounding for `Z` as rounded, where `acos` of the cosine rule loses half
+    /// the digits near 0 and π; near those ends `Z`'s own rounding moves γ by more, as it
+    /// moves the limit angles).
     ///
     /// ```
     /// use mechanisms::FourBar;
@@ -359,9 +360,14 @@ impl<T: Real> FourBar<T> {
     /// folded. A toggle exists where the right-hand side lies in (−1, 1); there the Jacobian
     /// is singular and just beyond it the loop cannot close. Each is computed as the angle at
     /// O2 of the triangle O2 O4 A with `|A O4| = l3 ± l4`, by Kahan's formula, on the lengths
-    /// scaled by a power of two: accurate near 0 and π, and at any scale.
+    /// scaled by a power of two, at any scale. Kahan's formula keeps every digit of the
+    /// triangle it is given, but `l3 ± l4` and `l1 − l2` are rounded before it: the angle is
+    /// the exact toggle of lengths within a unit of rounding of those given (backward
+    /// stable), which near 0 and π, where a toggle moves fast with the lengths, may be far
+    /// from the given lengths' own (an adversarial review found 1.5e-5 rad at a link ratio
+    /// of 2e6, and toggles within rounding of an end reported on the wrong side of it).
     ///
-    /// At the ends, `|l3 − l4| = |l1 − l2|` or `l3 + l4 = l1 + l2` (by exact comparison), the
+    /// At the ends, `|l3 − l4| = |l1 − l2|` or `l3 + l4 = l1 + l2` (compared as rounded), the
     /// links all line up at θ2 = 0 or π: a change point, which the crank passes through, so
     /// not a limit (`None`). (The lengths [`FourBar::new`] refuses, which close only flat,
     /// would give `folded = π` or `extended = 0`, reaching that one angle.)
@@ -463,7 +469,9 @@ impl<T: Real> FourBar<T> {
 
     /// The ideal mechanical advantage at a position, rocker torque over crank torque:
     /// `MA = T4/T2 = ω2/ω4`, from the generated velocity. Unbounded at a dead centre
-    /// (`ω4 = 0`).
+    /// (`ω4 = 0` to rounding, `|ω4| ≤ 4ε·|ω2|`); at a dead centre's crank angle as rounded
+    /// (as [`dead_centres`](Self::dead_centres) returns it), `ω4` may exceed that by the
+    /// angle's own rounding, and the advantage comes out finite, some `1/ε`.
     ///
     /// Errors: as [`velocity`](Self::velocity) (a toggle, where the crank cannot drive).
     ///

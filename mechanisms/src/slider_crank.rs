@@ -203,7 +203,9 @@ impl<T: Real> SliderCrank<T> {
     /// `θ2 = π + asin(c/(l3 − l2))`, each arc sine computed as
     /// `atan2(c, √((r − c)·(r + c)))` (accurate near ±π/2). There the slider stops (`ḋ = 0`).
     ///
-    /// `None` unless `l3 − l2 > |c|`: if the crank cannot turn fully, and also at
+    /// `None` unless `l3 − l2 > |c|` (`l3 − l2` as rounded: within a unit of rounding of
+    /// `|c|`, the answer is that of lengths within rounding of those given): if the crank
+    /// cannot turn fully, and also at
     /// `l3 − l2 = |c|`, where the folded line-up puts the rod perpendicular to the slide, at
     /// the change point where the two branches meet rather than at a dead centre (a rod equal
     /// to the crank with no offset passes its slider pin through O2 there, at θ2 = ±π/2).

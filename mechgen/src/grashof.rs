@@ -132,7 +132,9 @@ pub fn classify<T: Real>(ground: T, input: T, coupler: T, output: T) -> Grashof 
 
 /// [`classify`] with lengths counted equal when they differ by at most
 /// `relative_tolerance` times the total length. A tolerance that is negative or not a
-/// number counts as zero: lengths are then equal only exactly. Lengths of which one is not
+/// number counts as zero: lengths are then equal only exactly, and sums of them (`s + l`
+/// against `p + q`) equal to their rounding, which decides a sum within a unit of rounding
+/// of another as lengths within rounding of those given would. Lengths of which one is not
 /// positive and finite (zero, negative, infinite, NaN) make no linkage:
 /// [`Class::CannotClose`], [`Inversion::Immobile`], no special shape.
 ///
