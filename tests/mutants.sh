@@ -61,6 +61,7 @@ FILES=(
     mechgen/src/nalgebra_support.rs
     mechanisms/src/five_bar.rs
     mechanisms/src/triangle.rs
+    mechanisms/src/sums.rs
     mechanisms/src/tolerance.rs
     mechanisms/src/four_bar.rs
     mechanisms/src/slider_crank.rs
@@ -76,6 +77,7 @@ FILES=(
 ANALYSES=(
     mechanisms/src/five_bar.rs
     mechanisms/src/triangle.rs
+    mechanisms/src/sums.rs
     mechanisms/src/tolerance.rs
     mechanisms/src/four_bar.rs
     mechanisms/src/slider_crank.rs

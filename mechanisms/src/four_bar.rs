@@ -4,7 +4,7 @@ use mechgen::grashof::{self, Class, Grashof, Inversion, normalised};
 use mechgen::{Branch, Error, MechanicalAdvantage, Real, mechanism};
 
 use crate::dimensions::{DimensionError, finite, non_negative, positive};
-use crate::triangle;
+use crate::triangle::{Triangle, longer_first};
 
 mechanism! {
     /// Four-bar linkage: ground `l1` from O2 = (0, 0) to O4 = (l1, 0), crank `l2` from O2 to
@@ -322,10 +322,10 @@ impl<T: Real> FourBar<T> {
     /// grows with `|θ2|`, so the extremes are at the ends of the reachable range: θ2 = 0 and π
     /// for a crank that turns fully, else the limit angles, where γ is exactly 0 (folded) or π
     /// (extended). Both branches share them. At θ2 = 0 and π, γ is the angle opposite
-    /// `Z = |l1 ∓ l2|` in the triangle of sides `l3`, `l4`, `Z`, by Kahan's formula (good to a
-    /// few units of rounding for `Z` as rounded, where `acos` of the cosine rule loses half
-    /// the digits near 0 and π; near those ends `Z`'s own rounding moves γ by more, as it
-    /// moves the limit angles).
+    /// `Z = |l1 ∓ l2|` in the triangle of sides `l3`, `l4`, `Z`, by Kahan's formula with each
+    /// of its factors a sum of the four lengths rounded once: the given lengths' own γ to a
+    /// few units of rounding, near 0 and π too (where `acos` of the cosine rule loses half
+    /// the digits, and `Z` rounded first moved γ by far more).
     ///
     /// ```
     /// use mechanisms::FourBar;
@@ -338,14 +338,18 @@ impl<T: Real> FourBar<T> {
     pub fn transmission_extremes(&self) -> TransmissionExtremes<T> {
         let limits = self.limit_angles();
         let pi = T::constant(core::f64::consts::PI);
-        let [l1, l2, l3, l4] = normalised(self.lengths());
+        let [l1, l2, l3, l4] = self.lengths();
+        let (longer, shorter) = longer_first(l1, l2);
         let (min, min_at) = match limits.folded {
             Some(at) => (T::zero(), at),
-            None => (triangle::angle(l3, l4, (l1 - l2).abs()), T::zero()),
+            None => (
+                Triangle::with_third_side(l3, l4, [longer, -shorter]).angle(),
+                T::zero(),
+            ),
         };
         let (max, max_at) = match limits.extended {
             Some(at) => (pi, at),
-            None => (triangle::angle(l3, l4, l1 + l2), pi),
+            None => (Triangle::with_third_side(l3, l4, [l1, l2]).angle(), pi),
         };
         TransmissionExtremes {
             min,
@@ -360,17 +364,20 @@ impl<T: Real> FourBar<T> {
     /// folded. A toggle exists where the right-hand side lies in (−1, 1); there the Jacobian
     /// is singular and just beyond it the loop cannot close. Each is computed as the angle at
     /// O2 of the triangle O2 O4 A with `|A O4| = l3 ± l4`, by Kahan's formula, on the lengths
-    /// scaled by a power of two, at any scale. Kahan's formula keeps every digit of the
-    /// triangle it is given, but `l3 ± l4` and `l1 − l2` are rounded before it: the angle is
-    /// the exact toggle of lengths within a unit of rounding of those given (backward
-    /// stable), which near 0 and π, where a toggle moves fast with the lengths, may be far
-    /// from the given lengths' own (an adversarial review found 1.5e-5 rad at a link ratio
-    /// of 2e6, and toggles within rounding of an end reported on the wrong side of it).
+    /// scaled by a power of two, at any scale, with each of its four factors
+    /// (`Z ∓ |l1 − l2|`, `l1 + l2 ± Z`) a sum of the four lengths rounded once: the given
+    /// lengths' own toggle to a few units of rounding, near 0 and π too, where a toggle moves
+    /// fast with the lengths (`l3 ± l4` rounded first, a toggle came out 1.5e-5 rad off at a
+    /// link ratio of 2e6, and one within rounding of an end on the wrong side of it).
     ///
-    /// At the ends, `|l3 − l4| = |l1 − l2|` or `l3 + l4 = l1 + l2` (compared as rounded), the
+    /// At the ends, `|l3 − l4| = |l1 − l2|` or `l3 + l4 = l1 + l2` (decided exactly), the
     /// links all line up at θ2 = 0 or π: a change point, which the crank passes through, so
     /// not a limit (`None`). (The lengths [`FourBar::new`] refuses, which close only flat,
-    /// would give `folded = π` or `extended = 0`, reaching that one angle.)
+    /// would give `folded = π` or `extended = 0`, reaching that one angle.) The exact rule
+    /// can differ from [`grashof`](Self::grashof)'s, which calls sums within its tolerance
+    /// (64ε of the total) equal: two lengths a unit of rounding off a change point have a
+    /// toggle that close to 0 or π, which [`grashof`](Self::grashof) classes a change
+    /// point.
     ///
     /// ```
     /// use mechanisms::FourBar;
@@ -390,26 +397,27 @@ impl<T: Real> FourBar<T> {
     /// # Ok::<(), mechanisms::DimensionError<f64>>(())
     /// ```
     pub fn limit_angles(&self) -> LimitAngles<T> {
-        let [l1, l2, l3, l4] = normalised(self.lengths());
+        let [l1, l2, l3, l4] = self.lengths();
         let pi = T::constant(core::f64::consts::PI);
-        // Z = |A − O4| over the crank's turn, from θ2 = 0 to π.
-        let (nearest, farthest) = ((l1 - l2).abs(), l1 + l2);
-        let (folded, extended) = ((l3 - l4).abs(), l3 + l4);
-        let toggle = |reach: T| triangle::angle(l1, l2, reach);
+        // The triangle O2 O4 A with |A O4| = Z at each line-up of coupler and rocker; over
+        // the crank's turn, from θ2 = 0 to π, Z runs from |l1 − l2| to l1 + l2.
+        let (longer, shorter) = longer_first(l3, l4);
+        let folded = Triangle::with_third_side(l1, l2, [longer, -shorter]);
+        let extended = Triangle::with_third_side(l1, l2, [l3, l4]);
         LimitAngles {
-            folded: if folded <= nearest {
+            folded: if folded.within_difference() {
                 None
-            } else if folded >= farthest {
+            } else if folded.beyond_sum() {
                 Some(pi)
             } else {
-                Some(toggle(folded))
+                Some(folded.angle())
             },
-            extended: if extended >= farthest {
+            extended: if extended.beyond_sum() {
                 None
-            } else if extended <= nearest {
+            } else if extended.within_difference() {
                 Some(T::zero())
             } else {
-                Some(toggle(extended))
+                Some(extended.angle())
             },
         }
     }
@@ -418,7 +426,8 @@ impl<T: Real> FourBar<T> {
     /// up, extended (`|O2 B| = l2 + l3`) and folded (`|O2 B| = l3 − l2`), and the rocker stops
     /// (`ω4 = 0`) at its two extremes. B is on the rocker's circle, so
     /// `cos θ4 = ((l3 ± l2)² − l1² − l4²)/(2·l1·l4)`, computed as the supplement of the angle at
-    /// O4 of the triangle O2 O4 B by Kahan's formula (accurate at any scale).
+    /// O4 of the triangle O2 O4 B by Kahan's formula, each factor a sum of the four lengths
+    /// rounded once (the given lengths' own to a few units of rounding, at any scale).
     ///
     /// `None` unless the linkage is a class I (Grashof) crank-rocker. A change-point
     /// (class III) crank-rocker passes one of its two crank-and-coupler line-ups with all four
@@ -452,8 +461,8 @@ impl<T: Real> FourBar<T> {
             a: T::zero(),
             delta: T::zero(),
         };
-        let at_reach = |reach: T, folded: bool| {
-            let magnitude = pi - triangle::angle(l1, l4, reach);
+        let at_reach = |reach: [T; 2], folded: bool| {
+            let magnitude = pi - Triangle::with_third_side(l1, l4, reach).angle();
             // Of B's two places on the rocker circle, take the one on `branch`.
             [magnitude, -magnitude].into_iter().find_map(|theta4| {
                 let (sine, cosine) = theta4.sin_cos();
@@ -464,7 +473,7 @@ impl<T: Real> FourBar<T> {
                     .then_some(DeadCentre { theta2, theta4 })
             })
         };
-        Some([at_reach(l3 + l2, false)?, at_reach(l3 - l2, true)?])
+        Some([at_reach([l3, l2], false)?, at_reach([l3, -l2], true)?])
     }
 
     /// The ideal mechanical advantage at a position, rocker torque over crank torque:
@@ -498,6 +507,40 @@ impl<T: Real> FourBar<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use core::f64::consts::PI;
+
+    /// Found by the 256-bit line-up tests (`tests/tests/line_ups.rs`): coupler and rocker of a
+    /// linkage of some 1e118 line up folded at θ2 = 3.133925321533377898 (mpmath, 600 bits),
+    /// where `|l3 − l4|` rounded first put the toggle at 3.1339253215336904, 450 units of
+    /// rounding off.
+    #[test]
+    fn a_toggle_near_pi_is_the_given_lengths_own() {
+        let linkage = FourBar::<f64>::new(
+            4.179822725055393e118,
+            1.450662756356314e117,
+            7.769460372713525e117,
+            5.101830916930383e118,
+        )
+        .unwrap();
+        let folded = linkage.limit_angles().folded.unwrap();
+        assert!((folded - 3.133_925_321_533_377_9).abs() <= 4.0 * f64::EPSILON * PI);
+    }
+
+    /// `l3 + l4 = 1.5 − 2⁻⁷⁰` against `l1 + l2 = 1.5`: coupler and rocker line up extended
+    /// 7.128953417946986e-11 rad short of π (mpmath), a limit, where `l3 + l4` rounded to 1.5
+    /// made it a change point the crank passes. The angle is the exact sum's too:
+    /// 3.141592653518503704.
+    #[test]
+    fn a_toggle_a_rounding_short_of_a_change_point_is_a_limit() {
+        let (l3, l4) = (1.5 - 2f64.powi(-20), 2f64.powi(-20) - 2f64.powi(-70));
+        assert_eq!(l3 + l4, 1.5);
+        let limits = FourBar::new(1.0, 0.5, l3, l4).unwrap().limit_angles();
+        let extended = limits.extended.unwrap();
+        assert!((extended - 3.141_592_653_518_504).abs() <= 4.0 * f64::EPSILON * PI);
+        // At the change point itself, none.
+        let passes = FourBar::new(1.0, 0.5, l3, 2f64.powi(-20)).unwrap();
+        assert_eq!(passes.limit_angles().extended, None);
+    }
 
     /// Each limit angle `limit_angles` returns is reached, and so is its negative (an
     /// adversarial review found 5% of them not: `atan2(|sin θ|, cos θ)` came back an ulp

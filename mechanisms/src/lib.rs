@@ -41,6 +41,7 @@ mod jansen;
 mod random;
 mod six_bar;
 mod slider_crank;
+mod sums;
 #[cfg(feature = "std")]
 pub mod synthesis;
 pub mod tolerance;

@@ -4,6 +4,8 @@ use mechgen::grashof::normalised;
 use mechgen::{Error, MechanicalAdvantage, Real, mechanism};
 
 use crate::dimensions::{DimensionError, finite, non_negative, positive};
+use crate::sums;
+use crate::triangle::root_of_product;
 
 mechanism! {
     /// Slider-crank with offset: crank `l2` from O2 = (0, 0) to the crank pin A at the input
@@ -145,7 +147,8 @@ impl<T: Real> SliderCrank<T> {
     }
 
     /// Whether the crank turns fully: the rod reaches the slider line from every crank
-    /// position, `l3 − l2 ≥ |c|`. At `l3 − l2 = |c|` it reaches it just, standing
+    /// position, `l3 − l2 ≥ |c|` (decided exactly, not on `l3 − l2` as rounded, which a rod
+    /// long against its crank rounds to the rod). At `l3 − l2 = |c|` it reaches it just, standing
     /// perpendicular to the slide at one crank angle, where the two branches meet (a change
     /// point); with no offset that is a rod equal to the crank, whose slider pin passes
     /// through the crank pivot O2.
@@ -158,7 +161,8 @@ impl<T: Real> SliderCrank<T> {
     /// # Ok::<(), mechanisms::DimensionError<f64>>(())
     /// ```
     pub fn crank_turns_fully(&self) -> bool {
-        self.l3 - self.l2 >= self.c.abs()
+        let [l2, l3, c] = normalised([self.l2, self.l3, self.c]);
+        sums::sum([l3, -l2, -c.abs(), T::zero()]) >= T::zero()
     }
 
     /// The slider's stroke for a crank that turns fully: the distance between its extreme
@@ -166,7 +170,8 @@ impl<T: Real> SliderCrank<T> {
     /// folded (`|O2 B| = l3 − l2`): `√((l2 + l3)² − c²) − √((l3 − l2)² − c²)`, computed as
     /// `4·l2·l3 / (√((l2 + l3)² − c²) + √((l3 − l2)² − c²))` (the same, without the
     /// difference, which a crank short against the rod cancels to nothing: a crank of 1e-17
-    /// on a rod of 1 had a stroke of 0), each root as `√((r − |c|)·(r + |c|))`, on the
+    /// on a rod of 1 had a stroke of 0), each root as `√((r − |c|)·(r + |c|))` with each
+    /// factor a sum of the dimensions rounded once, on the
     /// dimensions scaled by a power of two (no square overflows). `None` if the crank cannot
     /// turn fully, or if the stroke is too long for `T`.
     ///
@@ -187,10 +192,8 @@ impl<T: Real> SliderCrank<T> {
             return None;
         }
         let [l2, l3, c] = normalised([self.l2, self.l3, self.c]);
-        let c = c.abs();
-        let root = |r: T| ((r - c).max(T::zero()) * (r + c)).sqrt();
         // (a − b) = (a² − b²)/(a + b), and a² − b² = 4·l2·l3 exactly.
-        let unit = T::constant(4.0) * l2 * l3 / (root(l2 + l3) + root(l3 - l2));
+        let unit = T::constant(4.0) * l2 * l3 / (line_up(l3, l2, c) + line_up(l3, -l2, c));
         // Back to scale: the largest dimension over the largest scaled one is the power of two.
         let largest = |values: [T; 3]| values.iter().fold(T::zero(), |m, v| m.max(v.abs()));
         let scale = largest([self.l2, self.l3, self.c]) / largest([l2, l3, c]);
@@ -201,10 +204,11 @@ impl<T: Real> SliderCrank<T> {
     /// The crank angles at the dead centres on the open branch, `[outer, inner]`: where crank
     /// and rod line up extended, `θ2 = asin(c/(l2 + l3))`, and folded,
     /// `θ2 = π + asin(c/(l3 − l2))`, each arc sine computed as
-    /// `atan2(c, √((r − c)·(r + c)))` (accurate near ±π/2). There the slider stops (`ḋ = 0`).
+    /// `atan2(c, √((r − |c|)·(r + |c|)))`, each factor a sum of the dimensions rounded once
+    /// (the given dimensions' own angle to a few units of rounding, near ±π/2 too). There the
+    /// slider stops (`ḋ = 0`).
     ///
-    /// `None` unless `l3 − l2 > |c|` (`l3 − l2` as rounded: within a unit of rounding of
-    /// `|c|`, the answer is that of lengths within rounding of those given): if the crank
+    /// `None` unless `l3 − l2 > |c|` (decided exactly): if the crank
     /// cannot turn fully, and also at
     /// `l3 − l2 = |c|`, where the folded line-up puts the rod perpendicular to the slide, at
     /// the change point where the two branches meet rather than at a dead centre (a rod equal
@@ -223,13 +227,14 @@ impl<T: Real> SliderCrank<T> {
     /// ```
     pub fn dead_centres(&self) -> Option<[T; 2]> {
         let [l2, l3, c] = normalised([self.l2, self.l3, self.c]);
-        let folded = l3 - l2;
-        if folded <= c.abs() {
+        if sums::sum([l3, -l2, -c.abs(), T::zero()]) <= T::zero() {
             return None;
         }
         let pi = T::constant(core::f64::consts::PI);
-        let arc_sine = |r: T| c.atan2(((r - c) * (r + c)).sqrt());
-        Some([arc_sine(l2 + l3), pi + arc_sine(folded)])
+        Some([
+            c.atan2(line_up(l3, l2, c)),
+            pi + c.atan2(line_up(l3, -l2, c)),
+        ])
     }
 
     /// The time ratio of an offset slider-crank with a crank turning counter-clockwise at
@@ -298,9 +303,53 @@ impl<T: Real> SliderCrank<T> {
     }
 }
 
+/// Where crank and rod line up with `|O2 B| = l3 + l2` (`l2` negative for `l3 − l2`), B's
+/// distance along the slide from the foot of the perpendicular from O2:
+/// `√((|O2 B| − |c|)·(|O2 B| + |c|))`, each factor a sum of the dimensions rounded once (see
+/// [`sums`]), so that it is the given dimensions' own where it is near zero; 0 where
+/// `|O2 B| ≤ |c|`. On dimensions scaled by a power of two.
+fn line_up<T: Real>(l3: T, l2: T, c: T) -> T {
+    let c = c.abs();
+    let beyond = sums::sum([l3, l2, -c, T::zero()]).max(T::zero());
+    root_of_product(beyond, sums::sum([l3, l2, c, T::zero()]))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use core::f64::consts::PI;
+
+    /// Found by the 256-bit line-up tests (`tests/tests/line_ups.rs`): the inner dead centre
+    /// at 1.570796355408629650 (mpmath, 600 bits), where `l3 − l2` rounded first put it at
+    /// 1.5707963551513395, 2.6e-10 rad off.
+    #[test]
+    fn a_dead_centre_near_the_change_point_is_the_given_dimensions_own() {
+        let linkage = SliderCrank::<f64>::new(
+            4.006151271658382e-173,
+            6.899845205046262e-171,
+            -6.859783692329676e-171,
+        )
+        .unwrap();
+        let [outer, inner] = linkage.dead_centres().unwrap();
+        assert!((inner - 1.570_796_355_408_629_6).abs() <= 4.0 * f64::EPSILON * PI);
+        assert!((outer + 1.418_694_098_894_706_3).abs() <= 4.0 * f64::EPSILON * 1.42);
+    }
+
+    /// A rod `2⁻⁷⁰` too short for a full turn (`l3 − l2 = |c| − 2⁻⁷⁰`), which `l3 − l2` rounded
+    /// to `|c|` took for one: no full turn, no stroke, no dead centres; `2⁻⁷⁰` longer, all
+    /// three.
+    #[test]
+    fn a_full_turn_is_decided_exactly() {
+        let (rod, offset) = (1.0, 1.0 - 2f64.powi(-20));
+        let crank = 2f64.powi(-20) + 2f64.powi(-70);
+        assert_eq!(rod - crank, offset);
+        let short = SliderCrank::new(crank, rod, offset).unwrap();
+        assert!(!short.crank_turns_fully());
+        assert_eq!((short.stroke(), short.dead_centres()), (None, None));
+        let long = SliderCrank::new(2f64.powi(-20) - 2f64.powi(-70), rod, -offset).unwrap();
+        assert!(long.crank_turns_fully());
+        assert!(long.stroke().is_some() && long.dead_centres().is_some());
+    }
 
     /// Found by mutation testing: the coupler point's angle is kept, not only its distance.
     #[test]

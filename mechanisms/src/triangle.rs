@@ -3,6 +3,8 @@
 use mechgen::Real;
 use mechgen::grashof::normalised;
 
+use crate::sums;
+
 /// The angle opposite side `c` of the triangle with sides `a`, `b` and `c`, in [0, π].
 ///
 /// Kahan's formula ("Miscalculating Area and Angles of a Needle-like Triangle"): with
@@ -22,6 +24,76 @@ pub(crate) fn angle<T: Real>(a: T, b: T, c: T) -> T {
     let adjacent = ((a + (b + c)) * ((a - c) + b)).max(zero).sqrt();
     let half = opposite.atan2(adjacent);
     half + half
+}
+
+/// A triangle with sides `a` and `b` and a third side `c = c₀ + c₁` given as a sum of two
+/// lengths (`c₁` negative for a difference), where the links it stands for line up: the
+/// toggle at `|A O4| = l3 ± l4`, a dead centre at `|O2 B| = l3 ± l2`. Kahan's formula reads
+/// four factors, `c − |a − b|`, `c + |a − b|`, `a + b + c` and `a + b − c`; [`angle`] has
+/// them from `c` as rounded, which near a line-up is what the rounding of `c₀ + c₁` left of
+/// them. Here each is a sum of the four lengths themselves, rounded once ([`sums::sum`]), so
+/// the angle is the given lengths' own to a few units of rounding, and whether `c` reaches
+/// `|a − b|` or `a + b` is decided exactly.
+pub(crate) struct Triangle<T> {
+    /// `c − |a − b|`: not positive where `c` is no longer than the difference.
+    beyond_difference: T,
+    /// `c + |a − b|`.
+    with_difference: T,
+    /// `a + b + c`.
+    perimeter: T,
+    /// `a + b − c`: not positive where `c` is no shorter than the sum.
+    within_sum: T,
+}
+
+impl<T: Real> Triangle<T> {
+    /// The triangle with sides `a`, `b` and `c₀ + c₁` (finite, `a` and `b` positive, the third
+    /// side not negative), on lengths scaled together by a power of two.
+    pub(crate) fn with_third_side(a: T, b: T, [c0, c1]: [T; 2]) -> Self {
+        let [a, b, c0, c1] = normalised([a, b, c0, c1]);
+        let (a, b) = longer_first(a, b);
+        Triangle {
+            beyond_difference: sums::sum([c0, c1, -a, b]),
+            with_difference: sums::sum([c0, c1, a, -b]),
+            perimeter: sums::sum([a, b, c0, c1]),
+            within_sum: sums::sum([a, b, -c0, -c1]),
+        }
+    }
+
+    /// Whether the third side is no longer than `|a − b|`, exactly.
+    pub(crate) fn within_difference(&self) -> bool {
+        self.beyond_difference <= T::zero()
+    }
+
+    /// Whether the third side is no shorter than `a + b`, exactly.
+    pub(crate) fn beyond_sum(&self) -> bool {
+        self.within_sum <= T::zero()
+    }
+
+    /// The angle opposite the third side, in [0, π]: 0 where it is no longer than
+    /// `|a − b|`, π where it is no shorter than `a + b`.
+    pub(crate) fn angle(&self) -> T {
+        let zero = T::zero();
+        let opposite = root_of_product(self.beyond_difference.max(zero), self.with_difference);
+        let adjacent = root_of_product(self.perimeter, self.within_sum.max(zero));
+        let half = opposite.atan2(adjacent);
+        half + half
+    }
+}
+
+/// `√(x·y)` for `x, y ≥ 0`: of the product where it is a normal number (`√(r·r)` is `r`
+/// exactly), else of each apart, so that two small factors do not underflow to 0.
+pub(crate) fn root_of_product<T: Real>(x: T, y: T) -> T {
+    let product = x * y;
+    if product >= T::min_positive_value() {
+        product.sqrt()
+    } else {
+        x.sqrt() * y.sqrt()
+    }
+}
+
+/// The two lengths, the longer first.
+pub(crate) fn longer_first<T: Real>(x: T, y: T) -> (T, T) {
+    if x >= y { (x, y) } else { (y, x) }
 }
 
 #[cfg(test)]
