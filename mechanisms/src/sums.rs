@@ -100,4 +100,40 @@ mod tests {
         assert_eq!(sum([0.1, 0.7, -0.3, -0.5]), -2.7755575615628914e-17);
         assert!(sum([1.0f32, 1e-9, -1.0, 0.0]) == 1e-9);
     }
+
+    /// Drawn sums that cancel to any depth, each pair of terms rounding when added (so that
+    /// every low word of the double-word addition counts): the exact sum rounded, every time.
+    #[test]
+    fn drawn_sums_that_cancel_are_the_exact_sum_rounded() {
+        let mut state = 0x9E37_79B9_7F4A_7C15u64;
+        let mut unit = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..20_000 {
+            let power = |p: f64| 2f64.powi(p as i32);
+            let scale = power((unit() * 40.0).floor() - 20.0);
+            let a = (1.0 + unit()) * scale;
+            let b = (1.0 + unit()) * scale * power(-(unit() * 40.0).floor());
+            // Either the long terms or the short ones cancel to a part in up to 2⁵³, with the
+            // other pair's own roundings (the low words of `a + b` and `c + d`) left apart.
+            let near = |x: f64, unit: f64| {
+                x * (1.0 + (unit - 0.5) * power(-(unit * 997.0 % 53.0).floor()))
+            };
+            let (c, d) = if unit() < 0.5 {
+                (-near(a, unit()), -b + (unit() - 0.5) * scale * power(-50.0))
+            } else {
+                (-a, -near(b, unit()))
+            };
+            let terms = [a, b, c, d];
+            let want = rounded_exact(terms);
+            let got = sum(terms);
+            assert!(
+                (got - want).abs() <= f64::EPSILON * want.abs(),
+                "{terms:?}: {got:e} vs {want:e}"
+            );
+        }
+    }
 }

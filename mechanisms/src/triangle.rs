@@ -157,6 +157,24 @@ mod tests {
         }
     }
 
+    /// Found by mutation testing: two factors whose product underflows are rooted apart. An
+    /// isosceles triangle of unit sides about a base of 1e-170, whose apex angle is the base
+    /// itself to rounding (`2·asin(c/2)`), and whose Kahan factors `c ∓ |a − b|` are both
+    /// 1e-170.
+    #[test]
+    fn factors_whose_product_underflows_keep_their_digits() {
+        assert_eq!(root_of_product(1e-200, 1e-200), 1e-200);
+        assert_eq!(root_of_product(4.0, 9.0), 6.0);
+        assert_near(
+            Triangle::with_third_side(1.0, 1.0, [1e-170, 0.0]).angle(),
+            1e-170,
+        );
+        assert_near(
+            Triangle::with_third_side(1.0, 1.0, [2e-170, -1e-170]).angle(),
+            1e-170,
+        );
+    }
+
     #[test]
     fn sides_that_close_only_flat_or_not_at_all_give_the_nearer_end() {
         assert_eq!(angle(1.0, 2.0, 3.0), PI);

@@ -56,6 +56,27 @@ fn assert_close<T: Real + Into<f64>>(what: &str, got: f64, want: &Big, relative_
     );
 }
 
+/// Where a case's lengths are drawn: about a size up to `10^±scale`, each within `10^±spread`
+/// of it, the spread up to `ratio`.
+struct Lengths {
+    size: f64,
+    spread: f64,
+}
+
+impl Lengths {
+    fn draw(rng: &mut Rng, ratio: f64, scale: f64) -> Self {
+        Lengths {
+            size: 10f64.powf(rng.range(-scale, scale)),
+            spread: rng.range(0.0, ratio),
+        }
+    }
+
+    /// One length, rounded to `T`.
+    fn next<T: Real + Into<f64>>(&self, rng: &mut Rng) -> f64 {
+        length::<T>(rng, self.size, self.spread)
+    }
+}
+
 /// A length `10^±ratio` about `size`, rounded to `T`.
 fn length<T: Real + Into<f64>>(rng: &mut Rng, size: f64, ratio: f64) -> f64 {
     T::from(size * 10f64.powf(rng.range(-ratio, ratio)))
@@ -81,15 +102,14 @@ fn near<T: Real + Into<f64>>(rng: &mut Rng, target: f64) -> Option<f64> {
 /// Four-bar lengths `[l1, l2, l3, l4]` near one of the line-ups that end a crank's range
 /// (`l3 ± l4 = l1 ± l2`), a crank-rocker near one that ends its rocker's (a short crank, and
 /// `l3 ± l2 = l1 ± l4`: where its dead centres meet a change point), or (one in seven)
-/// anywhere; each length within `10^±spread` of the size, the spread up to `ratio`.
+/// anywhere.
 fn four_bar_lengths<T: Real + Into<f64>>(
     rng: &mut Rng,
     ratio: f64,
     scale: f64,
 ) -> Option<[f64; 4]> {
-    let size = 10f64.powf(rng.range(-scale, scale));
-    let spread = rng.range(0.0, ratio);
-    let [l1, l2, l3] = [0; 3].map(|_| length::<T>(rng, size, spread));
+    let drawn = Lengths::draw(rng, ratio, scale);
+    let [l1, l2, l3] = [0; 3].map(|_| drawn.next::<T>(rng));
     match rng.next_u64() % 7 {
         // l3 + l4 = l1 + l2 (extended at π), l3 + l4 = |l1 − l2| (extended at 0),
         // |l3 − l4| = |l1 − l2| (folded at 0), |l3 − l4| = l1 + l2 (folded at π).
@@ -105,7 +125,8 @@ fn four_bar_lengths<T: Real + Into<f64>>(
         kind @ (4 | 5) => {
             // The crank shortest; the coupler from the rocker's two line-ups with it.
             let l4 = l3;
-            let crank = length::<T>(rng, l1.min(l4), spread) * 10f64.powf(-rng.range(0.0, ratio));
+            let crank =
+                length::<T>(rng, l1.min(l4), drawn.spread) * 10f64.powf(-rng.range(0.0, ratio));
             let crank: f64 = T::from(crank)?.into();
             let coupler = if kind == 4 {
                 l1 + l4 - crank
@@ -114,7 +135,7 @@ fn four_bar_lengths<T: Real + Into<f64>>(
             };
             Some([l1, crank, near::<T>(rng, coupler)?, l4])
         }
-        _ => Some([l1, l2, l3, length::<T>(rng, size, spread)]),
+        _ => Some([l1, l2, l3, drawn.next::<T>(rng)]),
     }
 }
 
@@ -222,20 +243,18 @@ fn four_bar_line_ups<T: Real + Into<f64>>(
 }
 
 /// Slider-crank dimensions `[l2, l3, c]` near `l3 − l2 = |c|` (the folded line-up just
-/// reaching the slide) or `l3 + l2 = |c|`, or (one in three) anywhere; each length within
-/// `10^±spread` of the size, the spread up to `ratio`.
+/// reaching the slide) or `l3 + l2 = |c|`, or (one in three) anywhere.
 fn slider_crank_dimensions<T: Real + Into<f64>>(
     rng: &mut Rng,
     ratio: f64,
     scale: f64,
 ) -> Option<[f64; 3]> {
-    let size = 10f64.powf(rng.range(-scale, scale));
-    let spread = rng.range(0.0, ratio);
-    let [l2, l3] = [0; 2].map(|_| length::<T>(rng, size, spread));
+    let drawn = Lengths::draw(rng, ratio, scale);
+    let [l2, l3] = [0; 2].map(|_| drawn.next::<T>(rng));
     let offset = match rng.next_u64() % 3 {
         0 => (l3 - l2).abs(),
         1 => l3 + l2,
-        _ => length::<T>(rng, size, spread),
+        _ => drawn.next::<T>(rng),
     };
     Some([l2, l3, rng.sign() * near::<T>(rng, offset)?])
 }
