@@ -109,8 +109,9 @@ impl<T: fmt::Display> fmt::Display for Error<T> {
 
 impl<T: fmt::Debug + fmt::Display> core::error::Error for Error<T> {}
 
-/// A batch (a scene's `*_batch`) stopped: the input at `index` failed with `error`; the
-/// outputs before it are filled in.
+/// A batch (a scene's `*_batch`) stopped: the input at `index` failed with `error`. The
+/// outputs before it are results; the one at `index` and those after are not (the fast
+/// path's values, unchecked: NaN or infinite where it failed).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BatchError<T> {
     /// The position of the failing input in the batch's inputs.

@@ -100,7 +100,15 @@ pub enum Stop<T> {
 /// angle is free, in f32 for some 1e-3 rad of input), and the path between is smooth: the
 /// change in the unknowns, each in its unit ([`Kinematics::units`]), agrees with the piece's
 /// length times the mean of the velocities at its two ends (the trapezoidal rule, exact to
-/// third order, dead centres included) to within an eighth. Otherwise the piece is halved
+/// third order, dead centres included) to within an eighth, and the piece is no longer than
+/// the reaches of its two ends: how far the motion goes on from each before the Jacobian can
+/// be singular (from Newton's condition estimate and the velocity there, as the implicit
+/// function theorem bounds it; about half the distance to a toggle, where the motion ends).
+/// A gap in the motion lies between two toggles, so a piece within the reaches steps over
+/// none, however smoothly the motion on either side of a narrow gap lines up (near a change
+/// point it can, to within the rule's eighth: a four-bar whose crank cannot pass 0.02 rad
+/// about θ2 = 0 was stepped over in one radian, before the reaches). Otherwise the piece is
+/// halved
 /// (and grows again, doubling, after each accepted one); a halved piece whose landing is more
 /// than sixteen times less certain than that test's tolerance is refused too (the blur of a
 /// change point, where Newton's landings lie within rounding of either branch and their
@@ -121,9 +129,15 @@ pub enum Stop<T> {
 ///   error;
 /// - mostly a position on the other branch: [`Stop::BranchChange`].
 ///
-/// (A gap in the motion narrower than about `√ε` may be taken for a change point; in f32
-/// that is about 10⁻² rad near a change point.) A step that needs no halving costs one Newton
-/// solve and one velocity, as a plain predictor-corrector does.
+/// (A gap in the motion narrower than about `√ε` of the input may be taken for a change
+/// point; in f32 that is about 10⁻² rad near a change point. Pieces are not held to reaches
+/// shorter than `√ε` of the input, 1/256 of the step, or the input over which the motion
+/// moves the position by 32 times its uncertainty, below which the walk cannot read a path:
+/// a gap narrower than those may be stepped over. A mechanism that says nothing of its
+/// uncertainty, whose [`Kinematics::slope_within`] is the default, has reaches without
+/// bound.) A step that needs no halving, within the reaches, costs one Newton solve and one
+/// velocity, as a plain predictor-corrector does; near a singular position the reaches
+/// shorten the pieces, in proportion to the distance to it.
 ///
 /// ```
 /// use mechgen::{mechanism, sweep::Sweep, NewtonOptions, Branch};
@@ -154,15 +168,24 @@ pub struct Sweep<'a, T, M, const N: usize> {
     steps: u32,
     /// The index of the next sample to yield, at most `steps`.
     next: u32,
-    /// The last solved sample and `dq/d(input)` there (if computed yet), once the start is
-    /// solved.
-    last: Option<(Sample<T, N>, Option<[T; N]>)>,
+    /// The last solved sample, once the start is solved.
+    last: Option<Last<T, N>>,
     start_guess: [T; N],
     /// The mechanism's [`Kinematics::units`].
     units: [T; N],
     /// The mechanism's [`Kinematics::input_unit`].
     input_unit: T,
     finished: bool,
+}
+
+/// The last solved sample of a sweep, with what the walk on from it reads.
+#[derive(Clone, Copy)]
+struct Last<T, const N: usize> {
+    sample: Sample<T, N>,
+    /// Newton's condition estimate there.
+    condition: T,
+    /// `dq/d(input)` there and its reach ([`Sweep::reach`]), once computed.
+    heading: Option<([T; N], T)>,
 }
 
 /// A piece of a step shorter than this fraction of the step is not halved again.
@@ -175,6 +198,12 @@ const COARSE_PIECE: f64 = 1.0 / 65536.0;
 /// The most refused pieces a step walked in coarse pieces takes before it ends (enough to halve
 /// toward a toggle from a piece of 2^16 units down to 2^-40 of the step).
 const COARSE_REFUSALS: u32 = 96;
+
+/// The fraction of a step below which a piece is not held to the reaches of its ends (nor
+/// below `√ε` of the input): it bounds the work in a stretch where the loops are near singular
+/// throughout (a kite of a crank 1e-6 of its coupler, whose condition is 2e6 at every
+/// position), at the cost of gaps narrower than it there.
+const FINEST_REACH: f64 = 1.0 / 256.0;
 
 /// How far the change over a piece may differ from the trapezoidal rule's, relative to the
 /// sizes of the change and of the two velocity terms.
@@ -196,6 +225,18 @@ const BLUR: f64 = 16.0;
 /// more than the rounding of a sum of pieces, far less than what a halved piece leaves
 /// (half the rest).
 const ALL_BUT_ROUNDING: f64 = 1.0 - 1.0 / 1_048_576.0;
+
+/// Where a piece of a step landed ([`Sweep::piece`]).
+struct Landing<T, const N: usize> {
+    position: [T; N],
+    velocity: [T; N],
+    /// Whether the path from the piece's start is smooth (the trapezoidal rule's test).
+    smooth: bool,
+    /// [`Sweep::reach`] at the landing.
+    reach: T,
+    /// Newton's condition estimate at the landing.
+    condition: T,
+}
 
 /// Why a piece of a step was refused.
 #[derive(Clone, Copy, Debug)]
@@ -242,7 +283,12 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             0 => self.start,
             next => self.start + self.step * T::constant(f64::from(next)),
         };
-        let Some((last, slope)) = self.last else {
+        let Some(Last {
+            sample: last,
+            condition,
+            heading,
+        }) = self.last
+        else {
             // The start: polish the given position; a failure here is the caller's guess.
             let solved = self
                 .mechanism
@@ -256,7 +302,11 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
                 input,
                 position: solved.value,
             };
-            self.last = Some((sample, None));
+            self.last = Some(Last {
+                sample,
+                condition: solved.condition,
+                heading: None,
+            });
             return Ok(sample);
         };
         let toggle = |error| Stop::Toggle {
@@ -264,27 +314,38 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             next_input: input,
             error,
         };
-        let slope = match slope {
-            Some(slope) => slope,
-            None => self
-                .mechanism
-                .slope(last.input, last.position)
-                .map_err(toggle)?,
+        let (slope, reach) = match heading {
+            Some(known) => known,
+            None => {
+                let (slope, uncertainty) = self
+                    .mechanism
+                    .slope_within(last.input, last.position)
+                    .map_err(toggle)?;
+                (slope, self.reach(slope, condition, uncertainty))
+            }
         };
-        let (position, slope) = self.walk(last, slope, input)?;
-        let sample = Sample { input, position };
-        self.last = Some((sample, Some(slope)));
+        let landing = self.walk(last, slope, reach, input)?;
+        let sample = Sample {
+            input,
+            position: landing.position,
+        };
+        self.last = Some(Last {
+            sample,
+            condition: landing.condition,
+            heading: Some((landing.velocity, landing.reach)),
+        });
         Ok(sample)
     }
 
-    /// Walks from `from` (with velocity `slope`) to `target` in pieces as long as the motion
-    /// allows, returning the position and velocity there.
+    /// Walks from `from` (with velocity `slope`, and [`Sweep::reach`] `reach`) to `target` in
+    /// pieces as long as the motion allows, returning the landing there.
     fn walk(
         &self,
         from: Sample<T, N>,
         slope: [T; N],
+        reach: T,
         target: T,
-    ) -> Result<([T; N], [T; N]), Stop<T>> {
+    ) -> Result<Landing<T, N>, Stop<T>> {
         let half = T::constant(0.5);
         let direction = target - from.input;
         if !direction.is_finite() {
@@ -318,11 +379,33 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         } else {
             longest
         };
-        let (mut x, mut q, mut m) = (from.input, from.position, slope);
+        // Below this a piece is not held to the reaches of its ends: a gap in the motion
+        // narrower than it may be stepped over (see the type's docs). Coarse pieces are not
+        // held to them at all (they are checked only for the branch).
+        let finest_reach = (T::epsilon().sqrt() * unit.max(from.input.abs().max(target.abs())))
+            .max(direction.abs() * T::constant(FINEST_REACH));
+        let held_to_reaches = coarse <= unit;
+        let (mut x, mut q, mut m, mut r) = (from.input, from.position, slope, reach);
         let mut piece = longest;
         let mut coarse_refusals = 0;
         loop {
             let remaining = target - x;
+            // The longest piece from here: within half again the reach of its start, which a
+            // landing's own reach (shorter toward a singular point) covers the rest of. A
+            // piece at it is not a halved one, whose landing the walk reads more strictly.
+            let limit = if held_to_reaches {
+                let cap = (r * T::constant(1.5)).max(finest_reach);
+                if cap < longest.abs() {
+                    cap
+                } else {
+                    longest.abs()
+                }
+            } else {
+                longest.abs()
+            };
+            if piece.abs() > limit {
+                piece = if piece < T::zero() { -limit } else { limit };
+            }
             // A piece within rounding of the rest goes to the target: halves of a step sum to
             // it only within rounding, and would leave a piece of a few ulps, whose change
             // rounding alone decides (the walk cannot read it, below).
@@ -337,13 +420,19 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             // is accepted (Newton converged on the branch: that is all that can be known).
             let last_chance = unresolved(x, shorter, smallest);
             let rough = unresolved(x, shorter, roughest);
-            let halved = piece.abs() < longest.abs();
+            let halved = piece.abs() < limit;
             let refusal = match self.piece(x, q, m, y, halved) {
-                Ok((position, velocity, smooth)) if smooth || rough => {
+                // Within the reach of its ends (no toggle between, so no gap), or too short to
+                // tell.
+                Ok(landing)
+                    if (landing.smooth
+                        && piece_used.abs() <= (r + landing.reach).max(finest_reach))
+                        || rough =>
+                {
                     if y == target {
-                        return Ok((position, velocity));
+                        return Ok(landing);
                     }
-                    (x, q, m) = (y, position, velocity);
+                    (x, q, m, r) = (y, landing.position, landing.velocity, landing.reach);
                     piece = if (piece_used + piece_used).abs() < longest.abs() {
                         piece_used + piece_used
                     } else {
@@ -464,9 +553,43 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         }
     }
 
+    /// How far along the input the motion goes on from a solved position with velocity
+    /// `slope` and Newton's `condition` there before its Jacobian can be singular, as the
+    /// implicit function theorem bounds it: `1/(8·κ·(1 + |q'|))` in units of the input and
+    /// the unknowns. A toggle, where the motion ends, has a singular Jacobian, and near one κ
+    /// and `q'` both grow as the inverse square root of the distance to it: the reach is then
+    /// about half that distance (measured on four-bars from 1 to 1e-8 rad from their
+    /// toggles), so a piece no longer than the reaches of its two ends steps over no gap.
+    /// Never shorter than the input over which the motion moves the position by 32 times its
+    /// uncertainty: below that the walk cannot read a path anyway (a landing's rounding would
+    /// be most of its change; in f32, a parallelogram a thousand times as long as its cranks
+    /// has positions uncertain by 7e-3 rad), so a gap narrower than it may be stepped over.
+    /// Infinite where the mechanism says nothing of its uncertainty (`uncertainty` zeros,
+    /// [`Kinematics::slope_within`]'s default: a hand implementation, whose condition may not
+    /// be the loops'), or the condition is not a number.
+    fn reach(&self, slope: [T; N], condition: T, uncertainty: [T; N]) -> T {
+        if uncertainty.iter().all(|u| *u == T::zero()) || condition.is_nan() {
+            return T::infinity();
+        }
+        let (mut speed, mut loosest) = (T::zero(), T::zero());
+        for ((m, u), unit) in slope.iter().zip(uncertainty).zip(self.units) {
+            speed = speed.max((*m * self.input_unit / unit).abs());
+            loosest = loosest.max(u / unit);
+        }
+        let regular = self.input_unit / (T::constant(8.0) * condition * (T::one() + speed));
+        let readable = T::constant(32.0) * loosest * self.input_unit / speed;
+        // The larger (`readable` is infinite where nothing moves, NaN never: `loosest` and
+        // `speed` are finite here, not both zero).
+        if readable > regular {
+            readable
+        } else {
+            regular
+        }
+    }
+
     /// One piece, from `x` (position `q`, velocity `m`) to `y`, `halved` from a longer one
-    /// the walk could not read: the position and velocity at `y`, and whether the path
-    /// between is smooth, or why the piece is refused.
+    /// the walk could not read: the position and velocity at `y`, whether the path between
+    /// is smooth, and [`Sweep::reach`] at `y`, or why the piece is refused.
     fn piece(
         &self,
         x: T,
@@ -474,14 +597,14 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
         m: [T; N],
         y: T,
         halved: bool,
-    ) -> Result<([T; N], [T; N], bool), Refusal<T>> {
+    ) -> Result<Landing<T, N>, Refusal<T>> {
         let h = y - x;
         let mut guess = q;
         for (g, s) in guess.iter_mut().zip(m) {
             *g = *g + s * h;
         }
-        let position = match self.mechanism.solve_near(y, guess, &self.options) {
-            Ok(solved) => solved.value,
+        let (position, condition) = match self.mechanism.solve_near(y, guess, &self.options) {
+            Ok(solved) => (solved.value, solved.condition),
             Err(Error::OtherBranch) => return Err(Refusal::OtherBranch),
             Err(error) => return Err(Refusal::Failed(error)),
         };
@@ -555,7 +678,13 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             }));
         }
         let smooth = error <= tolerance;
-        Ok((position, velocity, smooth))
+        Ok(Landing {
+            position,
+            velocity,
+            smooth,
+            reach: self.reach(velocity, condition, uncertainty),
+            condition,
+        })
     }
 }
 
@@ -1762,6 +1891,75 @@ mod tests {
         let (samples, stop) = sweep(&offset, 0.0, 1e8, 1.0, 10);
         assert_eq!((samples.len(), stop, offset.work()), (11, None, (11, 11)));
         assert!(samples.iter().all(|s| s.position == [1e8]));
+    }
+
+    /// `q = input`, whose loops' condition at each input is `condition(input)`, and which says
+    /// its uncertainty (the rounding), so that the sweep holds its pieces to their reaches;
+    /// its solves counted.
+    struct Conditioned<F> {
+        condition: F,
+        solves: core::cell::Cell<u32>,
+    }
+
+    impl<F: Fn(f64) -> f64> Kinematics<f64, 1> for Conditioned<F> {
+        fn solve_near(
+            &self,
+            input: f64,
+            _guess: [f64; 1],
+            _options: &NewtonOptions<f64>,
+        ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
+            self.solves.set(self.solves.get() + 1);
+            Ok(Solved {
+                value: [input],
+                iterations: 0,
+                residual_norm: 0.0,
+                condition: (self.condition)(input),
+            })
+        }
+
+        fn slope(&self, _input: f64, _position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
+            Ok([1.0])
+        }
+
+        fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
+            true
+        }
+
+        fn slope_within(
+            &self,
+            input: f64,
+            position: [f64; 1],
+        ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
+            Ok((self.slope(input, position)?, [4.0 * f64::EPSILON]))
+        }
+    }
+
+    /// A piece is no longer than the reaches of its ends: on a line of condition 10 (and
+    /// slope 1), every position's reach is `1/(8·10·(1 + 1))` = 1/160, so a unit step is
+    /// walked in pieces of half again that (within the two ends' 1/80), not in one; a landing
+    /// whose reach is far shorter than its start's is refused, and the piece halved; and no
+    /// piece is held to reaches below 1/256 of the step, however ill-conditioned the line.
+    #[test]
+    fn pieces_are_no_longer_than_the_reaches_of_their_ends() {
+        let solves = |condition: fn(f64) -> f64, step: f64| {
+            let line = Conditioned {
+                condition,
+                solves: core::cell::Cell::new(0),
+            };
+            let (samples, stop) = sweep(&line, 0.0, 0.0, step, 1);
+            assert_eq!((samples.len(), stop), (2, None));
+            assert_eq!(samples[1].position, [step]);
+            line.solves.get()
+        };
+        assert_eq!(solves(|_| 10.0, 1.0), 108);
+        // Toward a singular point, the condition growing as 10 + 10⁴·x.
+        assert_eq!(solves(|x| 10.0 + 1e4 * x, 0.1), 229);
+        // Condition 1e7: reaches of 6e-9, below 1/256 of the step.
+        assert_eq!(solves(|_| 1e7, 1e-3), 257);
+        // What says nothing of its uncertainty has reaches without bound: one piece.
+        let line = Counted::new(Line);
+        assert_eq!(sweep(&line, 0.0, 0.0, 1.0, 1).0.len(), 2);
+        assert_eq!(line.work(), (2, 2));
     }
 
     /// `inner`, its landings uncertain by `within(input)`.

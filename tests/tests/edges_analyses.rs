@@ -485,6 +485,57 @@ fn a_sweep_never_steps_over_a_gap_in_the_motion() {
     }
 }
 
+/// A gap near a change point, where the motion on either side lines up as if it went through:
+/// `[0.01, 1, 0.3, 1.29…]` cannot close for |θ2| < 0.0100000429 (its folded limit), yet from
+/// −0.93 one radian on (0.07, beyond the gap, on the same branch) the trapezoidal rule agreed
+/// with the velocities to 6%, and the sweep stepped over the gap (an adversarial review; in
+/// f32 too, over a gap of 3.2e-3 rad about π). A piece is now no longer than the reaches of
+/// its ends (where the Jacobian certainly stays regular), so it stops at the toggle.
+#[test]
+fn a_sweep_never_steps_over_a_gap_near_a_change_point() {
+    let linkage = four_bar([0.01, 1.0, 0.3, 1.290000505050505]);
+    let limit = linkage.limit_angles().folded.unwrap();
+    for (start, step) in [(-0.93, 1.0), (-0.5, 1.0), (0.45, -0.9), (-0.93, 0.25)] {
+        let position = linkage.assemble(start, Branch::Open).unwrap().to_array();
+        let (inputs, stop) = sweep_to_stop(&linkage, start, position, step, 8);
+        // Every sample on the start's side of the gap, and a toggle at its edge.
+        assert!(
+            inputs
+                .iter()
+                .all(|theta2| theta2.abs() >= limit && theta2.signum() == start.signum()),
+            "from {start} by {step}: {inputs:?}"
+        );
+        let Some(Stop::Toggle {
+            error: Error::CannotAssemble { input },
+            ..
+        }) = stop
+        else {
+            panic!("from {start} by {step}: {stop:?}")
+        };
+        assert!(input.abs() < limit && limit - input.abs() < 1e-6, "{input}");
+    }
+    // The review's f32 case: a gap about π, (3.1400, 3.1432), between the extended limits,
+    // narrower than f32's √ε near a change point, which may be taken for one (the type's
+    // docs), but is not stepped over.
+    let [l1, l2, l3, l4] = [
+        1.533_162_2e-10_f32,
+        9.256_406e-9,
+        4.613_349_7e-9,
+        4.796_372_6e-9,
+    ];
+    let linkage = FourBar::new(l1, l2, l3, l4).unwrap();
+    let limit = linkage.limit_angles().extended.unwrap();
+    let (start, step) = (2.151_496_3_f32, 4.277_052_f32);
+    let position = linkage.assemble(start, Branch::Open).unwrap().to_array();
+    let samples: Vec<_> =
+        Sweep::new(&linkage, start, position, step, 4, NewtonOptions::default()).collect();
+    let last = samples.last().unwrap();
+    assert!(last.is_err(), "{samples:?}");
+    for sample in samples.iter().flatten() {
+        assert!(sample.input.abs() <= limit, "{samples:?}");
+    }
+}
+
 /// A triple-rocker's crank meeting its limit stops with `Toggle`; a parallelogram passing
 /// its flat position, where the antiparallelogram branch meets it, with `BranchChange`.
 #[test]

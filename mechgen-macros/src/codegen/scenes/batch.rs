@@ -64,7 +64,8 @@ impl Generator<'_> {
              [`mechgen::simd::widest`] (wider vectors where the processor has them, the same \
              results). An input where that gives a non-finite value is done again by \
              [`Self::{}`], whose result is kept, or whose error is returned with the input's \
-             index.",
+             index (the outputs from that index on are then not results: the fast path's \
+             values, unchecked).",
             name.unraw(),
             name.unraw()
         ));
