@@ -101,6 +101,19 @@ mod tests {
         assert!(sum([1.0f32, 1e-9, -1.0, 0.0]) == 1e-9);
     }
 
+    /// Found by mutation testing: the last correction's sign. `1 + (2⁻⁵³ − 2⁻¹⁰⁵) + 2⁻¹⁰⁵ +
+    /// 2⁻¹⁷⁰` is a hair above the midpoint of 1 and its successor; the double-word addition
+    /// meets that midpoint as a tie (its last low word, 2⁻¹⁷⁰, below the rounding of the
+    /// other) and gives 1, within `u·(1 + 2⁻¹¹⁷)` of the exact sum; a correction that
+    /// subtracted the tie's low word gave 1 − 2⁻⁵³, `2u` off (Python's fractions).
+    #[test]
+    fn a_sum_at_a_rounding_tie_stays_within_its_bound() {
+        let u = f64::EPSILON / 2.0;
+        let terms = [1.0, u - u * u * 2.0, u * u * 2.0, 2f64.powi(-170)];
+        assert_eq!(terms[1] + terms[2], u);
+        assert_eq!(sum(terms), 1.0);
+    }
+
     /// Drawn sums that cancel to any depth, each pair of terms rounding when added (so that
     /// every low word of the double-word addition counts): the exact sum rounded, every time.
     #[test]
