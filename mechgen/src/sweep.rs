@@ -1893,12 +1893,30 @@ mod tests {
         assert!(samples.iter().all(|s| s.position == [1e8]));
     }
 
-    /// `q = input`, whose loops' condition at each input is `condition(input)`, and which says
-    /// its uncertainty (the rounding), so that the sweep holds its pieces to their reaches;
-    /// its solves counted.
+    /// `q = slope·input`, whose loops' condition at each input is `condition(input)`, and
+    /// which says its uncertainty (`within`), so that the sweep holds its pieces to their
+    /// reaches; its unknown's unit `unit` and its input's `input_unit`; its solves counted.
     struct Conditioned<F> {
         condition: F,
+        slope: f64,
+        within: f64,
+        unit: f64,
+        input_unit: f64,
         solves: core::cell::Cell<u32>,
+    }
+
+    impl<F> Conditioned<F> {
+        /// A line of slope 1 and unit units, uncertain by the rounding (4ε).
+        fn line(condition: F) -> Self {
+            Conditioned {
+                condition,
+                slope: 1.0,
+                within: 4.0 * f64::EPSILON,
+                unit: 1.0,
+                input_unit: 1.0,
+                solves: core::cell::Cell::new(0),
+            }
+        }
     }
 
     impl<F: Fn(f64) -> f64> Kinematics<f64, 1> for Conditioned<F> {
@@ -1910,7 +1928,7 @@ mod tests {
         ) -> Result<Solved<[f64; 1], f64>, Error<f64>> {
             self.solves.set(self.solves.get() + 1);
             Ok(Solved {
-                value: [input],
+                value: [self.slope * input],
                 iterations: 0,
                 residual_norm: 0.0,
                 condition: (self.condition)(input),
@@ -1918,7 +1936,7 @@ mod tests {
         }
 
         fn slope(&self, _input: f64, _position: [f64; 1]) -> Result<[f64; 1], Error<f64>> {
-            Ok([1.0])
+            Ok([self.slope])
         }
 
         fn same_branch(&self, _: f64, _: [f64; 1], _: f64, _: [f64; 1]) -> bool {
@@ -1930,7 +1948,15 @@ mod tests {
             input: f64,
             position: [f64; 1],
         ) -> Result<([f64; 1], [f64; 1]), Error<f64>> {
-            Ok((self.slope(input, position)?, [4.0 * f64::EPSILON]))
+            Ok((self.slope(input, position)?, [self.within]))
+        }
+
+        fn units(&self) -> [f64; 1] {
+            [self.unit]
+        }
+
+        fn input_unit(&self) -> f64 {
+            self.input_unit
         }
     }
 
@@ -1941,21 +1967,42 @@ mod tests {
     /// piece is held to reaches below 1/256 of the step, however ill-conditioned the line.
     #[test]
     fn pieces_are_no_longer_than_the_reaches_of_their_ends() {
-        let solves = |condition: fn(f64) -> f64, step: f64| {
-            let line = Conditioned {
-                condition,
-                solves: core::cell::Cell::new(0),
-            };
-            let (samples, stop) = sweep(&line, 0.0, 0.0, step, 1);
+        let walked = |line: Conditioned<fn(f64) -> f64>, start: f64, step: f64| {
+            let (samples, stop) = sweep(&line, start, line.slope * start, step, 1);
             assert_eq!((samples.len(), stop), (2, None));
-            assert_eq!(samples[1].position, [step]);
+            assert_eq!(samples[1].position, [line.slope * (start + step)]);
             line.solves.get()
         };
+        let solves_from =
+            |start, condition, step| walked(Conditioned::line(condition), start, step);
+        let solves = |condition, step| solves_from(0.0, condition, step);
         assert_eq!(solves(|_| 10.0, 1.0), 108);
+        assert_eq!(solves(|_| 10.0, -1.0), 108);
         // Toward a singular point, the condition growing as 10 + 10⁴·x.
         assert_eq!(solves(|x| 10.0 + 1e4 * x, 0.1), 229);
-        // Condition 1e7: reaches of 6e-9, below 1/256 of the step.
+        // Condition 1e7: reaches of 6e-9, below 1/256 of the step; from 1e4, below √ε of the
+        // input (1.5e-4), which takes 7 pieces.
         assert_eq!(solves(|_| 1e7, 1e-3), 257);
+        assert_eq!(solves_from(1e4, |_| 1e7, 1e-3), 8);
+        // In units: a slope of 3 per input unit of 4 and unknown unit of 2 is a speed of 6, so
+        // a reach of 4/(8·10·7) input.
+        let scaled = Conditioned {
+            slope: 3.0,
+            unit: 2.0,
+            input_unit: 4.0,
+            ..Conditioned::line((|_| 10.0) as fn(f64) -> f64)
+        };
+        assert_eq!(walked(scaled, 0.0, 1.0), 95);
+        // Landings uncertain by 1e-3 (5e-4 of the unknown's unit of 2), moving at 2 (a unit
+        // an input): no reach below the 32·5e-4 input over which the motion moves 32 times
+        // that, longer here than the regular reach of 1/(8·10·2).
+        let loose = Conditioned {
+            slope: 2.0,
+            within: 1e-3,
+            unit: 2.0,
+            ..Conditioned::line((|_| 10.0) as fn(f64) -> f64)
+        };
+        assert_eq!(walked(loose, 0.0, 1.0), 43);
         // What says nothing of its uncertainty has reaches without bound: one piece.
         let line = Counted::new(Line);
         assert_eq!(sweep(&line, 0.0, 0.0, 1.0, 1).0.len(), 2);
