@@ -298,16 +298,7 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
                     next_input: input,
                     error,
                 })?;
-            let sample = Sample {
-                input,
-                position: solved.value,
-            };
-            self.last = Some(Last {
-                sample,
-                condition: solved.condition,
-                heading: None,
-            });
-            return Ok(sample);
+            return Ok(self.keep(input, solved.value, solved.condition, None));
         };
         let toggle = |error| Stop::Toggle {
             last_input: last.input,
@@ -325,16 +316,26 @@ impl<'a, T: Real, M: Kinematics<T, N>, const N: usize> Sweep<'a, T, M, N> {
             }
         };
         let landing = self.walk(last, slope, reach, input)?;
-        let sample = Sample {
-            input,
-            position: landing.position,
-        };
+        let heading = Some((landing.velocity, landing.reach));
+        Ok(self.keep(input, landing.position, landing.condition, heading))
+    }
+
+    /// `position` at `input` kept as the last sample (with Newton's `condition` there, and
+    /// its heading if known), and returned.
+    fn keep(
+        &mut self,
+        input: T,
+        position: [T; N],
+        condition: T,
+        heading: Option<([T; N], T)>,
+    ) -> Sample<T, N> {
+        let sample = Sample { input, position };
         self.last = Some(Last {
             sample,
-            condition: landing.condition,
-            heading: Some((landing.velocity, landing.reach)),
+            condition,
+            heading,
         });
-        Ok(sample)
+        sample
     }
 
     /// Walks from `from` (with velocity `slope`, and [`Sweep::reach`] `reach`) to `target` in
