@@ -112,10 +112,16 @@ impl<T: Real> Accuracy<T> {
     /// ```
     #[inline]
     pub fn estimate(condition: T, aspect: T) -> Self {
+        Self::estimate_known(condition, &KnownAspect::new(aspect))
+    }
+
+    /// [`Accuracy::estimate`] with what it reads of the aspect computed already.
+    #[inline(always)]
+    fn estimate_known(condition: T, aspect: &KnownAspect<T>) -> Self {
         let kappa = condition.max(T::one());
         let e = T::epsilon();
         let position = T::constant(32.0) * e * kappa;
-        if aspect * e.sqrt() >= T::one() || aspect.is_nan() {
+        if aspect.lost {
             return Accuracy {
                 position,
                 velocity: T::infinity(),
@@ -123,10 +129,7 @@ impl<T: Real> Accuracy<T> {
             };
         }
         let c = T::constant;
-        // A vector shrinking toward its start (a slide near zero) amplifies its angle's rates'
-        // errors by the aspect, and the accelerations' by its square, once it exceeds what
-        // ordinary mechanisms have.
-        let shrunk = (aspect / c(ORDINARY_ASPECT)).max(T::one());
+        let shrunk = aspect.shrunk;
         Accuracy {
             position,
             velocity: e * kappa * (c(64.0) + c(12.0) * kappa) * shrunk,
@@ -183,7 +186,13 @@ impl<T: Real> Accuracy<T> {
     /// ```
     #[inline]
     pub fn estimate_at(condition: T, aspect: T, position: T, moving: T) -> Self {
-        let closed = Self::estimate(condition, aspect);
+        Self::estimate_at_known(condition, &KnownAspect::new(aspect), position, moving)
+    }
+
+    /// [`Accuracy::estimate_at`] with what it reads of the aspect computed already.
+    #[inline(always)]
+    fn estimate_at_known(condition: T, aspect: &KnownAspect<T>, position: T, moving: T) -> Self {
+        let closed = Self::estimate_known(condition, aspect);
         let kappa = condition.max(T::one());
         // The larger, and NaN (an unknown error) where `position` is.
         let delta = if position <= closed.position {
@@ -192,7 +201,7 @@ impl<T: Real> Accuracy<T> {
             position
         };
         // m·κ·ρ·δ, which the acceleration's term takes twice, once more by κ.
-        let carried = moving * kappa * aspect.max(T::one()) * delta;
+        let carried = moving * kappa * aspect.at_least_one * delta;
         Accuracy {
             position: delta,
             velocity: closed.velocity + carried,
@@ -294,16 +303,54 @@ pub fn rates_accuracy<T: Real, const N: usize>(
     )
 }
 
+/// An aspect the dimensions fix (see [`rates_accuracy_at_aspect`]), with what the estimates
+/// read of it computed once: a prepared solve (`{Name}::newton()`) keeps it for every call.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KnownAspect<T> {
+    /// A number from 1 up and finite (false for NaN): the estimates read it; else the
+    /// Jacobian decides.
+    usable: bool,
+    /// `aspect·√ε ≥ 1`, or NaN: the rates are undetermined.
+    lost: bool,
+    /// `max(aspect / ORDINARY_ASPECT, 1)`: by how much a shrunk vector amplifies the rates'
+    /// errors (the accelerations' by its square) once it exceeds what ordinary mechanisms
+    /// have.
+    shrunk: T,
+    /// `max(aspect, 1)` (1 for NaN): ρ in [`Accuracy::estimate_at`]'s terms.
+    at_least_one: T,
+}
+
+impl<T: Real> KnownAspect<T> {
+    /// The terms of `aspect`.
+    #[inline(always)]
+    pub fn new(aspect: T) -> Self {
+        KnownAspect {
+            usable: aspect >= T::one() && aspect < T::infinity(),
+            lost: aspect * T::epsilon().sqrt() >= T::one() || aspect.is_nan(),
+            shrunk: (aspect / T::constant(ORDINARY_ASPECT)).max(T::one()),
+            at_least_one: aspect.max(T::one()),
+        }
+    }
+}
+
+impl<T: Real> From<T> for KnownAspect<T> {
+    #[inline(always)]
+    fn from(aspect: T) -> Self {
+        KnownAspect::new(aspect)
+    }
+}
+
 /// [`rates_accuracy`] for a mechanism whose angle unknowns' columns have lengths the dimensions
 /// fix (each angle turns one vector of fixed length in each loop it is in), so that its aspect
-/// is known without the Jacobian: `aspect`, from the squared lengths. Where those squares
-/// overflowed or underflowed (lengths beyond about 1e±154 in `f64`), so that `aspect` is not
-/// a number from 1 up, [`rates_accuracy`] decides from the Jacobian, out of line.
+/// is known without the Jacobian: `aspect`, from the squared lengths (or its terms, computed
+/// once). Where those squares overflowed or underflowed (lengths beyond about 1e±154 in
+/// `f64`), so that `aspect` is not a number from 1 up, [`rates_accuracy`] decides from the
+/// Jacobian, out of line.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub fn rates_accuracy_at_aspect<T: Real, const N: usize>(
     condition: T,
-    aspect: T,
+    aspect: impl Into<KnownAspect<T>>,
     jacobian: &[[T; N]; N],
     size: T,
     angles: [bool; N],
@@ -312,11 +359,11 @@ pub fn rates_accuracy_at_aspect<T: Real, const N: usize>(
     highest: Order,
     required: &Accuracy<T>,
 ) -> Result<Accuracy<T>, Error<T>> {
-    // From 1 up and finite (false for NaN).
-    if aspect >= T::one() && aspect < T::infinity() {
+    let aspect = aspect.into();
+    if aspect.usable {
         let estimate = match position {
-            None => Accuracy::estimate(condition, aspect),
-            Some(position) => Accuracy::estimate_at(condition, aspect, position, moving),
+            None => Accuracy::estimate_known(condition, &aspect),
+            Some(position) => Accuracy::estimate_at_known(condition, &aspect, position, moving),
         };
         if estimate.velocity <= required.velocity
             && (highest < Order::Acceleration || estimate.acceleration <= required.acceleration)

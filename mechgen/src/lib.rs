@@ -44,7 +44,9 @@ pub use mechgen_macros::mechanism;
 /// Items the generated code names. Not public API: they may change in any release.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::accuracy::{floor_position_accuracy, rates_accuracy, rates_accuracy_at_aspect};
+    pub use crate::accuracy::{
+        KnownAspect, floor_position_accuracy, rates_accuracy, rates_accuracy_at_aspect,
+    };
     pub use crate::kernel::{
         all_finite as finite_all, angle, as_given, at_input, blame, branch_root, inverse,
         inverse_determinant, lanes, length_scale, newton_at_scale, outputs_finite, rate_scale,

@@ -308,11 +308,11 @@ impl<T: Real, const N: usize> Factored<T, N> {
         let determinant = a00 * a11 - a01 * a10;
         // `unscaled_columns2`'s test: the squares neither overflow nor underflow (nor are NaN);
         // and |det|/√product > 2√ε, so `check_determinant`'s rounded ratio exceeds √ε (false
-        // for NaN; an overflowing square is a determinant far from singular). The three
-        // together (`&`, not `&&`), for one branch.
+        // for NaN; an overflowing square is a determinant far from singular). A product that
+        // overflows fails the last test (nothing exceeds `4ε·∞`), so it needs no test of its
+        // own. The two together (`&`, not `&&`), for one branch.
         let four_epsilon = T::constant(4.0) * T::epsilon();
         let regular = (column_product >= T::min_positive_value())
-            & (column_product <= T::max_value())
             & (determinant * determinant > four_epsilon * column_product);
         if !regular {
             return None;

@@ -20,8 +20,8 @@ pub struct NewtonConstants<T> {
     /// The sum of the lengths the loops declare.
     pub size: T,
     /// The size over the shortest column of an angle unknown, where the dimensions fix the
-    /// columns (else unused).
-    pub aspect: T,
+    /// columns (else unused), with what the rates' estimates read of it.
+    pub aspect: crate::accuracy::KnownAspect<T>,
     /// Whether the dimensions are solved as given (`kernel::as_given`).
     pub as_given: bool,
 }

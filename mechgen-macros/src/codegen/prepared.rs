@@ -124,7 +124,7 @@ impl Generator<'_> {
                     mechanism: *self,
                     constants: ::mechgen::__private::NewtonConstants {
                         size,
-                        aspect: #aspect,
+                        aspect: ::mechgen::__private::KnownAspect::new(#aspect),
                         as_given: #as_given,
                     },
                 })
