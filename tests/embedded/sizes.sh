@@ -77,11 +77,19 @@ measure() {
                     maths += size[f]
                 else {
                     callees += size[f]
-                    names = names (names == "" ? "" : ";") d
+                    # The unit separator: demangled names hold spaces, commas and
+                    # semicolons (`<[T; 3]>::try_map`).
+                    names = names (names == "" ? "" : "\037") d
                 }
             }
             printf "%d %d %d|%s\n", own, callees, maths, names
         }' "$1/symbols.txt" "$1/calls.txt"
+}
+
+# The callee names `measure` prints (joined by the unit separator), sorted, each in
+# backticks (as code, so that markdown keeps their `<…>`), joined by commas.
+listed() {
+    tr '\037' '\n' <<<"$1" | sort | awk 'NF { printf "%s`%s`", (n++ ? ", " : ""), $0 }'
 }
 
 for level in "${levels[@]}"; do
@@ -120,8 +128,8 @@ for level in "${levels[@]}"; do
             h="mechgen_embedded::hand::$hand::<$scalar>"
             IFS='|' read -r g_sizes g_names <<<"$(measure "$work" "$g")"
             IFS='|' read -r h_sizes h_names <<<"$(measure "$work" "$h")"
-            g_names="$(tr ';' '\n' <<<"$g_names" | sort | paste -sd ';' | sed 's/;/, /g')"
-            h_names="$(tr ';' '\n' <<<"$h_names" | sort | paste -sd ';' | sed 's/;/, /g')"
+            g_names="$(listed "$g_names")"
+            h_names="$(listed "$h_names")"
             read -r g_own g_callees g_maths <<<"$g_sizes"
             read -r h_own h_callees h_maths <<<"$h_sizes"
             if [ "$g_own" = missing ] || [ "$h_own" = missing ]; then
