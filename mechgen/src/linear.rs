@@ -79,8 +79,26 @@ fn normalise<T: Real, const N: usize>(a: &mut [[T; N]; N]) -> Result<(T, [T; N])
 fn unscaled_columns2<T: Real>(a: &[[T; 2]; 2]) -> Option<T> {
     let [[a00, a01], [a10, a11]] = *a;
     let product = (a00 * a00 + a10 * a10) * (a01 * a01 + a11 * a11);
-    // Normal and finite, in two comparisons (false for NaN, zero, subnormals and infinity).
-    (product >= T::min_positive_value() && product <= T::max_value()).then(|| product.sqrt())
+    normal(product).then(|| product.sqrt())
+}
+
+/// Normal and finite, in two comparisons (false for NaN, zero, subnormals and infinity).
+fn normal<T: Real>(value: T) -> bool {
+    value >= T::min_positive_value() && value <= T::max_value()
+}
+
+/// The product of a 2×2 matrix's squared column norms, which its regularity test and its
+/// relative determinant weigh the determinant against: computed from the matrix's entries,
+/// or known where the dimensions fix the columns' lengths (a loop's angle unknown turns one
+/// vector of fixed length, whose column is that length at every angle). Known, it costs no
+/// arithmetic in each evaluation, and it is the exact lengths' rather than those of the
+/// rounded sines and cosines (a few units of rounding apart). Larger matrices ignore it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Columns<T> {
+    /// From the matrix's entries.
+    FromMatrix,
+    /// This product.
+    Known(T),
 }
 
 /// The signed relative determinant from the scaled determinant and [`normalise`]'s column
@@ -251,17 +269,29 @@ pub struct Factored<T, const N: usize> {
 impl<T: Real, const N: usize> Factored<T, N> {
     /// Factors `a`. Errors: as [`solve_lu`] (a singular or non-finite matrix).
     pub fn new(a: [[T; N]; N]) -> Result<Self, Error<T>> {
+        Self::new_with(a, Columns::FromMatrix)
+    }
+
+    /// [`Factored::new`], with a 2×2 matrix's column norms from `columns` where they are
+    /// known (and their product's square is normal), else from the matrix.
+    #[inline(always)]
+    pub fn new_with(a: [[T; N]; N], columns: Columns<T>) -> Result<Self, Error<T>> {
         if N == 2 {
             // Two unknowns (one loop): keep the inverse, by Cramer's rule.
             let (i, j) = (0, N - 1);
             // Scaled (by a power of two, so the inverse is the same, bit for bit, as at any
             // other scale) only where the squares would overflow or underflow.
             let mut a = a;
-            let (columns, scales) =
-                match unscaled_columns2(&[[a[i][i], a[i][j]], [a[j][i], a[j][j]]]) {
-                    Some(columns) => (columns, [T::one(); N]),
-                    None => normalise(&mut a)?,
-                };
+            let known = match columns {
+                Columns::Known(product) => normal(product).then(|| product.sqrt()),
+                Columns::FromMatrix => None,
+            };
+            let (columns, scales) = match known
+                .or_else(|| unscaled_columns2(&[[a[i][i], a[i][j]], [a[j][i], a[j][j]]]))
+            {
+                Some(columns) => (columns, [T::one(); N]),
+                None => normalise(&mut a)?,
+            };
             let determinant = a[i][i] * a[j][j] - a[i][j] * a[j][i];
             let relative = check_determinant(determinant, columns)?;
             let inverse = T::one() / determinant;
@@ -286,14 +316,15 @@ impl<T: Real, const N: usize> Factored<T, N> {
         })
     }
 
-    /// [`Factored::new`] where its verdict is certain without its square root and division
-    /// (a 2×2 matrix that needs no scaling and whose relative determinant exceeds `2√ε`,
-    /// tested on squares), else `None` and the caller asks [`Factored::new`]. The factors are
-    /// `new`'s, bit for bit; the relative determinant is left to [`Quick::relative`] and
-    /// [`Quick::finish`], which compute it as `new` does. Larger matrices are factored by
+    /// [`Factored::new_with`] (with the same `columns`) where its verdict is certain without
+    /// its square root and division (a 2×2 matrix that needs no scaling and whose relative
+    /// determinant exceeds `2√ε`, tested on squares), else `None` and the caller asks
+    /// [`Factored::new_with`]. The factors are
+    /// `new_with`'s, bit for bit; the relative determinant is left to [`Quick::relative`] and
+    /// [`Quick::finish`], which compute it as `new_with` does. Larger matrices are factored by
     /// `new` itself.
     #[inline(always)]
-    pub(crate) fn quick(a: [[T; N]; N]) -> Option<Quick<T, N>> {
+    pub(crate) fn quick_with(a: [[T; N]; N], columns: Columns<T>) -> Option<Quick<T, N>> {
         if N != 2 {
             let factored = Self::new(a).ok()?;
             return Some(Quick {
@@ -304,16 +335,31 @@ impl<T: Real, const N: usize> Factored<T, N> {
         }
         let (i, j) = (0, N - 1);
         let (a00, a01, a10, a11) = (a[i][i], a[i][j], a[j][i], a[j][j]);
-        let column_product = (a00 * a00 + a10 * a10) * (a01 * a01 + a11 * a11);
         let determinant = a00 * a11 - a01 * a10;
         // `unscaled_columns2`'s test: the squares neither overflow nor underflow (nor are NaN);
         // and |det|/√product > 2√ε, so `check_determinant`'s rounded ratio exceeds √ε (false
         // for NaN; an overflowing square is a determinant far from singular). A product that
         // overflows fails the last test (nothing exceeds `4ε·∞`), so it needs no test of its
-        // own. The two together (`&`, not `&&`), for one branch.
+        // own. The two together (`&`, not `&&`), for one branch; for a known product, which
+        // the iteration does not change, one comparison against a bound computed before it
+        // (infinite where the product is not normal, which nothing exceeds).
         let four_epsilon = T::constant(4.0) * T::epsilon();
-        let regular = (column_product >= T::min_positive_value())
-            & (determinant * determinant > four_epsilon * column_product);
+        let (column_product, regular) = match columns {
+            Columns::Known(product) => {
+                let bound = if product >= T::min_positive_value() {
+                    four_epsilon * product
+                } else {
+                    T::infinity()
+                };
+                (product, determinant * determinant > bound)
+            }
+            Columns::FromMatrix => {
+                let product = (a00 * a00 + a10 * a10) * (a01 * a01 + a11 * a11);
+                let regular = (product >= T::min_positive_value())
+                    & (determinant * determinant > four_epsilon * product);
+                (product, regular)
+            }
+        };
         if !regular {
             return None;
         }
@@ -706,7 +752,7 @@ mod tests {
             [[1.0, 3.0], [4.0, -2.0]],
             [[0.0, 1.0], [2.0, 3.0]],
         ] {
-            let quick = Factored::quick(a).expect("regular and unscaled");
+            let quick = Factored::quick_with(a, Columns::FromMatrix).expect("regular and unscaled");
             let new = Factored::new(a).unwrap();
             assert_eq!(quick.positive(), new.relative() > 0.0);
             assert_eq!(quick.relative().to_bits(), new.relative().to_bits());
@@ -717,10 +763,16 @@ mod tests {
             assert_eq!(bits(&quick.finish()), bits(&new));
         }
         // Larger matrices are `new`'s, and a singular one is none.
-        let quick = Factored::quick(A3).unwrap();
+        let quick = Factored::quick_with(A3, Columns::FromMatrix).unwrap();
         assert_eq!(bits(&quick.finish()), bits(&Factored::new(A3).unwrap()));
         assert_eq!(quick.relative(), Factored::new(A3).unwrap().relative());
-        assert!(Factored::quick([[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 1.0]]).is_none());
+        assert!(
+            Factored::quick_with(
+                [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 1.0]],
+                Columns::FromMatrix
+            )
+            .is_none()
+        );
         // Near singular (relative determinant 2√ε and below), in need of scaling, or not
         // finite: left to `new`.
         let e = f64::EPSILON.sqrt();
@@ -732,9 +784,54 @@ mod tests {
             [[2f64.powi(-600), 0.0], [0.0, 1.0]],
             [[f64::NAN, 0.0], [0.0, 1.0]],
         ] {
-            assert!(Factored::quick(a).is_none(), "{a:?}");
+            assert!(
+                Factored::quick_with(a, Columns::FromMatrix).is_none(),
+                "{a:?}"
+            );
         }
-        assert!(Factored::quick([[1.0, 1.0], [0.0, 4.0 * e]]).is_some());
+        assert!(Factored::quick_with([[1.0, 1.0], [0.0, 4.0 * e]], Columns::FromMatrix).is_some());
+    }
+
+    /// Known column norms stand in for the computed ones in the relative determinant and the
+    /// regularity test, the same in `quick_with` and `new_with`; a known product that is not
+    /// normal is not used (`new_with` computes the norms, scaling as `new` does, and
+    /// `quick_with` leaves the matrix to it). The factors are the matrix's either way.
+    #[test]
+    fn known_columns_are_read_where_their_product_is_normal() {
+        // Columns of lengths 2 and 3 (a loop's vectors turned), rounded a little: the known
+        // product is the exact lengths' 36.
+        let a: [[f64; 2]; 2] = [[2.0 * 0.6, -3.0 * 0.8], [2.0 * 0.8, 3.0 * 0.6]];
+        let known = Columns::Known(36.0);
+        let new = Factored::new_with(a, known).unwrap();
+        let quick = Factored::quick_with(a, known).unwrap();
+        let determinant = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+        assert_eq!(new.relative(), determinant / 6.0);
+        assert_eq!(quick.relative().to_bits(), new.relative().to_bits());
+        assert_eq!(bits(&quick.finish()), bits(&new));
+        assert_eq!(
+            new.solve([1.0, 2.0]).map(f64::to_bits),
+            Factored::new(a)
+                .unwrap()
+                .solve([1.0, 2.0])
+                .map(f64::to_bits)
+        );
+        // The regularity test against the known product: a matrix whose own columns would
+        // pass is singular against columns said to be far longer.
+        assert!(Factored::quick_with(a, Columns::Known(1e40)).is_none());
+        assert!(matches!(
+            Factored::new_with(a, Columns::Known(1e40)),
+            Err(Error::Singular { .. })
+        ));
+        // Not normal (overflowed, underflowed, NaN): the matrix's own norms.
+        for product in [f64::INFINITY, 0.0, 1e-320, f64::NAN] {
+            let unknown = Columns::Known(product);
+            assert!(Factored::quick_with(a, unknown).is_none(), "{product}");
+            assert_eq!(
+                bits(&Factored::new_with(a, unknown).unwrap()),
+                bits(&Factored::new(a).unwrap()),
+                "{product}"
+            );
+        }
     }
 
     /// Row sums of the inverse's magnitudes, times the errors: for a 2×2 matrix (its kept

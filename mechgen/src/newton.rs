@@ -6,7 +6,7 @@
 
 use core::cmp::Ordering;
 
-use crate::linear::Factored;
+use crate::linear::{Columns, Factored};
 use crate::{Accuracy, Error, Real};
 
 /// What a generated `{Name}Newton` computes once from the dimensions, for its
@@ -124,6 +124,10 @@ pub struct Linearisation<T, const N: usize, P = ()> {
     /// What else the generated code computed at the iterate (sines, cosines, products) and
     /// wants back at the solution, so the rates after Newton need not compute them again.
     pub payload: P,
+    /// The Jacobian's column norms where the dimensions fix them (a one-loop mechanism whose
+    /// unknowns are angles, each turning one vector of fixed length), for its factoring;
+    /// else computed from it.
+    pub columns: Columns<T>,
 }
 
 /// Newton's solution, with the evaluation and the factored Jacobian it converged on: what
@@ -321,13 +325,13 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
     // as for a guess that is already a solution) a default solve takes one more step, which
     // polishes the result rather than stopping short of what the float type allows.
     let mut previous_residual = T::infinity();
-    loop {
+    'iterate: loop {
         if !weighted.is_finite() || !here.scale.is_finite() {
             return Err(Error::NonFinite {
                 quantity: "loop residual",
             });
         }
-        let jacobian = Factored::new(here.jacobian)?;
+        let jacobian = Factored::new_with(here.jacobian, here.columns)?;
         let relative_determinant = jacobian.relative();
         let positive = relative_determinant > T::zero();
         let started_positive = *orientation.get_or_insert(positive);
@@ -349,6 +353,24 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 jacobian,
             })
         };
+        // An iterate that would be accepted with an angle many turns out (a step through a
+        // nearly vanishing column can throw one by hundreds of radians) holds that angle only
+        // to its float's spacing, coarser than the accuracy stated: taken by whole turns to
+        // within `[−π, π]` and solved on from there, which a step or two polishes. (Newton's
+        // common path never gets so far: its iterates stay within 2⁻¹⁰ of a guess within
+        // ±16 rad.)
+        macro_rules! within_turns_or_accept {
+            ($here:expr, $jacobian:expr, $x:expr) => {{
+                if let Some(within) = taken_by_turns(&$x, angles) {
+                    x = within;
+                    here = linearise(&x);
+                    weighted = weighted_norm(&here.residual, &here.weights);
+                    previous_residual = T::infinity();
+                    continue 'iterate;
+                }
+                return accept($here, $jacobian, $x);
+            }};
+        }
         // A stated tolerance is met when the residual is within it (and, above the rounding
         // floor, a root is certain to be near); the default one when the residual is at the
         // floor and the steps have stopped shrinking it (or it is zero).
@@ -363,11 +385,11 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 || (weighted <= floor && polished(previous_residual, here.scale, condition()))
         };
         if met {
-            return accept(here, jacobian, x);
+            within_turns_or_accept!(here, jacobian, x);
         }
         if iterations >= options.max_iterations {
             if weighted <= floor {
-                return accept(here, jacobian, x);
+                within_turns_or_accept!(here, jacobian, x);
             }
             // Where a closed form says no assembly closes at this input, that is why. Where
             // the closed forms cannot say for the guess's assembly (some other assembly
@@ -421,7 +443,7 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 // Within a few units of the rounding floor no step lowers the residual: this is
                 // what rounding lets the loops close to (intermediate values of a coupled
                 // evaluation can exceed its vectors' magnitudes), so converged.
-                return accept(here, jacobian, x);
+                within_turns_or_accept!(here, jacobian, x);
             }
             if halvings == MAX_HALVINGS {
                 // No step lowers the residual: a local minimum of |f| that is not a root.
@@ -755,7 +777,7 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
                     .iter()
                     .fold(T::zero(), |norm, r| norm.max(r.abs()))
             };
-            let Some(jacobian) = Factored::quick(here.jacobian) else {
+            let Some(jacobian) = Factored::quick_with(here.jacobian, here.columns) else {
                 break 'common;
             };
             let positive = jacobian.positive();
@@ -825,6 +847,7 @@ fn kantorovich_aside<T: Real, const N: usize>(
         scale: T::zero(),
         weights: [T::one(); N],
         payload: (),
+        columns: Columns::FromMatrix,
     };
     kantorovich(&at, condition)
 }
@@ -1066,6 +1089,23 @@ fn ran_away<T: Real, const N: usize>(x: &[T; N], start: &[T; N], angles: &[bool;
         .zip(start)
         .zip(angles)
         .any(|((x, start), &angle)| angle && (*x - *start).abs() > whole_turn)
+}
+
+/// The largest magnitude, in radians, of an angle [`newton`] returns as the iterates left it:
+/// [`WHOLE_TURNS_BEYOND`] and a radian, beyond the most the common path's iterates reach
+/// (a guess within ±16 rad, moved at most 2⁻¹⁰), so that the two still agree bit for bit.
+const RETURNED_TURNS_BEYOND: f64 = WHOLE_TURNS_BEYOND + 1.0;
+
+/// `x` with each angle (`angles`) beyond [`RETURNED_TURNS_BEYOND`] taken by whole turns to
+/// within `[−π, π]` ([`within_a_turn`]), or `None` where none is beyond it (nor NaN: an
+/// iterate that is not finite is not accepted).
+fn taken_by_turns<T: Real, const N: usize>(x: &[T; N], angles: [bool; N]) -> Option<[T; N]> {
+    let bound = T::constant(RETURNED_TURNS_BEYOND);
+    let beyond = x
+        .iter()
+        .zip(&angles)
+        .any(|(value, &angle)| angle && value.abs() > bound);
+    beyond.then(|| within_a_turn(*x, angles))
 }
 
 /// `x` with each angle (`angles`) beyond [`WHOLE_TURNS_BEYOND`] taken by whole turns to the
@@ -1361,6 +1401,7 @@ mod tests {
             scale: l1 + l2 + l3 + l4,
             weights: [1.0; 2],
             payload: [s3, c3, s4, c4],
+            columns: Columns::FromMatrix,
         }
     }
 
@@ -1383,6 +1424,7 @@ mod tests {
             scale: 1.0,
             weights: [weight; 2],
             payload: (),
+            columns: Columns::FromMatrix,
         }
     }
 
@@ -1466,6 +1508,7 @@ mod tests {
                 scale: l1 + l2 + l3 + l4,
                 weights: [1.0; 2],
                 payload: (),
+                columns: Columns::FromMatrix,
             }
         }
     }
@@ -1574,6 +1617,7 @@ mod tests {
             scale: 1.0,
             weights: [1.0; 2],
             payload: (),
+            columns: Columns::FromMatrix,
         };
         assert!(matches!(
             newton(
@@ -1594,6 +1638,7 @@ mod tests {
             scale: f64::INFINITY,
             weights: [1.0; 2],
             payload: (),
+            columns: Columns::FromMatrix,
         };
         assert!(matches!(
             newton(
@@ -1724,6 +1769,7 @@ mod tests {
             scale: 1.0,
             weights: [1.0; 2],
             payload: (),
+            columns: Columns::FromMatrix,
         };
         let at = |k: i32| [2f64.powi(k), 0.0];
         assert_eq!(kantorovich(&creeping(&at(-1)), 1.0), 0.25);
@@ -1785,6 +1831,7 @@ mod tests {
                     scale,
                     weights: [1.0; 2],
                     payload: (),
+                    columns: Columns::FromMatrix,
                 }
             }
         };
@@ -1811,6 +1858,7 @@ mod tests {
             scale: 1.0,
             weights: [1.0; 2],
             payload: (),
+            columns: Columns::FromMatrix,
         };
         let options = NewtonOptions::default();
         assert_eq!(
@@ -1842,6 +1890,7 @@ mod tests {
                 scale: 1.0,
                 weights: [1.0; 2],
                 payload: (),
+                columns: Columns::FromMatrix,
             }
         };
         let options = NewtonOptions::default();
@@ -2078,6 +2127,7 @@ mod tests {
             scale: 1.0,
             weights: [2.0, 4.0],
             payload: (),
+            columns: Columns::FromMatrix,
         };
         let floor = core::f64::consts::TAU;
         let kept = Orientation::from(true);
@@ -2116,6 +2166,7 @@ mod tests {
             scale: 0.0,
             weights: [1.0; 2],
             payload: (),
+            columns: Columns::FromMatrix,
         };
         // Scaled by 1/4: columns 1/2 and 1/4, residual 5/4: h = κ²·(5/4)·(1/2)/(1/16).
         assert_eq!(kantorovich(&at, 1.0), 10.0);
@@ -2439,6 +2490,7 @@ mod tests {
                 scale: 1.0,
                 weights: [1.0; 2],
                 payload: (),
+                columns: Columns::FromMatrix,
             }
         };
         let options = NewtonOptions::default();
@@ -2473,6 +2525,7 @@ mod tests {
                 scale,
                 weights: [1.0; 2],
                 payload: (),
+                columns: Columns::FromMatrix,
             }
         };
         let options = NewtonOptions::default();
@@ -2571,6 +2624,7 @@ mod tests {
                 scale,
                 weights,
                 payload: (),
+                columns: Columns::FromMatrix,
             },
             jacobian: Factored::new(jacobian).unwrap(),
         }

@@ -11,7 +11,7 @@
 //! forms (two loops solved in closed form inside the iteration, a slider among them).
 
 use mechanisms::{StephensonSixBar, StephensonSixBarUnknowns};
-use mechgen::__private::{Linearisation, newton};
+use mechgen::__private::{Columns, Linearisation, Orientation, newton};
 use mechgen::{Branch, Error, NewtonOptions, Real, Solved, Vec2, mechanism};
 
 /// The dimensions of the example (`mechgen_tests::examples::stephenson_six_bar`).
@@ -84,8 +84,22 @@ fn stephenson_scale<T: Real>() -> T {
 }
 
 /// Newton on every unknown together, on a generated residual and Jacobian: what `position`
-/// did before the reduction, and what it falls back to.
+/// did before the reduction, and what it falls back to. Every unknown an angle, unless
+/// `angles` says which are ([`newton_with_lengths_on`]).
 fn newton_on<T: Real, const N: usize>(
+    input: T,
+    guess: [T; N],
+    scale: T,
+    residual: impl Fn(&[T; N]) -> [T; N],
+    jacobian: impl Fn(&[T; N]) -> [[T; N]; N],
+) -> Result<Solved<[T; N], T>, Error<T>> {
+    newton_with_lengths_on([true; N], input, guess, scale, residual, jacobian)
+}
+
+/// [`newton_on`] where the unknowns `angles` marks are angles and the others lengths (which
+/// Newton never takes by whole turns).
+fn newton_with_lengths_on<T: Real, const N: usize>(
+    angles: [bool; N],
     input: T,
     guess: [T; N],
     scale: T,
@@ -96,7 +110,7 @@ fn newton_on<T: Real, const N: usize>(
         input,
         guess,
         &NewtonOptions::default(),
-        false,
+        Orientation::Free { angles },
         || None,
         |x: &[T; N]| Linearisation {
             residual: residual(x),
@@ -104,6 +118,7 @@ fn newton_on<T: Real, const N: usize>(
             scale,
             weights: [T::one(); N],
             payload: (),
+            columns: Columns::FromMatrix,
         },
     )
     .map(|converged| converged.solved)
@@ -547,10 +562,10 @@ mechanism! {
 
 /// Sweeps `position` and `motion_near` from `start` in 1° steps with a velocity predictor
 /// for `degrees`, checking each solution against Newton on every unknown from the same
-/// guess, the loops' closure, and the rates against `motion_at`'s. Returns how many steps
-/// solved.
+/// guess (the unknowns `angles` marks taken as angles), the loops' closure, and the rates
+/// against `motion_at`'s. Returns how many steps solved.
 macro_rules! check_sweep {
-    ($linkage:expr, $unknowns:ident, $n:literal, $scale:expr, $start:expr, $degrees:expr) => {{
+    ($linkage:expr, $unknowns:ident, $n:literal, $angles:expr, $scale:expr, $start:expr, $degrees:expr) => {{
         let linkage = &$linkage;
         let options = NewtonOptions::default();
         let step = 1f64.to_radians();
@@ -565,7 +580,8 @@ macro_rules! check_sweep {
             let solved = linkage
                 .position(t, &$unknowns::from_array(guess), &options)
                 .unwrap_or_else(|e| panic!("{degree}°: {e}"));
-            let full = newton_on(
+            let full = newton_with_lengths_on(
+                $angles,
                 t,
                 guess,
                 $scale,
@@ -668,7 +684,7 @@ fn a_loop_the_residual_does_not_read_is_solved_once_after_the_iteration() {
     let (theta7, theta8, ..) =
         mechgen::closed::two_angles(k, Vec2::new(70.0, 0.0), Vec2::new(-60.0, 0.0), 1.0).unwrap();
     let start = [q.theta3, q.theta4, q.theta5, q.theta6, theta7, theta8];
-    let solved = check_sweep!(linkage, EightBarUnknowns, 6, scale, start, 361);
+    let solved = check_sweep!(linkage, EightBarUnknowns, 6, [true; 6], scale, start, 361);
     assert_eq!(solved, 361);
 
     // Where loop 3 cannot close at the solution, the mechanism cannot be assembled.
@@ -744,7 +760,7 @@ fn two_loops_in_closed_form_inside_the_iteration() {
             .iter()
             .all(|r| r.abs() < 1e-12)
     );
-    let solved = check_sweep!(linkage, ChainedUnknowns, 6, scale, q, 30);
+    let solved = check_sweep!(linkage, ChainedUnknowns, 6, [true; 6], scale, q, 30);
     assert_eq!(solved, 30);
 }
 
@@ -791,7 +807,15 @@ fn a_slider_solved_in_closed_form_inside_the_iteration() {
         .unwrap()
         .value
         .to_array();
-    let solved = check_sweep!(linkage, SliderSixBarUnknowns, 4, scale, start, 30);
+    let solved = check_sweep!(
+        linkage,
+        SliderSixBarUnknowns,
+        4,
+        [true, true, true, false],
+        scale,
+        start,
+        30
+    );
     assert_eq!(solved, 30);
 }
 

@@ -697,6 +697,19 @@ impl Generator<'_> {
             quote!([#(#payload),*])
         };
         let count = Literal::usize_unsuffixed(n);
+        // The Jacobian's column norms where the dimensions fix them: computed once, before
+        // the iteration.
+        let column_product = local("column_product");
+        let (columns_before, columns) = match self.known_column_product() {
+            Some(product) => (
+                quote!(let #column_product = #product;),
+                quote!(::mechgen::__private::Columns::Known(#column_product)),
+            ),
+            None => (
+                TokenStream::new(),
+                quote!(::mechgen::__private::Columns::FromMatrix),
+            ),
+        };
         let evaluation = |turnings: &TokenStream, turns: &TokenStream| {
             quote! {
                 {
@@ -715,6 +728,7 @@ impl Generator<'_> {
                             #scale,
                             weights: #weights,
                             payload: #payload,
+                            columns: #columns,
                         }
                     }
                 }
@@ -726,6 +740,7 @@ impl Generator<'_> {
                 #input_trig
                 #(#hoisted)*
                 #scale_before
+                #columns_before
             },
             // With its own turnings, so that it can be emitted more than once (for the common
             // path and the fallback of `fast_newton`); it copies the values it reads.

@@ -283,6 +283,7 @@ impl Generator<'_> {
                 scale: T::nan(),
                 weights: [T::nan(); #n],
                 payload: [T::nan(); #payload_count],
+                columns: ::mechgen::__private::Columns::FromMatrix,
             };
             let #converged = match ::mechgen::__private::newton(
                 #first_input,
@@ -302,6 +303,7 @@ impl Generator<'_> {
                         #scale_local,
                         weights: #weights,
                         payload: [#(#payload),*],
+                        columns: ::mechgen::__private::Columns::FromMatrix,
                     }
                 },
             ) {

@@ -37,6 +37,22 @@ impl Generator<'_> {
         Some(quote!(::mechgen::__private::aspect(#size, [#(#columns),*])))
     }
 
+    /// The product of the Jacobian's squared column norms over `self`, where the dimensions
+    /// fix them: two unknowns, both angles of one loop, each turning one vector of fixed
+    /// length (`mechgen::__private::Columns::Known`). `None` elsewhere.
+    pub(crate) fn known_column_product(&self) -> Option<TokenStream> {
+        let unknowns = &self.model.unknowns;
+        if unknowns.len() != 2 || unknowns.iter().any(|unknown| unknown.kind != Kind::Angle) {
+            return None;
+        }
+        let receiver = Ident::new("self", proc_macro2::Span::call_site());
+        let columns = self.angle_columns(&receiver).collect::<Option<Vec<_>>>()?;
+        let [first, second] = columns.as_slice() else {
+            return None;
+        };
+        Some(quote!((#first) * (#second)))
+    }
+
     /// Each angle unknown's squared column length over the mechanism `receiver`, where the
     /// dimensions fix it ([`Self::fixed_column`]).
     fn angle_columns<'a>(
