@@ -278,7 +278,9 @@ const CREEPING: u32 = 16;
 /// Angles of the guess (the unknowns `keep_orientation` marks) beyond ±16 rad are first taken
 /// by whole turns to within `[−π, π]`: a float that large holds an angle only to its spacing,
 /// coarser than the rounding floor the tests read (a guess counting a thousand turns stalled
-/// above it, or stopped at an angle less accurate than stated).
+/// above it, or stopped at an angle less accurate than stated). So is an angle of an iterate
+/// that would be accepted beyond ±17 rad (`RETURNED_TURNS_BEYOND`), which the iteration
+/// then goes on from: every angle returned is within ±17 rad.
 ///
 /// With `keep_orientation`, the Jacobian's orientation (the sign of its determinant) must be
 /// the same at the solution as at the guess, else [`Error::OtherBranch`]: for a single loop
@@ -361,10 +363,8 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
         // ±16 rad.)
         macro_rules! within_turns_or_accept {
             ($here:expr, $jacobian:expr, $x:expr) => {{
-                if let Some(within) = taken_by_turns(&$x, angles) {
-                    x = within;
-                    here = linearise(&x);
-                    weighted = weighted_norm(&here.residual, &here.weights);
+                if beyond_turns(&$x, angles) {
+                    (x, here, weighted) = taken_by_turns(&$x, angles, &mut linearise);
                     previous_residual = T::infinity();
                     continue 'iterate;
                 }
@@ -1096,16 +1096,31 @@ fn ran_away<T: Real, const N: usize>(x: &[T; N], start: &[T; N], angles: &[bool;
 /// (a guess within ±16 rad, moved at most 2⁻¹⁰), so that the two still agree bit for bit.
 const RETURNED_TURNS_BEYOND: f64 = WHOLE_TURNS_BEYOND + 1.0;
 
-/// `x` with each angle (`angles`) beyond [`RETURNED_TURNS_BEYOND`] taken by whole turns to
-/// within `[−π, π]` ([`within_a_turn`]), or `None` where none is beyond it (nor NaN: an
-/// iterate that is not finite is not accepted).
-fn taken_by_turns<T: Real, const N: usize>(x: &[T; N], angles: [bool; N]) -> Option<[T; N]> {
+/// Whether some angle (`angles`) of `x` is beyond [`RETURNED_TURNS_BEYOND`] (false for NaN:
+/// an iterate that is not finite is not accepted).
+#[inline(always)]
+fn beyond_turns<T: Real, const N: usize>(x: &[T; N], angles: [bool; N]) -> bool {
     let bound = T::constant(RETURNED_TURNS_BEYOND);
-    let beyond = x
-        .iter()
+    x.iter()
         .zip(&angles)
-        .any(|(value, &angle)| angle && value.abs() > bound);
-    beyond.then(|| within_a_turn(*x, angles))
+        .any(|(value, &angle)| angle && value.abs() > bound)
+}
+
+/// `x` with its angles taken by whole turns ([`within_a_turn`]), the loops evaluated there,
+/// and their weighted residual: where [`newton`] solves on from an iterate
+/// [`beyond_turns`]. Out of line: it is rare, and inline at each of the three places that
+/// accept an iterate it would crowd the iteration.
+#[cold]
+#[inline(never)]
+fn taken_by_turns<T: Real, const N: usize, P>(
+    x: &[T; N],
+    angles: [bool; N],
+    linearise: &mut impl FnMut(&[T; N]) -> Linearisation<T, N, P>,
+) -> ([T; N], Linearisation<T, N, P>, T) {
+    let within = within_a_turn(*x, angles);
+    let here = linearise(&within);
+    let weighted = weighted_norm(&here.residual, &here.weights);
+    (within, here, weighted)
 }
 
 /// `x` with each angle (`angles`) beyond [`WHOLE_TURNS_BEYOND`] taken by whole turns to the

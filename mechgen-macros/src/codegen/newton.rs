@@ -26,7 +26,9 @@ impl Generator<'_> {
     /// What `position` says of a guess's angles beyond `mechgen::__private::newton`'s bound.
     pub(super) const WHOLE_TURNS_DOC: &'static str = " An angle of `guess` beyond ±16 rad is first taken \
         by whole turns to within [−π, π] (a float that large holds an angle more coarsely than \
-        the accuracy stated), so the solution's angle is then within a turn of zero.";
+        the accuracy stated), and so is an angle the iterates leave beyond ±17 rad (a step \
+        through a nearly vanishing column can throw one many turns), which is solved on from \
+        there: every angle of the solution is within ±17 rad.";
 
     /// Newton on every unknown together: `position` itself (`public`), or the private
     /// fallback of a reduced `position` (see `super::reduced`).
