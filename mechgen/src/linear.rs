@@ -822,6 +822,13 @@ mod tests {
             Factored::new_with(a, Columns::Known(1e40)),
             Err(Error::Singular { .. })
         ));
+        // The bound is 4ε times the product, passed only above it: a determinant of 2⁻²⁰
+        // against a product of 2¹⁰ sits on it (its square is 2⁻⁴⁰ = 4ε·2¹⁰), and one of 1e-9
+        // against 1 is below it.
+        let on_bound = [[1.0, 0.0], [0.0, 2f64.powi(-20)]];
+        assert!(Factored::quick_with(on_bound, Columns::Known(1024.0)).is_none());
+        assert!(Factored::quick_with(on_bound, Columns::Known(1023.0)).is_some());
+        assert!(Factored::quick_with([[1.0, 1.0], [0.0, 1e-9]], Columns::Known(1.0)).is_none());
         // Not normal (overflowed, underflowed, NaN): the matrix's own norms.
         for product in [f64::INFINITY, 0.0, 1e-320, f64::NAN] {
             let unknown = Columns::Known(product);
