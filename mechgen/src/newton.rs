@@ -2083,6 +2083,13 @@ mod tests {
         let [_, reduced] = within_a_turn([1e6, 20.0], [false, true]);
         assert!((reduced - (20.0 - 3.0 * tau)).abs() < 1e-14, "{reduced}");
         assert_eq!(within_a_turn([16.0, -16.0], [true; 2]), [16.0, -16.0]);
+        // An iterate about to be returned is taken within a turn beyond ±17 rad (past the
+        // common path's reach, a guess within ±16 moved by 2⁻¹⁰): an angle, not a length.
+        assert!(!beyond_turns(&[16.9, -16.9], [true; 2]));
+        assert!(beyond_turns(&[17.1, 0.0], [true; 2]));
+        assert!(beyond_turns(&[0.0, -17.1], [true; 2]));
+        assert!(!beyond_turns(&[1e6, 0.0], [false, true]));
+        assert!(!beyond_turns(&[f64::NAN, 0.0], [true; 2]));
         assert!(
             within_a_turn([f64::NAN, f64::INFINITY], [true; 2])
                 .iter()
