@@ -274,7 +274,7 @@ impl<T: Real, const N: usize> Factored<T, N> {
 
     /// [`Factored::new`], with a 2×2 matrix's column norms from `columns` where they are
     /// known (and their product's square is normal), else from the matrix.
-    #[inline(always)]
+    #[inline]
     pub fn new_with(a: [[T; N]; N], columns: Columns<T>) -> Result<Self, Error<T>> {
         if N == 2 {
             // Two unknowns (one loop): keep the inverse, by Cramer's rule.
