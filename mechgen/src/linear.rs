@@ -97,8 +97,46 @@ fn normal<T: Real>(value: T) -> bool {
 pub enum Columns<T> {
     /// From the matrix's entries.
     FromMatrix,
-    /// This product.
-    Known(T),
+    /// This product ([`Columns::known`]).
+    Known(KnownColumns<T>),
+}
+
+impl<T: Real> Columns<T> {
+    /// The known product `product`, with what the factoring reads of it.
+    #[inline(always)]
+    pub fn known(product: T) -> Self {
+        Columns::Known(KnownColumns::new(product))
+    }
+}
+
+/// A known product of squared column norms and what the 2×2 factoring reads of it: its
+/// regularity test's bound and its square root, the column norms' product. Computed where
+/// the product is, once for the dimensions (a `{Name}Newton` keeps it), rather than in every
+/// solve; the same bits either way.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KnownColumns<T> {
+    product: T,
+    /// `4ε·product`, which a regular determinant's square exceeds; infinite where the
+    /// product is not normal, which nothing exceeds.
+    bound: T,
+    norms: T,
+}
+
+impl<T: Real> KnownColumns<T> {
+    /// `product` with its bound and square root.
+    #[inline(always)]
+    pub fn new(product: T) -> Self {
+        let bound = if product >= T::min_positive_value() {
+            T::constant(4.0) * T::epsilon() * product
+        } else {
+            T::infinity()
+        };
+        KnownColumns {
+            product,
+            bound,
+            norms: product.sqrt(),
+        }
+    }
 }
 
 /// The signed relative determinant from the scaled determinant and [`normalise`]'s column
@@ -283,7 +321,7 @@ impl<T: Real, const N: usize> Factored<T, N> {
             // other scale) only where the squares would overflow or underflow.
             let mut a = a;
             let known = match columns {
-                Columns::Known(product) => normal(product).then(|| product.sqrt()),
+                Columns::Known(known) => normal(known.product).then_some(known.norms),
                 Columns::FromMatrix => None,
             };
             let (columns, scales) = match known
@@ -330,7 +368,7 @@ impl<T: Real, const N: usize> Factored<T, N> {
             return Some(Quick {
                 factored,
                 determinant: factored.relative,
-                column_product: T::one(),
+                norms: Norms::Known(T::one()),
             });
         }
         let (i, j) = (0, N - 1);
@@ -341,23 +379,19 @@ impl<T: Real, const N: usize> Factored<T, N> {
         // for NaN; an overflowing square is a determinant far from singular). A product that
         // overflows fails the last test (nothing exceeds `4ε·∞`), so it needs no test of its
         // own. The two together (`&`, not `&&`), for one branch; for a known product, which
-        // the iteration does not change, one comparison against a bound computed before it
-        // (infinite where the product is not normal, which nothing exceeds).
-        let four_epsilon = T::constant(4.0) * T::epsilon();
-        let (column_product, regular) = match columns {
-            Columns::Known(product) => {
-                let bound = if product >= T::min_positive_value() {
-                    four_epsilon * product
-                } else {
-                    T::infinity()
-                };
-                (product, determinant * determinant > bound)
-            }
+        // the iteration does not change, one comparison against its bound, computed with it
+        // ([`KnownColumns::new`]).
+        let (norms, regular) = match columns {
+            Columns::Known(known) => (
+                Norms::Known(known.norms),
+                determinant * determinant > known.bound,
+            ),
             Columns::FromMatrix => {
                 let product = (a00 * a00 + a10 * a10) * (a01 * a01 + a11 * a11);
+                let four_epsilon = T::constant(4.0) * T::epsilon();
                 let regular = (product >= T::min_positive_value())
                     & (determinant * determinant > four_epsilon * product);
-                (product, regular)
+                (Norms::OfProduct(product), regular)
             }
         };
         if !regular {
@@ -378,7 +412,7 @@ impl<T: Real, const N: usize> Factored<T, N> {
                 relative: T::zero(),
             },
             determinant,
-            column_product,
+            norms,
         })
     }
 
@@ -430,8 +464,16 @@ pub(crate) struct Quick<T, const N: usize> {
     factored: Factored<T, N>,
     /// The determinant (for a larger matrix, the relative determinant).
     determinant: T,
-    /// The product of the squared column norms (for a larger matrix, 1).
-    column_product: T,
+    /// The column norms' product (for a larger matrix, 1).
+    norms: Norms<T>,
+}
+
+/// [`Quick`]'s column norms' product: the square root of the squared norms' product, taken
+/// only where the relative determinant is asked for, or known.
+#[derive(Clone, Copy, Debug)]
+enum Norms<T> {
+    OfProduct(T),
+    Known(T),
 }
 
 impl<T: Real, const N: usize> Quick<T, N> {
@@ -440,7 +482,11 @@ impl<T: Real, const N: usize> Quick<T, N> {
     pub(crate) fn relative(&self) -> T {
         if N == 2 {
             // `check_determinant(determinant, unscaled_columns2(a))`.
-            self.determinant / self.column_product.sqrt()
+            let norms = match self.norms {
+                Norms::OfProduct(product) => product.sqrt(),
+                Norms::Known(norms) => norms,
+            };
+            self.determinant / norms
         } else {
             self.factored.relative
         }
@@ -801,7 +847,7 @@ mod tests {
         // Columns of lengths 2 and 3 (a loop's vectors turned), rounded a little: the known
         // product is the exact lengths' 36.
         let a: [[f64; 2]; 2] = [[2.0 * 0.6, -3.0 * 0.8], [2.0 * 0.8, 3.0 * 0.6]];
-        let known = Columns::Known(36.0);
+        let known = Columns::known(36.0);
         let new = Factored::new_with(a, known).unwrap();
         let quick = Factored::quick_with(a, known).unwrap();
         let determinant = a[0][0] * a[1][1] - a[0][1] * a[1][0];
@@ -817,21 +863,21 @@ mod tests {
         );
         // The regularity test against the known product: a matrix whose own columns would
         // pass is singular against columns said to be far longer.
-        assert!(Factored::quick_with(a, Columns::Known(1e40)).is_none());
+        assert!(Factored::quick_with(a, Columns::known(1e40)).is_none());
         assert!(matches!(
-            Factored::new_with(a, Columns::Known(1e40)),
+            Factored::new_with(a, Columns::known(1e40)),
             Err(Error::Singular { .. })
         ));
         // The bound is 4ε times the product, passed only above it: a determinant of 2⁻²⁰
         // against a product of 2¹⁰ sits on it (its square is 2⁻⁴⁰ = 4ε·2¹⁰), and one of 1e-9
         // against 1 is below it.
         let on_bound = [[1.0, 0.0], [0.0, 2f64.powi(-20)]];
-        assert!(Factored::quick_with(on_bound, Columns::Known(1024.0)).is_none());
-        assert!(Factored::quick_with(on_bound, Columns::Known(1023.0)).is_some());
-        assert!(Factored::quick_with([[1.0, 1.0], [0.0, 1e-9]], Columns::Known(1.0)).is_none());
+        assert!(Factored::quick_with(on_bound, Columns::known(1024.0)).is_none());
+        assert!(Factored::quick_with(on_bound, Columns::known(1023.0)).is_some());
+        assert!(Factored::quick_with([[1.0, 1.0], [0.0, 1e-9]], Columns::known(1.0)).is_none());
         // Not normal (overflowed, underflowed, NaN): the matrix's own norms.
         for product in [f64::INFINITY, 0.0, 1e-320, f64::NAN] {
-            let unknown = Columns::Known(product);
+            let unknown = Columns::known(product);
             assert!(Factored::quick_with(a, unknown).is_none(), "{product}");
             assert_eq!(
                 bits(&Factored::new_with(a, unknown).unwrap()),

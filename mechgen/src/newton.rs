@@ -22,6 +22,8 @@ pub struct NewtonConstants<T> {
     /// The size over the shortest column of an angle unknown, where the dimensions fix the
     /// columns (else unused), with what the rates' estimates read of it.
     pub aspect: crate::accuracy::KnownAspect<T>,
+    /// The Jacobian's column norms, where the dimensions fix them (else unused).
+    pub columns: crate::linear::KnownColumns<T>,
     /// Whether the dimensions are solved as given (`kernel::as_given`).
     pub as_given: bool,
 }
@@ -796,8 +798,10 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
             };
             if met {
                 // A scale that is not finite makes no floor: tested here rather than at each
-                // evaluation, since an iteration that goes on cannot end anywhere else.
-                if !here.scale.is_finite() || (keep_orientation && positive != started_positive) {
+                // evaluation, since an iteration that goes on cannot end anywhere else. (A
+                // float comparison, false for NaN, where `is_finite` tests the bits.)
+                let finite_scale = here.scale.abs() <= T::max_value();
+                if !finite_scale || (keep_orientation && positive != started_positive) {
                     break 'common;
                 }
                 let jacobian = jacobian.finish();

@@ -59,7 +59,7 @@ impl Generator<'_> {
             closure,
             common_closure,
             ..
-        } = self.linearisation(&x, &guess);
+        } = self.linearisation(&x, &guess, None);
         let (doc, signature) = if public {
             let public_doc = doc(&format!(
                 "Solves the loops for the unknowns at `{input_text}` by a safeguarded Newton-Raphson \
@@ -345,7 +345,7 @@ impl Generator<'_> {
             common_closure,
             named,
             used: bound,
-        } = self.linearisation(&x, &guess);
+        } = self.linearisation(&x, &guess, constants);
         let size = local("size");
         let (keep_orientation, branch_check) = self.branch_keeping(
             quote!(&#ty::from_array(#converged.solved.value)),
@@ -545,7 +545,7 @@ impl Generator<'_> {
     /// that depends only on the parameters and input computed once, before the closure. The
     /// closure hands back, as its payload, every value it named (sines, cosines, shared
     /// products), for the rates at the solution.
-    fn linearisation(&self, x: &Ident, guess: &Ident) -> Linearised {
+    fn linearisation(&self, x: &Ident, guess: &Ident, constants: Option<&Ident>) -> Linearised {
         let n = self.model.unknowns.len();
         let eq = self.equations;
         let entries: Vec<ExprId> = eq
@@ -700,14 +700,18 @@ impl Generator<'_> {
         };
         let count = Literal::usize_unsuffixed(n);
         // The Jacobian's column norms where the dimensions fix them: computed once, before
-        // the iteration.
-        let column_product = local("column_product");
-        let (columns_before, columns) = match self.known_column_product() {
-            Some(product) => (
-                quote!(let #column_product = #product;),
-                quote!(::mechgen::__private::Columns::Known(#column_product)),
+        // the iteration, or kept by a `{Name}Newton` (`constants`).
+        let known = local("columns");
+        let (columns_before, columns) = match (self.known_column_product(), constants) {
+            (Some(_), Some(constants)) => (
+                quote!(let #known = ::mechgen::__private::Columns::Known(#constants.columns);),
+                quote!(#known),
             ),
-            None => (
+            (Some(product), None) => (
+                quote!(let #known = ::mechgen::__private::Columns::known(#product);),
+                quote!(#known),
+            ),
+            (None, _) => (
                 TokenStream::new(),
                 quote!(::mechgen::__private::Columns::FromMatrix),
             ),

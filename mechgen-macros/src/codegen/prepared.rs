@@ -103,6 +103,10 @@ impl Generator<'_> {
         let aspect = self
             .known_aspect(&receiver, &quote!(size))
             .unwrap_or_else(|| quote!(T::nan()));
+        // Unused where the columns are not known.
+        let columns = self
+            .known_column_product()
+            .unwrap_or_else(|| quote!(T::nan()));
         // A length input joins the size each call: then the call tests it all.
         let as_given = if self.has_length_input() {
             quote!(true)
@@ -125,6 +129,7 @@ impl Generator<'_> {
                     constants: ::mechgen::__private::NewtonConstants {
                         size,
                         aspect: ::mechgen::__private::KnownAspect::new(#aspect),
+                        columns: ::mechgen::__private::KnownColumns::new(#columns),
                         as_given: #as_given,
                     },
                 })
