@@ -42,6 +42,36 @@ fn trace_prints_the_newton_iterates_of_example_2() {
     for value in ["27.137939", "-26.675322", "21.557635", "72.137650"] {
         assert!(report.contains(value), "{value} missing from:\n{report}");
     }
+    assert!(report.trim_end().ends_with("converged"), "{report}");
+}
+
+/// A trace that does not converge says so, and its iterates stay within half a turn: from
+/// θ3 = θ4 = 100° the first steps threw θ3 to −1.3e18°, where a float holds a direction to
+/// 256°, and the trace ended after 20 steps without a word.
+#[test]
+fn a_trace_that_does_not_converge_says_so_and_keeps_its_angles_within_a_turn() {
+    let report = stdout_of(&[
+        "analyse", "four-bar", "180", "80", "200", "150", "--trace", "--guess", "100,100",
+    ]);
+    assert!(
+        report
+            .trim_end()
+            .ends_with("not converged in 20 steps: stopped"),
+        "{report}"
+    );
+    let steps: Vec<Vec<f64>> = report
+        .lines()
+        .skip_while(|line| !line.contains("step"))
+        .skip(1)
+        .map_while(|line| {
+            let cells: Option<Vec<f64>> = line.split_whitespace().map(|c| c.parse().ok()).collect();
+            cells
+        })
+        .collect();
+    assert_eq!(steps.len(), 21, "{report}");
+    for step in &steps {
+        assert!(step[1].abs() <= 180.0 && step[2].abs() <= 180.0, "{report}");
+    }
 }
 
 /// Runs the program and checks it fails with exit code `code` (1 for the program's own
@@ -1042,6 +1072,37 @@ fn a_stephenson_circuit_a_full_turn_below_its_toggle_is_that_turn() {
     assert!(
         rows[0][0] < -287.7 && rows[rows.len() - 1][0] > 70.28,
         "{summary}"
+    );
+}
+
+/// A Stephenson six-bar near the float's largest walks as it does at 1 mm: the walk's
+/// slopes are solved scaled (they overflowed at 5e306 mm, and the walk stopped at its first
+/// step, reported as a toggle on both sides of a one-sample piece).
+#[test]
+fn a_stephenson_sweep_near_the_largest_float_is_the_sweep_at_any_size() {
+    let piece = |size: &str| {
+        let scratch = Scratch::new(&format!("stephenson-size-{size}"));
+        let args: Vec<String> = [size, size, size, size, size, "0", size, size, size, "0"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        let (summary, _, rows) =
+            sweep_table(&with(&["stephenson-six-bar"], &strings(&args)), &scratch);
+        assert!(
+            summary.contains("piece 1: 42.94° to 317.06° (a toggle below, a toggle above"),
+            "{size}: {summary}"
+        );
+        rows.len()
+    };
+    assert_eq!(piece("1"), piece("1e307"));
+    // Past the largest float in sum, the walk's loops overflow: refused by name, where it
+    // reported a one-sample piece between a toggle and a change point.
+    let mut args = vec!["sweep", "stephenson-six-bar"];
+    args.extend(["5e307", "5e307", "5e307", "5e307", "5e307", "0"]);
+    args.extend(["5e307", "5e307", "5e307", "0"]);
+    fails_with(
+        &args,
+        "lengths and coordinates sum to more than the largest float",
     );
 }
 

@@ -53,7 +53,9 @@ pub mod __private {
         rates_as_given, retimed, scaled, stated_in_own_units, triangle_root, unit_angle, unscaled,
         untimed,
     };
-    pub use crate::linear::{Columns, Factored, KnownColumns, orientation, solve_lu, solve2};
+    pub use crate::linear::{
+        Columns, Factored, KnownColumns, orientation, solve_lu, solve_scaled, solve2,
+    };
     pub use crate::newton::{
         Linearisation, NewtonConstants, Orientation, Started, Turning, Turnings, all_finite,
         angle_near, certified_start, check_all_finite, check_finite, closes_within_rounding,

@@ -153,6 +153,32 @@ fn check_determinant<T: Real>(scaled_determinant: T, column_norms: T) -> Result<
     Ok(relative)
 }
 
+/// The solution of `a·x = b` with `a` factored, both first multiplied by the power of two
+/// `scale` that brings their largest entry into `[1/2, 1)`: bit for bit the unscaled
+/// solution wherever that neither overflows nor underflows, and finite at the float's
+/// extremes too, where the unscaled solve's products overflow though the solution is
+/// ordinary (a mechanism of 1e307 mm, whose rates in radians are of order 1). Returns the
+/// factors of the scaled matrix and `scale`, by which errors in `b`'s units are multiplied
+/// before [`Factored::uncertainty`]. An entry that is not finite leaves `scale` at 1, for
+/// [`Factored::new`] to refuse.
+pub fn solve_scaled<T: Real, const N: usize>(
+    a: [[T; N]; N],
+    b: [T; N],
+) -> Result<([T; N], Factored<T, N>, T), Error<T>> {
+    let largest = a
+        .iter()
+        .flatten()
+        .chain(&b)
+        .fold(T::zero(), |largest, v| largest.max(v.abs()));
+    let scale = if largest > T::zero() && largest <= T::max_value() {
+        crate::real::normaliser(largest)
+    } else {
+        T::one()
+    };
+    let factored = Factored::new(a.map(|row| row.map(|v| v * scale)))?;
+    Ok((factored.solve(b.map(|v| v * scale)), factored, scale))
+}
+
 /// Solves the 2×2 system `a·x = b` by Cramer's rule; returns `x` and the signed relative
 /// determinant `det / (‖column 0‖·‖column 1‖)`, whose sign is the matrix's orientation.
 #[inline]
@@ -517,9 +543,11 @@ impl<T: Real, const N: usize> Quick<T, N> {
 /// The orientation of a square matrix, the sign of its determinant (`true` for positive),
 /// or `None` where it is singular (or not finite), by the same test as the solvers.
 pub fn orientation<T: Real, const N: usize>(a: [[T; N]; N]) -> Option<bool> {
-    Factored::new(a)
+    // Scaled as `solve_scaled` scales, which moves no bit of the relative determinant but
+    // keeps a matrix near the float's largest from overflowing in the factoring.
+    solve_scaled(a, [T::zero(); N])
         .ok()
-        .map(|factored| factored.relative > T::zero())
+        .map(|(_, factored, _)| factored.relative > T::zero())
 }
 
 /// The condition estimate of a Jacobian, `κ = Π‖column‖ / |det|`: 1 when the unknowns move
@@ -885,6 +913,52 @@ mod tests {
                 "{product}"
             );
         }
+    }
+
+    /// Solved scaled, a system gives the unscaled solution's bits where that is finite, and
+    /// the same solution near the float's largest, where the unscaled solve overflows; the
+    /// orientation too, and the uncertainty of errors scaled alike.
+    #[test]
+    fn a_scaled_solve_is_the_solve_at_any_size() {
+        let a = [[3.0, -1.0, 0.5], [1.0, 2.0, -2.0], [0.25, 1.0, 4.0]];
+        let b = [1.0, -2.0, 3.0];
+        let (x, factored, scale) = solve_scaled(a, b).unwrap();
+        let plain = Factored::new(a).unwrap();
+        assert_eq!(
+            bits(&factored),
+            bits(&Factored::new(a.map(|r| r.map(|v| v * scale))).unwrap())
+        );
+        assert_eq!(x.map(f64::to_bits), plain.solve(b).map(f64::to_bits));
+        assert_eq!(
+            factored.uncertainty([1e-3 * scale; 3]).map(f64::to_bits),
+            plain.uncertainty([1e-3; 3]).map(f64::to_bits)
+        );
+        assert_eq!(orientation(a), Some(true));
+        // A solution of 20 from a matrix of 2^1020 and a right-hand side of 2^1021, whose
+        // unscaled solve sums products of 10·2^1021, past the largest float.
+        let big = 2f64.powi(1020);
+        let near = [[big, 0.9 * big], [0.9 * big, big]];
+        let b = [2.0 * big, -2.0 * big];
+        assert!(
+            Factored::new(near)
+                .unwrap()
+                .solve(b)
+                .iter()
+                .any(|v| !v.is_finite())
+        );
+        let (x, _, _) = solve_scaled(near, b).unwrap();
+        let expected = solve_scaled([[1.0, 0.9], [0.9, 1.0]], [2.0, -2.0])
+            .unwrap()
+            .0;
+        assert_eq!(x.map(f64::to_bits), expected.map(f64::to_bits));
+        assert!(
+            (x[0] - 20.0).abs() < 1e-13 && (x[1] + 20.0).abs() < 1e-13,
+            "{x:?}"
+        );
+        assert_eq!(orientation(near), Some(true));
+        // Not finite: refused, as unscaled.
+        assert!(solve_scaled([[f64::INFINITY, 0.0], [0.0, 1.0]], [1.0, 1.0]).is_err());
+        assert!(solve_scaled([[f64::NAN, 0.0], [0.0, 1.0]], [1.0, 1.0]).is_err());
     }
 
     /// Row sums of the inverse's magnitudes, times the errors: for a 2×2 matrix (its kept

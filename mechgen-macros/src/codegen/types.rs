@@ -257,10 +257,13 @@ impl Generator<'_> {
                     // The rates at unit input rate, as `velocity` solves them, but without its
                     // accuracy requirement: the sweep only steers by them, and must steer
                     // right up to a toggle or change point, where they lose their digits.
+                    // Solved scaled, so that a mechanism near the float's largest steers too.
                     let #position = #ty::from_array(#position);
                     let along = self.input_jacobian(#input, &#position).map(|v| -v);
-                    let slope = ::mechgen::__private::Factored::new(self.jacobian(#input, &#position))?
-                        .solve(along);
+                    let (slope, _, _) = ::mechgen::__private::solve_scaled(
+                        self.jacobian(#input, &#position),
+                        along,
+                    )?;
                     ::mechgen::__private::finite(slope, "velocity")
                 }
 
@@ -281,10 +284,11 @@ impl Generator<'_> {
                 ) -> ::core::result::Result<([T; #count], [T; #count]), ::mechgen::Error<T>> {
                     let #position = #ty::from_array(#position);
                     let along = self.input_jacobian(#input, &#position).map(|v| -v);
-                    let factored = ::mechgen::__private::Factored::new(
+                    let (slope, factored, scale) = ::mechgen::__private::solve_scaled(
                         self.jacobian(#input, &#position),
+                        along,
                     )?;
-                    let slope = ::mechgen::__private::finite(factored.solve(along), "velocity")?;
+                    let slope = ::mechgen::__private::finite(slope, "velocity")?;
                     // Each row's residual as it is, and what rounding may hide of it: a few
                     // ε (each vector's sine or cosine and product, and the sum) per unit of its
                     // own loop's declared lengths.
@@ -293,7 +297,7 @@ impl Generator<'_> {
                     let rounding = [#(#rounding),*];
                     let mut errors = residual;
                     for (error, rounding) in errors.iter_mut().zip(rounding) {
-                        *error = error.abs() + floor * rounding;
+                        *error = (error.abs() + floor * rounding) * scale;
                     }
                     ::core::result::Result::Ok((slope, factored.uncertainty(errors)))
                 }

@@ -101,11 +101,21 @@ pub(super) fn watt(args: &Args) -> Result<Sweep<'_>, String> {
     })
 }
 
-/// Where a walk stopped, in words.
-pub(super) fn stop_words(stop: &Stop<f64>) -> &'static str {
+/// Where a walk stopped, in words: a toggle only where Newton said the loops cannot be
+/// solved beyond (a walk that stopped on a value not finite, or on a position the loops fix
+/// too loosely, says so instead).
+pub(super) fn stop_words(stop: &Stop<f64>) -> String {
     match stop {
-        Stop::Toggle { .. } => "a toggle",
-        Stop::BranchChange { .. } => "a change point",
+        Stop::Toggle {
+            error: Error::NonFinite { quantity },
+            ..
+        } => format!("a {quantity} not finite, where the walk could not go on"),
+        Stop::Toggle {
+            error: error @ Error::Inaccurate { .. },
+            ..
+        } => format!("a position the loops fix too loosely ({error})"),
+        Stop::Toggle { .. } => "a toggle".into(),
+        Stop::BranchChange { .. } => "a change point".into(),
     }
 }
 
@@ -158,6 +168,21 @@ pub(super) fn edge(
 pub(super) fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
     let d = &args.dimensions;
     let linkage = six_bars::stephenson(d)?;
+    // The walk evaluates the loops at their own size (its residual, its slopes), where the
+    // sum of their vectors overflows once the dimensions sum past the largest float.
+    let size = d
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| *k != 5)
+        .fold(0.0, |sum, (_, v)| sum + v.abs());
+    if size > f64::MAX {
+        return Err(format!(
+            "the stephenson-six-bar's lengths and coordinates sum to more than the largest \
+             float ({:e}): its walk evaluates the loops at their own size, where they \
+             overflow; give them in a larger unit",
+            f64::MAX
+        ));
+    }
     let dimensions = StephensonDimensions::new(d);
     let Some((start, position)) = (0..360).find_map(|degree| {
         let input = f64::from(degree);
@@ -216,7 +241,7 @@ pub(super) fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
                  stopped)",
                 output::fixed(piece.from, 2),
                 output::fixed(piece.to, 2),
-                down.as_ref().map_or("a full turn", stop_words),
+                down.as_ref().map_or("a full turn".into(), stop_words),
                 stop_words(&up),
                 tidy(start - shift)
             );
