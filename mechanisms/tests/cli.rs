@@ -2292,6 +2292,84 @@ fn far_pivots_cannot_assemble_and_subnormal_dimensions_are_refused() {
     }
 }
 
+/// Option values below the float's normal range are refused too, naming the option: they
+/// were taken (a robot's base of 5e-324 mm, a coupler point 5e-324 mm from its pin), or
+/// underflowed to zero on the way (an angle tolerance of 5e-324°, zero in radians, gave a
+/// table of zeros), or failed later without saying which input (a sweep at 5e-324 rad/s).
+#[test]
+fn subnormal_options_and_robot_links_are_refused_by_name() {
+    let below = "is below the float's normal range (2.2250738585072014e-308)";
+    fails_with(
+        &["robot", "100", "200", "200", "100", "5e-324"],
+        &format!("the base 5e-324 {below}"),
+    );
+    for (args, flag) in [
+        (
+            vec![
+                "tolerance",
+                "four-bar",
+                "180",
+                "80",
+                "200",
+                "150",
+                "--angle-tolerance",
+                "5e-324",
+            ],
+            "--angle-tolerance 5e-324",
+        ),
+        (
+            vec![
+                "sweep",
+                "four-bar",
+                "180",
+                "80",
+                "200",
+                "150",
+                "--coupler-point",
+                "5e-324,0",
+            ],
+            "--coupler-point 5e-324,0",
+        ),
+        (
+            vec![
+                "sweep",
+                "four-bar",
+                "180",
+                "80",
+                "200",
+                "150",
+                "--rate=-5e-324",
+            ],
+            "--rate -5e-324",
+        ),
+    ] {
+        fails_with(&args, &format!("{flag}: "));
+        fails_with(&args, below);
+    }
+}
+
+/// A sweep's table written to a path that is standard output (`/dev/stdout`) is alone there,
+/// as with `-`: the summary went into it, over its header.
+#[cfg(unix)]
+#[test]
+fn a_table_to_dev_stdout_is_alone_there() {
+    let scratch = Scratch::new("dev-stdout");
+    let table = stdout_of(&[
+        "sweep",
+        "four-bar",
+        "180",
+        "80",
+        "200",
+        "150",
+        "--csv",
+        "/dev/stdout",
+        "--out-dir",
+        scratch.path(),
+    ]);
+    assert!(table.starts_with("input_deg,segment,"), "{table}");
+    assert_eq!(table.lines().count(), 362, "{table}");
+}
+
 /// A tolerance analysis' step is a positive number of degrees up to a turn, checked before
 /// anything is printed, as the sweep checks its own.
 #[test]

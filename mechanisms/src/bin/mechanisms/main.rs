@@ -180,8 +180,62 @@ fn arguments(given: impl Iterator<Item = OsString>) -> Vec<OsString> {
         .collect()
 }
 
+/// The first option value below the float's normal range (not zero), in words: a tolerance,
+/// a target, a coupler point's distance or a ground made of one keeps fewer than its 53 bits
+/// and is computed as another number, or underflows to zero on its way (a tolerance of
+/// 5e-324° is zero in radians). The dimensions each command takes are refused by name where
+/// it checks them, first (then this says nothing), and so is a sweep's `--step`, whose own
+/// check names the samples it would take.
+fn option_below_normal(given: &[OsString]) -> Option<String> {
+    let below = |value: &str| {
+        value
+            .split(',')
+            .filter_map(|part| part.trim().parse::<f64>().ok())
+            .find(|v| *v != 0.0 && v.abs() < f64::MIN_POSITIVE)
+    };
+    let mut flag: Option<&str> = None;
+    let mut found = None;
+    for argument in given {
+        let Some(text) = argument.to_str() else {
+            flag = None;
+            continue;
+        };
+        let (name, value) = match (text.strip_prefix("--"), flag) {
+            (Some(option), _) => match option.split_once('=') {
+                Some((name, value)) => (name, value),
+                None => {
+                    flag = Some(option);
+                    continue;
+                }
+            },
+            (None, Some(name)) => (name, text),
+            (None, None) => {
+                if below(text).is_some() {
+                    return None;
+                }
+                continue;
+            }
+        };
+        flag = None;
+        if let (None, Some(tiny)) = (&found, below(value).filter(|_| name != "step")) {
+            found = Some(format!(
+                "--{name} {value}: {} is below the float's normal range ({:e}), where a number \
+                 keeps fewer than its 53 bits: it would be computed as another number",
+                output::tidy(tiny),
+                f64::MIN_POSITIVE
+            ));
+        }
+    }
+    found
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse_from(arguments(std::env::args_os()));
+    let given = arguments(std::env::args_os());
+    if let Some(message) = option_below_normal(&given) {
+        output::tell!("error: {message}");
+        return ExitCode::FAILURE;
+    }
+    let cli = Cli::parse_from(given);
     let result = match cli.command {
         None => analyse::run(&analyse::Args::example_1()),
         Some(Command::Analyse(args)) => analyse::run(&args),

@@ -35,6 +35,24 @@ pub fn tell_line(line: std::fmt::Arguments) {
 /// the report must not be mixed into it (see [`report_on_stderr`]).
 static REPORT_ON_STDERR: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
+/// Whether `path` names standard output: `-`, or (on Unix) a path to the file standard
+/// output is (`/dev/stdout`, `/proc/self/fd/1`, the file it is redirected to), which takes
+/// the report off standard output as `-` does, where it would be mixed into the output.
+pub fn is_stdout(path: &std::path::Path) -> bool {
+    if path.as_os_str() == "-" {
+        return true;
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(given), Ok(stdout)) = (std::fs::metadata(path), std::fs::metadata("/dev/stdout"))
+        {
+            return given.dev() == stdout.dev() && given.ino() == stdout.ino();
+        }
+    }
+    false
+}
+
 /// Sends the report ([`say!`]) to standard error from now on, where it cannot be mistaken for
 /// an output written to standard output ([`drawing_to_stdout`]).
 pub fn report_on_stderr() {

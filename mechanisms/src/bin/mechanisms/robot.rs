@@ -78,6 +78,25 @@ pub fn run(args: &Args) -> Result<(), String> {
             ));
         }
     };
+    let names = [
+        "left crank",
+        "left distal",
+        "right distal",
+        "right crank",
+        "base",
+    ];
+    if let Some((name, value)) = names
+        .into_iter()
+        .zip([l1, l2, l3, l4, l5])
+        .find(|(_, v)| *v != 0.0 && v.abs() < f64::MIN_POSITIVE)
+    {
+        return Err(format!(
+            "the {name} {} is below the float's normal range ({:e}), where a number keeps \
+             fewer than its 53 bits: it would be computed as another dimension",
+            output::tidy(value),
+            f64::MIN_POSITIVE
+        ));
+    }
     let robot = FiveBar::new(l1, l2, l3, l4, l5).map_err(refused)?;
     say!(
         "five-bar robot: cranks {} and {} mm, distal links {} and {} mm, motors {} mm apart",

@@ -165,11 +165,7 @@ pub fn run(task: &Task) -> Result<(), String> {
         Task::Function(args) => &args.common,
         Task::Path(args) => &args.common,
     };
-    if common
-        .svg
-        .as_deref()
-        .is_some_and(|path| path.as_os_str() == "-")
-    {
+    if common.svg.as_deref().is_some_and(output::is_stdout) {
         output::report_on_stderr();
     }
     match task {
@@ -615,7 +611,7 @@ fn wrapped(angle: f64) -> f64 {
 }
 
 fn write(path: &PathBuf, drawing: &str) -> Result<(), String> {
-    if path.as_os_str() == "-" {
+    if output::is_stdout(path) {
         output::drawing_to_stdout(drawing);
     } else {
         fs::write(path, drawing).map_err(|e| format!("cannot write {}: {e}", path.display()))?;

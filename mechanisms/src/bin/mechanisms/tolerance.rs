@@ -161,7 +161,8 @@ fn check_small(args: &Args, links: [f64; 4], lengths: [f64; 4]) -> Result<(), St
         }
     }
     let angle = args.angle_tolerance.to_radians();
-    if angle != 0.0 && angle < SMALLEST_FRACTION {
+    // Zero as given: one that underflows to zero in radians is too small, not exact.
+    if args.angle_tolerance != 0.0 && angle < SMALLEST_FRACTION {
         return Err(format!(
             "--angle-tolerance ±{}° is too small for the nonlinear model to resolve in f64: \
              it must be zero (exact) or at least a billionth of a radian",
@@ -179,11 +180,7 @@ fn check_small(args: &Args, links: [f64; 4], lengths: [f64; 4]) -> Result<(), St
 }
 
 pub fn run(args: &Args) -> Result<(), String> {
-    if args
-        .svg
-        .as_deref()
-        .is_some_and(|path| path.as_os_str() == "-")
-    {
+    if args.svg.as_deref().is_some_and(output::is_stdout) {
         output::report_on_stderr();
     }
     if args.mechanism != Mechanism::FourBar {
@@ -444,7 +441,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             ),
         ];
         let drawing = svg::charts("θ2 (°)", &charts, &[])?;
-        if path.as_os_str() == "-" {
+        if output::is_stdout(path) {
             output::drawing_to_stdout(&drawing);
         } else {
             fs::write(path, drawing)

@@ -83,10 +83,11 @@ pub(super) enum Target {
 
 impl Target {
     pub(super) fn new(path: &Path, out_dir: &Path) -> Self {
-        if path == Path::new("-") {
+        let joined = out_dir.join(path);
+        if crate::output::is_stdout(path) || crate::output::is_stdout(&joined) {
             Target::Stdout
         } else {
-            Target::File(out_dir.join(path))
+            Target::File(joined)
         }
     }
 
