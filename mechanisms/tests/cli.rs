@@ -2348,6 +2348,47 @@ fn subnormal_options_and_robot_links_are_refused_by_name() {
     }
 }
 
+/// An input just past a limit is told from it: two decimals said the crank reached the
+/// 106.96° it cannot be assembled at (the limit is 106.9578°).
+#[test]
+fn an_input_just_past_a_limit_is_told_from_it() {
+    fails_with(
+        &[
+            "analyse", "four-bar", "100", "180", "80", "150", "--at", "106.96",
+        ],
+        "cannot be assembled at 106.96°: the crank reaches |θ2| from 0.000° to 106.958°",
+    );
+    fails_with(
+        &[
+            "analyse", "four-bar", "100", "180", "80", "150", "--at", "150",
+        ],
+        "cannot be assembled at 150°: the crank reaches |θ2| from 0.00° to 106.96°",
+    );
+}
+
+/// Jansen's leg at a crank rate whose accelerations overflow still prints its foot's
+/// position and velocity (linear in the rate: 1e50 times those at 1e150 rad/s), its
+/// acceleration `not finite`, as the other mechanisms' tables do: it printed nothing and
+/// failed.
+#[test]
+fn jansen_s_leg_prints_what_does_not_overflow() {
+    let report = stdout_of(&["analyse", "jansen", "--rate", "1e200"]);
+    assert!(
+        report.contains("foot position     (-18.1503, -91.5713) mm"),
+        "{report}"
+    );
+    assert!(
+        report.contains("foot velocity     (2.3127e201, 1.2989e200) mm/s"),
+        "{report}"
+    );
+    assert!(report.contains("foot acceleration not finite"), "{report}");
+    let slower = stdout_of(&["analyse", "jansen", "--rate", "1e150"]);
+    assert!(
+        slower.contains("foot velocity     (2.3127e151, 1.2989e150) mm/s"),
+        "{slower}"
+    );
+}
+
 /// A sweep's table written to a path that is standard output (`/dev/stdout`) is alone there,
 /// as with `-`: the summary went into it, over its header.
 #[cfg(unix)]

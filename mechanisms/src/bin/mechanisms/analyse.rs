@@ -4,8 +4,8 @@ use std::collections::BTreeSet;
 
 use clap::Parser;
 use mechanisms::{
-    DimensionError, FourBar, FourBarUnknowns, InvertedSliderCrank, JansenLeg, SliderCrank,
-    StephensonSixBar, StephensonSixBarUnknowns, WattSixBarUnknowns,
+    DimensionError, FourBar, FourBarUnknowns, InvertedSliderCrank, JansenLeg, JansenLegUnknowns,
+    SliderCrank, StephensonSixBar, StephensonSixBarUnknowns, WattSixBarUnknowns,
 };
 use mechgen::grashof::{Class, Inversion, Special};
 use mechgen::{Accuracy, Branch, Error, MechanicalAdvantage};
@@ -481,16 +481,33 @@ fn nothing<U>(solved: &[&Solved<U>], cannot: impl Fn() -> String) -> Result<(), 
 
 /// Where a four-bar's crank can go, in words.
 pub fn four_bar_range(linkage: &FourBar<f64>) -> String {
+    four_bar_range_past(linkage, None)
+}
+
+/// [`four_bar_range`], with its ends to two decimals, or to as many more as tell them from
+/// `outside` (radians), an input the crank cannot reach: at 106.96° against a limit of
+/// 106.9578°, two decimals said it reached 106.96°.
+fn four_bar_range_past(linkage: &FourBar<f64>, outside: Option<f64>) -> String {
     let limits = linkage.limit_angles();
     if limits.full_turn() {
         return "the crank turns fully".into();
     }
     let from = limits.folded.map_or(0.0, f64::to_degrees);
     let to = limits.extended.map_or(180.0, f64::to_degrees);
+    // |θ2| within half a turn, as the limits are.
+    let shown = outside.map(|input| input.sin().atan2(input.cos()).abs().to_degrees());
+    let digits = (2..=12)
+        .find(|&digits| {
+            shown.is_none_or(|shown| {
+                let at = fixed(shown, digits);
+                at != fixed(from, digits) && at != fixed(to, digits)
+            })
+        })
+        .unwrap_or(12);
     format!(
         "the crank reaches |θ2| from {}° to {}° (toggles at the ends)",
-        fixed(from, 2),
-        fixed(to, 2)
+        fixed(from, digits),
+        fixed(to, digits)
     )
 }
 
@@ -567,7 +584,11 @@ fn four_bar(args: &Args, linkage: FourBar<f64>) -> Result<(), String> {
         }
     }
     nothing(&[&open, &crossed], || {
-        cannot("four-bar", args.at, four_bar_range(&linkage))
+        cannot(
+            "four-bar",
+            args.at,
+            four_bar_range_past(&linkage, Some(theta2)),
+        )
     })?;
     let (sine, cosine) = theta2.sin_cos();
     say!(
@@ -865,17 +886,35 @@ fn inverted(args: &Args, linkage: InvertedSliderCrank<f64>) -> Result<(), String
 fn jansen(args: &Args) -> Result<(), String> {
     let leg = JansenLeg::<f64>::holy();
     let theta = angle::radians(args.at);
-    let m = leg
-        .motion(theta, JansenLeg::<f64>::DRAWN, args.rate, args.accel)
-        .map_err(|e| output::error(&e))?;
+    let drawn = JansenLeg::<f64>::DRAWN;
+    // Accelerations that overflow (a crank at 1e200 rad/s) leave the position and the
+    // velocities, which are linear in the crank's rate: those of the motion at 1 rad/s, times
+    // the rate, with the same relative accuracy. The accelerations then say `not finite`, as
+    // the other mechanisms' tables do.
+    let (m, velocity_scale, accelerations) = match leg.motion(theta, drawn, args.rate, args.accel) {
+        Ok(m) => (m, 1.0, Ok(())),
+        Err(error @ Error::NonFinite { .. }) => (
+            leg.motion(theta, drawn, 1.0, 0.0)
+                .map_err(|e| output::error(&e))?,
+            args.rate,
+            Err(error),
+        ),
+        Err(error) => return Err(output::error(&error)),
+    };
+    let velocities = m.velocity.to_array().map(|w| w * velocity_scale);
     let p = leg
         .points(theta, &m.position)
         .map_err(|e| output::error(&e))?;
     let v = leg
-        .point_velocities(theta, &m.position, args.rate, &m.velocity)
-        .map_err(|e| output::error(&e))?;
-    let a = leg
-        .point_accelerations(
+        .point_velocities(
+            theta,
+            &m.position,
+            args.rate,
+            &JansenLegUnknowns::from_array(velocities),
+        )
+        .map(|v| v.foot);
+    let a = accelerations.and_then(|()| {
+        leg.point_accelerations(
             theta,
             &m.position,
             args.rate,
@@ -883,7 +922,8 @@ fn jansen(args: &Args) -> Result<(), String> {
             args.accel,
             &m.acceleration,
         )
-        .map_err(|e| output::error(&e))?;
+        .map(|a| a.foot)
+    });
     say!(
         "Jansen's leg (a 38, b 41.5, c 39.3, d 40.1, e 55.8, f 39.4, g 36.7, h 65.7, i 49, j 50, k 61.9, l 7.8, m 15 mm), as drawn"
     );
@@ -906,7 +946,7 @@ fn jansen(args: &Args) -> Result<(), String> {
     let weighted = |values: &[f64]| -> f64 { values.iter().map(|x| x.abs()).sum::<f64>() * size };
     let scales = [
         size,
-        size * args.rate.abs() + weighted(&m.velocity.to_array()),
+        size * args.rate.abs() + weighted(&velocities),
         size * (args.rate * args.rate + args.accel.abs()) + weighted(&m.acceleration.to_array()),
     ];
     let accuracy = [
@@ -917,18 +957,24 @@ fn jansen(args: &Args) -> Result<(), String> {
     let unknowns = m.position.to_array().len() as f64;
     let error = |k: usize| 2.0 * unknowns * accuracy[k] * scales[k];
     for (k, (what, unit, value)) in [
-        ("position    ", "mm", p.foot),
-        ("velocity    ", "mm/s", v.foot),
-        ("acceleration", "mm/s²", a.foot),
+        ("position    ", "mm", Ok(p.foot)),
+        ("velocity    ", "mm/s", v),
+        ("acceleration", "mm/s²", a),
     ]
     .into_iter()
     .enumerate()
     {
-        say!(
-            "  foot {what} ({}, {}) {unit}",
-            output::within(value.x, error(k)),
-            output::within(value.y, error(k))
-        );
+        match value {
+            Ok(value) => say!(
+                "  foot {what} ({}, {}) {unit}",
+                output::within(value.x, error(k)),
+                output::within(value.y, error(k))
+            ),
+            Err(Error::NonFinite { quantity }) => {
+                say!("  foot {what} not finite ({quantity} overflows)")
+            }
+            Err(error) => return Err(output::error(&error)),
+        }
     }
     Ok(())
 }
