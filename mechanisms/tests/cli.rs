@@ -2348,6 +2348,38 @@ fn subnormal_options_and_robot_links_are_refused_by_name() {
     }
 }
 
+/// The robot's point acceleration that overflows says so in its line and the command goes
+/// on (it printed half the report and failed), and a synthesis of no restarts is refused
+/// (it reported that no linkage meets the targets, having tried none).
+#[test]
+fn a_robot_s_overflowing_acceleration_is_a_line_and_no_restarts_is_refused() {
+    let report = stdout_of(&["robot", "--accels", "1e308,0"]);
+    assert_eq!(
+        report
+            .matches("acceleration: point acceleration is not finite")
+            .count(),
+        2,
+        "{report}"
+    );
+    assert!(
+        report.contains("end effector P = (50.0000, 259.8076) mm"),
+        "{report}"
+    );
+    fails_with(
+        &[
+            "synthesise",
+            "function",
+            "--crank",
+            "30,60,90",
+            "--rocker",
+            "60,95.1,120",
+            "--restarts",
+            "0",
+        ],
+        "--restarts must be at least 1",
+    );
+}
+
 /// An input just past a limit is told from it: two decimals said the crank reached the
 /// 106.96° it cannot be assembled at (the limit is 106.9578°).
 #[test]

@@ -207,14 +207,16 @@ fn posture(
         .points(t1, t4, q)
         .map_err(|e| output::error(&e))?
         .end_effector;
+    // The point's velocity and acceleration may overflow where the unknowns' did not (a
+    // crank accelerating at 1e308 rad/s²): each says so in its line, as `partial` does.
     let p_dot = robot
         .point_velocities(t1, t4, q, w1, w4, v)
-        .map_err(|e| output::error(&e))?
-        .end_effector;
-    let p_ddot = robot
-        .point_accelerations(t1, t4, q, w1, w4, v, a1, a4, a)
-        .map_err(|e| output::error(&e))?
-        .end_effector;
+        .map(|points| points.end_effector);
+    let p_ddot = p_dot.and_then(|_| {
+        robot
+            .point_accelerations(t1, t4, q, w1, w4, v, a1, a4, a)
+            .map(|points| points.end_effector)
+    });
     say!(
         "  distal links at θ2 = {}°, θ3 = {}°",
         signed_degrees(q.theta2, angle_error(lengths[1])),
@@ -225,16 +227,22 @@ fn posture(
         output::within(p.x, position_error),
         output::within(p.y, position_error)
     );
-    say!(
-        "  velocity = ({}, {}) mm/s",
-        output::within(p_dot.x, velocity_error),
-        output::within(p_dot.y, velocity_error)
-    );
-    say!(
-        "  acceleration = ({}, {}) mm/s²",
-        output::within(p_ddot.x, acceleration_error),
-        output::within(p_ddot.y, acceleration_error)
-    );
+    match p_dot {
+        Ok(p_dot) => say!(
+            "  velocity = ({}, {}) mm/s",
+            output::within(p_dot.x, velocity_error),
+            output::within(p_dot.y, velocity_error)
+        ),
+        Err(error) => say!("  velocity: {}", explained(error)),
+    }
+    match p_ddot {
+        Ok(p_ddot) => say!(
+            "  acceleration = ({}, {}) mm/s²",
+            output::within(p_ddot.x, acceleration_error),
+            output::within(p_ddot.y, acceleration_error)
+        ),
+        Err(error) => say!("  acceleration: {}", explained(error)),
+    }
     singularities(robot, [t1, t4], q);
     Ok(())
 }

@@ -135,6 +135,10 @@ impl Common {
         if self.restarts > MOST_RESTARTS {
             return Err(format!("--restarts takes at most {MOST_RESTARTS}"));
         }
+        // None would try nothing, and report that nothing meets the targets.
+        if self.restarts == 0 {
+            return Err("--restarts must be at least 1".into());
+        }
         let transmission = match self.transmission.as_deref() {
             None => None,
             Some(&[low, high]) if 0.0 <= low && low < high && high <= 180.0 => {
