@@ -697,27 +697,10 @@ fn trace(args: &Args, linkage: &FourBar<f64>, theta2: f64) {
             say!("  singular Jacobian: stopped");
             return;
         }
-        q.theta3 = within_a_turn(q.theta3 - (f[0] * j[1][1] - j[0][1] * f[1]) / det);
-        q.theta4 = within_a_turn(q.theta4 - (j[0][0] * f[1] - f[0] * j[1][0]) / det);
+        q.theta3 = angle::within_a_turn(q.theta3 - (f[0] * j[1][1] - j[0][1] * f[1]) / det);
+        q.theta4 = angle::within_a_turn(q.theta4 - (j[0][0] * f[1] - f[0] * j[1][0]) / det);
     }
     say!("  not converged in 20 steps: stopped");
-}
-
-/// `angle` (radians) less the whole turns that take it within half a turn of zero: a step
-/// through a nearly singular Jacobian can throw an iterate many turns, where a float holds
-/// its direction to fewer digits than the trace prints (at 1e18° the spacing of floats is
-/// 256°). The loops are the same a turn on, so the iteration is too, but for that rounding.
-fn within_a_turn(angle: f64) -> f64 {
-    use std::f64::consts::{PI, TAU};
-    // The remainder is exact, where subtracting a rounded multiple of a turn is not.
-    let rest = angle % TAU;
-    if rest > PI {
-        rest - TAU
-    } else if rest < -PI {
-        rest + TAU
-    } else {
-        rest
-    }
 }
 
 fn slider_crank(args: &Args, linkage: SliderCrank<f64>) -> Result<(), String> {
@@ -1205,7 +1188,7 @@ fn stephenson_trace(linkage: &StephensonSixBar<f64>, d: &[f64], theta2: f64, gue
             return;
         };
         for (t, dt) in q.iter_mut().zip(delta) {
-            *t = within_a_turn(*t - dt);
+            *t = angle::within_a_turn(*t - dt);
         }
     }
     say!("  not converged in 30 steps: stopped");
