@@ -2303,46 +2303,22 @@ fn subnormal_options_and_robot_links_are_refused_by_name() {
         &["robot", "100", "200", "200", "100", "5e-324"],
         &format!("the base 5e-324 {below}"),
     );
-    for (args, flag) in [
+    for (command, option, flag) in [
         (
-            vec![
-                "tolerance",
-                "four-bar",
-                "180",
-                "80",
-                "200",
-                "150",
-                "--angle-tolerance",
-                "5e-324",
-            ],
+            "tolerance",
+            ["--angle-tolerance", "5e-324"],
             "--angle-tolerance 5e-324",
         ),
         (
-            vec![
-                "sweep",
-                "four-bar",
-                "180",
-                "80",
-                "200",
-                "150",
-                "--coupler-point",
-                "5e-324,0",
-            ],
+            "sweep",
+            ["--coupler-point", "5e-324,0"],
             "--coupler-point 5e-324,0",
         ),
-        (
-            vec![
-                "sweep",
-                "four-bar",
-                "180",
-                "80",
-                "200",
-                "150",
-                "--rate=-5e-324",
-            ],
-            "--rate -5e-324",
-        ),
+        ("sweep", ["--rate=-5e-324", "--step=1"], "--rate -5e-324"),
     ] {
+        let mut args = vec![command];
+        args.extend(EXAMPLE_1);
+        args.extend(option);
         fails_with(&args, &format!("{flag}: "));
         fails_with(&args, below);
     }
