@@ -153,14 +153,15 @@ fn check_determinant<T: Real>(scaled_determinant: T, column_norms: T) -> Result<
     Ok(relative)
 }
 
-/// The solution of `a·x = b` with `a` factored, both first multiplied by the power of two
-/// `scale` that brings their largest entry into `[1/2, 1)`: bit for bit the unscaled
-/// solution wherever that neither overflows nor underflows, and finite at the float's
-/// extremes too, where the unscaled solve's products overflow though the solution is
-/// ordinary (a mechanism of 1e307 mm, whose rates in radians are of order 1). Returns the
-/// factors of the scaled matrix and `scale`, by which errors in `b`'s units are multiplied
-/// before [`Factored::uncertainty`]. An entry that is not finite leaves `scale` at 1, for
-/// [`Factored::new`] to refuse.
+/// The solution of `a·x = b` with `a` factored, both first multiplied by a power of two
+/// `scale` where their largest entry is beyond the square root of the float's largest or
+/// smallest normal number (the one that brings it into `[1/2, 1)`; else 1): the unscaled
+/// solution, bit for bit, where that neither overflows nor underflows, and finite at the
+/// float's extremes too, where the unscaled solve's products overflow though the solution
+/// is ordinary (a mechanism of 1e307 mm, whose rates in radians are of order 1). Returns
+/// the factors of the scaled matrix and `scale`, by which errors in `b`'s units are
+/// multiplied before [`Factored::uncertainty`]. A matrix with an entry that is not finite
+/// is refused by [`Factored::new`], as unscaled.
 pub fn solve_scaled<T: Real, const N: usize>(
     a: [[T; N]; N],
     b: [T; N],
@@ -170,7 +171,10 @@ pub fn solve_scaled<T: Real, const N: usize>(
         .flatten()
         .chain(&b)
         .fold(T::zero(), |largest, v| largest.max(v.abs()));
-    let scale = if largest > T::zero() && largest <= T::max_value() {
+    // Only at the extremes, where scaling is needed: elsewhere an entry far smaller than the
+    // largest keeps every bit it has unscaled (the factoring scales each column on its own).
+    let extreme = largest > T::max_value().sqrt() || largest < T::min_positive_value().sqrt();
+    let scale = if extreme && largest > T::zero() && largest <= T::max_value() {
         crate::real::normaliser(largest)
     } else {
         T::one()
@@ -543,8 +547,8 @@ impl<T: Real, const N: usize> Quick<T, N> {
 /// The orientation of a square matrix, the sign of its determinant (`true` for positive),
 /// or `None` where it is singular (or not finite), by the same test as the solvers.
 pub fn orientation<T: Real, const N: usize>(a: [[T; N]; N]) -> Option<bool> {
-    // Scaled as `solve_scaled` scales, which moves no bit of the relative determinant but
-    // keeps a matrix near the float's largest from overflowing in the factoring.
+    // Scaled as `solve_scaled` scales (only at the float's extremes), which keeps a matrix
+    // near its largest from overflowing in the factoring.
     solve_scaled(a, [T::zero(); N])
         .ok()
         .map(|(_, factored, _)| factored.relative > T::zero())
