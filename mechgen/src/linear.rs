@@ -950,7 +950,8 @@ mod tests {
                 .iter()
                 .any(|v| !v.is_finite())
         );
-        let (x, _, _) = solve_scaled(near, b).unwrap();
+        let (x, _, scale) = solve_scaled(near, b).unwrap();
+        assert!(scale < 2f64.powi(-1000), "{scale:e}");
         let expected = solve_scaled([[1.0, 0.9], [0.9, 1.0]], [2.0, -2.0])
             .unwrap()
             .0;
@@ -960,6 +961,12 @@ mod tests {
             "{x:?}"
         );
         assert_eq!(orientation(near), Some(true));
+        // At the other extreme, scaled up: the same solution.
+        let tiny = 2f64.powi(-1000);
+        let small = near.map(|r| r.map(|v| v / big * tiny));
+        let (x, _, scale) = solve_scaled(small, [2.0 * tiny, -2.0 * tiny]).unwrap();
+        assert!(scale > 2f64.powi(990), "{scale:e}");
+        assert_eq!(x.map(f64::to_bits), expected.map(f64::to_bits));
         // Not finite: refused, as unscaled.
         assert!(solve_scaled([[f64::INFINITY, 0.0], [0.0, 1.0]], [1.0, 1.0]).is_err());
         assert!(solve_scaled([[f64::NAN, 0.0], [0.0, 1.0]], [1.0, 1.0]).is_err());
