@@ -927,6 +927,8 @@ mod tests {
         let a = [[3.0, -1.0, 0.5], [1.0, 2.0, -2.0], [0.25, 1.0, 4.0]];
         let b = [1.0, -2.0, 3.0];
         let (x, factored, scale) = solve_scaled(a, b).unwrap();
+        // Not scaled at an ordinary size (its largest entry, 4, is not in [1/2, 1)).
+        assert_eq!(scale, 1.0);
         let plain = Factored::new(a).unwrap();
         assert_eq!(
             bits(&factored),
