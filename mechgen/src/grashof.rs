@@ -143,6 +143,8 @@ pub fn classify<T: Real>(ground: T, input: T, coupler: T, output: T) -> Grashof 
 /// assert_eq!(classify(f64::NAN, 1.0, 1.0, 1.0).class, Class::CannotClose);
 /// assert_eq!(classify(1.0, f64::INFINITY, f64::INFINITY, 1.0).special, None);
 /// assert_eq!(classify(-1.0, 2.0, 2.0, 2.0).class, Class::CannotClose);
+/// // A link of length zero too (the others would make it a Grashof crank-rocker).
+/// assert_eq!(classify(0.0, 1.0, 1.0, 1.0).class, Class::CannotClose);
 /// ```
 ///
 /// ```
