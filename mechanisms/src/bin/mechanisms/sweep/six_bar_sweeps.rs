@@ -170,10 +170,11 @@ pub(super) fn stephenson(args: &Args) -> Result<Sweep<'_>, String> {
     let linkage = six_bars::stephenson(d)?;
     // The walk evaluates the loops at their own size (its residual, its slopes), where the
     // sum of their vectors overflows once the dimensions sum past the largest float.
-    let size = d
+    let size = Mechanism::StephensonSixBar
+        .dimensions()
         .iter()
-        .enumerate()
-        .filter(|(k, _)| *k != 5)
+        .zip(d)
+        .filter(|(name, _)| !name.ends_with("(°)"))
         .fold(0.0, |sum, (_, v)| sum + v.abs());
     if size > f64::MAX {
         return Err(format!(
