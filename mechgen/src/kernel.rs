@@ -298,6 +298,14 @@ pub fn as_given<T: Real>(lengths: &[T]) -> bool {
     size >= smallest && size <= largest
 }
 
+/// Whether the loops' scale (`Σ |magnitude|`, which the dimensions fix) is finite (false
+/// for NaN): a generated `{Name}Newton` asks this once, when it is made, where Newton's common
+/// path would test the scale at each solution.
+#[inline(always)]
+pub fn scale_within_range<T: Real>(scale: T) -> bool {
+    scale.abs() <= T::max_value()
+}
+
 /// `values` with each length among them (where `lengths` is true) multiplied by `scale`: a
 /// Newton guess in the units of the mechanism scaled by [`length_scale`].
 #[inline(always)]
@@ -535,6 +543,16 @@ mod tests {
         );
         assert_eq!(branch_root(-1.0, 1.0, 1.0), Err(Failure::CannotClose));
         assert_eq!(branch_root(1.0, f64::NAN, 1.0), Err(Failure::CannotClose));
+    }
+
+    #[test]
+    fn a_scale_is_within_range_where_finite() {
+        assert!(scale_within_range(610.0));
+        assert!(scale_within_range(f64::MAX));
+        assert!(!scale_within_range(f64::INFINITY));
+        assert!(!scale_within_range(f64::NAN));
+        assert!(scale_within_range(f32::MAX));
+        assert!(!scale_within_range(f32::INFINITY));
     }
 
     #[test]

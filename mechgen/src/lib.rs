@@ -50,8 +50,8 @@ pub mod __private {
     pub use crate::kernel::{
         all_finite as finite_all, angle, as_given, at_input, blame, branch_root, inverse,
         inverse_determinant, lanes, length_scale, newton_at_scale, outputs_finite, rate_scale,
-        rates_as_given, retimed, scaled, stated_in_own_units, triangle_root, unit_angle, unscaled,
-        untimed,
+        rates_as_given, retimed, scale_within_range, scaled, stated_in_own_units, triangle_root,
+        unit_angle, unscaled, untimed,
     };
     pub use crate::linear::{
         Columns, Factored, KnownColumns, orientation, solve_lu, solve_scaled, solve2,
@@ -59,8 +59,8 @@ pub mod __private {
     pub use crate::newton::{
         Linearisation, NewtonConstants, Orientation, Started, Turning, Turnings, all_finite,
         angle_near, certified_start, check_all_finite, check_finite, closes_within_rounding,
-        finite, guess_certified, loop_weight, newton, newton_common, root_elsewhere, same_sides,
-        sin_cos, stagnated,
+        finite, guess_certified, loop_weight, newton, newton_common, newton_common_at_finite_scale,
+        root_elsewhere, same_sides, sin_cos, stagnated, within_sin_cos_range,
     };
     pub use crate::rate_limits::{RateLimits, aspect};
     pub use core::result::Result::{Err, Ok};

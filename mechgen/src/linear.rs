@@ -522,10 +522,12 @@ impl<T: Real, const N: usize> Quick<T, N> {
         }
     }
 
-    /// Whether the determinant is positive (the sign of [`Quick::relative`]).
+    /// Whether the determinant is negative (the sign of [`Quick::relative`]), by its sign
+    /// bit: a regular matrix's determinant is not zero, nor NaN, so this is `!(det > 0)`,
+    /// and two signs compare as one exclusive or of their bits.
     #[inline(always)]
-    pub(crate) fn positive(&self) -> bool {
-        self.determinant > T::zero()
+    pub(crate) fn negative(&self) -> bool {
+        self.determinant.is_sign_negative()
     }
 
     /// The solution of `a·x = b`, as [`Factored::solve`].
@@ -832,7 +834,7 @@ mod tests {
         ] {
             let quick = Factored::quick_with(a, Columns::FromMatrix).expect("regular and unscaled");
             let new = Factored::new(a).unwrap();
-            assert_eq!(quick.positive(), new.relative() > 0.0);
+            assert_eq!(quick.negative(), new.relative() < 0.0);
             assert_eq!(quick.relative().to_bits(), new.relative().to_bits());
             assert_eq!(
                 quick.solve([1.0, -2.0]).map(f64::to_bits),

@@ -19,6 +19,9 @@ use crate::{Accuracy, Error, Real};
 pub struct NewtonConstants<T> {
     /// The sum of the lengths the loops declare.
     pub size: T,
+    /// The loops' scale ([`Linearisation::scale`]), where the declaration gives every
+    /// magnitude over the parameters (else unused).
+    pub scale: T,
     /// The size over the shortest column of an angle unknown, where the dimensions fix the
     /// columns (else unused), with what the rates' estimates read of it.
     pub aspect: crate::accuracy::KnownAspect<T>,
@@ -731,24 +734,71 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
     guess: [T; N],
     options: &NewtonOptions<T>,
     keep_orientation: impl Into<Orientation<N>>,
+    linearise: impl FnMut(&[T; N]) -> Linearisation<T, N, P>,
+    then: impl FnOnce(Converged<T, N, P>) -> R,
+    otherwise: impl FnOnce() -> R,
+) -> R {
+    common_path(
+        guess,
+        options,
+        keep_orientation,
+        linearise,
+        then,
+        otherwise,
+        false,
+    )
+}
+
+/// [`newton_common`] for loops whose scale (every evaluation's [`Linearisation::scale`], the
+/// same at each: the dimensions fix it) the caller has found finite already, as a generated
+/// `{Name}Newton` does once, when it is made: the test at the solution is left out.
+#[inline(always)]
+pub fn newton_common_at_finite_scale<T: Real, const N: usize, P: Copy, R>(
+    guess: [T; N],
+    options: &NewtonOptions<T>,
+    keep_orientation: impl Into<Orientation<N>>,
+    linearise: impl FnMut(&[T; N]) -> Linearisation<T, N, P>,
+    then: impl FnOnce(Converged<T, N, P>) -> R,
+    otherwise: impl FnOnce() -> R,
+) -> R {
+    common_path(
+        guess,
+        options,
+        keep_orientation,
+        linearise,
+        then,
+        otherwise,
+        true,
+    )
+}
+
+/// [`newton_common`], which tests the scale at the solution unless `scale_finite` says it is
+/// finite.
+#[inline(always)]
+fn common_path<T: Real, const N: usize, P: Copy, R>(
+    guess: [T; N],
+    options: &NewtonOptions<T>,
+    keep_orientation: impl Into<Orientation<N>>,
     mut linearise: impl FnMut(&[T; N]) -> Linearisation<T, N, P>,
     then: impl FnOnce(Converged<T, N, P>) -> R,
     otherwise: impl FnOnce() -> R,
+    scale_finite: bool,
 ) -> R {
     let tolerance = options.tolerance;
     let keep_orientation = matches!(keep_orientation.into(), Orientation::Kept { .. });
     'common: {
-        // Finite and not negative (false for NaN). A guess that is not finite is not tested
-        // here: its residual is not finite either (every unknown moves the loops), so the
-        // first evaluation leaves the solve to `otherwise`, as [`newton`]'s test would.
-        if !(tolerance >= T::zero() && tolerance <= T::max_value()) {
+        // Finite and not negative (false for NaN), in one comparison of the bits, which also
+        // leaves `−0` (zero to [`newton`]) to `otherwise`. A guess that is not finite is not
+        // tested here: its residual is not finite either (every unknown moves the loops), so
+        // the first evaluation leaves the solve to `otherwise`, as [`newton`]'s test would.
+        if !tolerance.positive_finite_or_zero() {
             break 'common;
         }
         let rounding_floor = T::constant(16.0) * T::epsilon();
         let quarter = T::constant(0.25);
         let mut x = guess;
         let mut iterations = 0;
-        let mut started_positive = false;
+        let mut started_negative = false;
         let mut previous_residual = T::max_value();
         loop {
             let here = linearise(&x);
@@ -782,9 +832,9 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
             let Some(jacobian) = Factored::quick_with(here.jacobian, here.columns) else {
                 break 'common;
             };
-            let positive = jacobian.positive();
+            let negative = jacobian.negative();
             if iterations == 0 {
-                started_positive = positive;
+                started_negative = negative;
             }
             let condition = || T::one() / jacobian.relative().abs();
             let floor = rounding_floor * here.scale;
@@ -798,10 +848,11 @@ pub fn newton_common<T: Real, const N: usize, P: Copy, R>(
             };
             if met {
                 // A scale that is not finite makes no floor: tested here rather than at each
-                // evaluation, since an iteration that goes on cannot end anywhere else. (A
-                // float comparison, false for NaN, where `is_finite` tests the bits.)
-                let finite_scale = here.scale.abs() <= T::max_value();
-                if !finite_scale || (keep_orientation && positive != started_positive) {
+                // evaluation, since an iteration that goes on cannot end anywhere else (and
+                // not at all where the caller found it finite). (A float comparison, false
+                // for NaN, where `is_finite` tests the bits.)
+                let finite_scale = scale_finite || here.scale.abs() <= T::max_value();
+                if !finite_scale || (keep_orientation && negative != started_negative) {
                     break 'common;
                 }
                 let jacobian = jacobian.finish();
@@ -1309,6 +1360,16 @@ pub fn sin_cos<T: Real>(x: T) -> (T, T) {
     }
 }
 
+/// Whether every angle is within the range where [`sin_cos`] takes the inline
+/// [`fast::sin_cos`](crate::fast::sin_cos) (false for NaN and ±∞): a caller that needs its
+/// angles finite tests this instead, and the compiler then knows the range at `sin_cos`
+/// (the same comparison), one test for both.
+#[inline(always)]
+pub fn within_sin_cos_range<T: Real>(angles: &[T]) -> bool {
+    let limit = crate::fast::sin_cos_limit::<T>();
+    angles.iter().all(|a| a.abs() <= limit)
+}
+
 /// Every angle's sine and cosine: [`fast::sin_cos`](crate::fast::sin_cos) lane by lane where
 /// all are within its limit, else the platform's `sin_cos`. Out of line: called once per
 /// solve, inline it would only crowd the iteration's registers.
@@ -1380,6 +1441,17 @@ fn platform_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K])
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn angles_within_sin_cos_range_are_finite_and_within_its_limit() {
+        let limit = crate::fast::sin_cos_limit::<f64>();
+        assert!(within_sin_cos_range::<f64>(&[]));
+        assert!(within_sin_cos_range(&[0.0, -limit, limit]));
+        for beyond in [limit * (1.0 + f64::EPSILON), f64::INFINITY, f64::NAN] {
+            assert!(!within_sin_cos_range(&[0.5, beyond]), "{beyond:e}");
+            assert!(!within_sin_cos_range(&[-beyond]), "{beyond:e}");
+        }
+    }
 
     /// The loops close to their rounding floor, `16·ε·size`, and not a bit beyond it; NaN
     /// closes nothing.

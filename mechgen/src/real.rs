@@ -60,6 +60,12 @@ pub trait Real: num_traits::Float + Debug + Display + Default + Send + Sync + 's
     #[doc(hidden)]
     fn low_two_bits(self) -> u32;
 
+    /// Whether `self` is `+0` or a positive finite number: one integer comparison of the
+    /// bits (positive floats order as their bits do; `−0`, negatives, ∞ and NaN lie above
+    /// the largest finite's).
+    #[doc(hidden)]
+    fn positive_finite_or_zero(self) -> bool;
+
     /// `ε^(1/3)`, rounded to nearest: the accuracy required of a velocity
     /// ([`Accuracy::required`](crate::Accuracy::required)); a constant because `libm`'s
     /// `cbrt`, which `no_std` builds would call, keeps a panic path.
@@ -114,6 +120,11 @@ impl Real for f64 {
     #[inline(always)]
     fn low_two_bits(self) -> u32 {
         (self.to_bits() & 3) as u32
+    }
+
+    #[inline(always)]
+    fn positive_finite_or_zero(self) -> bool {
+        self.to_bits() <= f64::MAX.to_bits()
     }
     const SIN_COS_PI_OVER_2: [Self; 4] = [
         1.570_796_326_734_125_6,
@@ -183,6 +194,11 @@ impl Real for f32 {
     fn low_two_bits(self) -> u32 {
         self.to_bits() & 3
     }
+
+    #[inline(always)]
+    fn positive_finite_or_zero(self) -> bool {
+        self.to_bits() <= f32::MAX.to_bits()
+    }
     const SIN_COS_PI_OVER_2: [Self; 4] =
         [1.570_678_7, 1.176_148_65e-4, 9.920_313e-10, 6.223_372e-14];
 
@@ -243,6 +259,27 @@ pub(crate) fn normaliser<T: Real>(largest: T) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn positive_finite_or_zero_is_read_from_the_bits() {
+        for yes in [0.0, 5e-324, 1e-300, 1.0, f64::MAX] {
+            assert!(yes.positive_finite_or_zero(), "{yes:e}");
+        }
+        for yes in [0.0, 1e-45, 1e-30, 1.0, f32::MAX] {
+            assert!(yes.positive_finite_or_zero(), "{yes:e}");
+        }
+        for no in [
+            -0.0,
+            -5e-324,
+            -1.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ] {
+            assert!(!no.positive_finite_or_zero(), "{no:e}");
+            assert!(!(no as f32).positive_finite_or_zero(), "{no:e}");
+        }
+    }
 
     #[test]
     fn binary_exponent_is_the_floor_of_log2_subnormals_included() {

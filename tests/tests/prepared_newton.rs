@@ -18,6 +18,17 @@ mechanism! {
     }
 }
 
+mechanism! {
+    /// The four-bar with its ground link declared a million times a parameter: the loops'
+    /// scale (which `newton()` computes once) sums a magnitude far from the parameter.
+    pub struct StretchedGround {
+        params: pub l1, pub l2, pub l3, pub l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, theta4: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ theta4 - 1e6 * l1 @ 0;
+    }
+}
+
 /// Both solves of the same call, as printed (a NaN in an error is then the same NaN).
 fn same<T: std::fmt::Debug>(prepared: T, general: T) {
     assert_eq!(format!("{prepared:?}"), format!("{general:?}"));
@@ -65,7 +76,7 @@ fn what_the_common_path_does_not_take_is_the_general_functions() {
     let newton = linkage.newton().unwrap();
     let guess = linkage.assemble(0.3, Branch::Open).unwrap();
     let options = NewtonOptions::default();
-    let calls: [(f64, NewtonOptions<f64>, f64, f64); 9] = [
+    let calls: [(f64, NewtonOptions<f64>, f64, f64); 12] = [
         // Not finite: the input, its rate, its acceleration.
         (f64::NAN, options, 1.0, 0.0),
         (f64::INFINITY, options, 1.0, 0.0),
@@ -76,7 +87,12 @@ fn what_the_common_path_does_not_take_is_the_general_functions() {
         // A tolerance that is no tolerance.
         (0.3, NewtonOptions::new(-1.0, 50), 1.0, 0.0),
         (0.3, NewtonOptions::new(f64::NAN, 50), 1.0, 0.0),
-        // Beyond the range of motion (the four-bar is a crank-rocker: none), and far off.
+        (0.3, NewtonOptions::new(f64::INFINITY, 50), 1.0, 0.0),
+        // Zero with its sign bit set (the general solve's zero), and the largest tolerance.
+        (0.3, NewtonOptions::new(-0.0, 50), 1.0, 0.0),
+        (0.3, NewtonOptions::new(f64::MAX, 50), 1.0, 0.0),
+        // Beyond the range of motion (the four-bar is a crank-rocker: none), and far off
+        // (beyond the inline `sin_cos`'s range, where the prepared solve does not go).
         (0.3 + 2.0 * std::f64::consts::PI * 1e6, options, 1.0, 0.0),
         (3.0, NewtonOptions::new(0.0, 1), 1.0, 0.0),
     ];
@@ -142,4 +158,30 @@ fn a_slider_input_gives_the_general_bits_at_every_size() {
         );
     }
     assert!(newton.motion_near(1.05, &guess, &options, 0.5, 0.1).is_ok());
+}
+
+#[test]
+fn a_scale_with_a_factor_gives_the_general_bits() {
+    // The ground 180 (an ordinary four-bar, its scale 610), then too long to close, then so
+    // long the scale overflows (the size is then not taken as given: the scaled solve).
+    for l1 in [180e-6, 1e-3, 1e303] {
+        let linkage = StretchedGround {
+            l1,
+            l2: 80.0,
+            l3: 200.0,
+            l4: 150.0,
+        };
+        let newton = linkage.newton().unwrap();
+        let guess = StretchedGroundUnknowns {
+            theta3: 0.34,
+            theta4: 1.47,
+        };
+        let options = NewtonOptions::default();
+        let prepared = newton.motion_near(0.52, &guess, &options, 2.0, 1.0);
+        same(
+            prepared,
+            linkage.motion_near(0.52, &guess, &options, 2.0, 1.0),
+        );
+        assert_eq!(prepared.is_ok(), l1 < 1e-3, "l1 = {l1:e}: {prepared:?}");
+    }
 }

@@ -344,8 +344,15 @@ impl Generator<'_> {
             closure,
             common_closure,
             named,
+            fixed_scale,
             used: bound,
         } = self.linearisation(&x, &guess, constants);
+        // A `{Name}Newton` found the scale finite when it was made.
+        let common_path = if constants.is_some() && fixed_scale && self.prepared_scale().is_some() {
+            quote!(newton_common_at_finite_scale)
+        } else {
+            quote!(newton_common)
+        };
         let size = local("size");
         let (keep_orientation, branch_check) = self.branch_keeping(
             quote!(&#ty::from_array(#converged.solved.value)),
@@ -424,7 +431,7 @@ impl Generator<'_> {
         let common = quote! {
                 #hoisted
                 let #size = #size_value;
-                ::mechgen::__private::newton_common(
+                ::mechgen::__private::#common_path(
                     #guess.to_array(),
                     #options,
                     #orientation,
@@ -682,10 +689,23 @@ impl Generator<'_> {
         // The loops' scale depends on the dimensions alone, most often: then it is computed
         // once, before the iteration, with the loops' weights.
         let fixed_scale = eq.magnitudes.iter().all(|&m| graph.is_fixed(m));
+        // Then, where the declaration gives every magnitude over the parameters, the sum is
+        // `declared_scale`'s (the magnitudes in the same order), which a `{Name}Newton`
+        // computes once by the same expression: the same bits either way.
+        let declared_scale = match (fixed_scale, self.declared_scale(), constants) {
+            (true, Some(_), Some(constants)) => Some(quote!(#constants.scale)),
+            (true, Some(declared), None) => Some(declared),
+            _ => None,
+        };
         let scale_name = local("scale");
         let every_loop: Vec<usize> = (0..self.model.loops.len()).collect();
-        let (scale_statements, weights) =
-            scale_and_weights(magnitudes, &eq.magnitude_loops, &every_loop, &scale_name);
+        let (scale_statements, weights) = scale_and_weights(
+            magnitudes,
+            &eq.magnitude_loops,
+            &every_loop,
+            &scale_name,
+            declared_scale,
+        );
         let scale = quote!(#scale_name);
         let (scale_before, weights_inside) = if fixed_scale {
             (scale_statements, TokenStream::new())
@@ -753,6 +773,7 @@ impl Generator<'_> {
             closure: evaluation(&turnings, &turns),
             common_closure: evaluation(&common_turnings, &common_turns),
             named,
+            fixed_scale,
             used,
         }
     }
@@ -763,20 +784,22 @@ impl Generator<'_> {
 /// with the weights. Where the rows are one loop's, the scale is that loop's own magnitudes'
 /// sum and the weights are ones (the same floors, without a product per row); else the scale
 /// sums every magnitude (`magnitudes[i]`, in loop `loops_of[i]`) and each loop's rows weigh
-/// `loop_weight` of it and their own loop's sum.
+/// `loop_weight` of it and their own loop's sum. `value`, where given, is the scale's value
+/// (the same sum, computed otherwise).
 pub(super) fn scale_and_weights(
     magnitudes: &[Emitted],
     loops_of: &[usize],
     row_loops: &[usize],
     scale: &Ident,
+    value: Option<TokenStream>,
 ) -> (TokenStream, TokenStream) {
     let sum = |loop_index: Option<usize>| magnitude_sum(magnitudes, loops_of, loop_index);
     let rows = 2 * row_loops.len();
     if row_loops.iter().all(|&k| k == row_loops[0]) {
-        let own = sum(Some(row_loops[0]));
+        let own = value.unwrap_or_else(|| sum(Some(row_loops[0])));
         return (quote!(let #scale = #own;), quote!([T::one(); #rows]));
     }
-    let total = sum(None);
+    let total = value.unwrap_or_else(|| sum(None));
     let name = |k: usize| local(&format!("weight_{k}"));
     let mut distinct = row_loops.to_vec();
     distinct.dedup();
@@ -821,6 +844,8 @@ struct Linearised {
     common_closure: TokenStream,
     /// Every value the two name, with its stage: 0 hoisted, 1 in the closure's payload.
     named: Vec<(ExprId, Ident, usize)>,
+    /// Whether the loops' scale is the dimensions' alone, the same at every iterate.
+    fixed_scale: bool,
     /// The variables they read: the parameters among them are bound.
     used: BTreeSet<Var>,
 }

@@ -113,6 +113,14 @@ impl Generator<'_> {
         } else {
             self.as_given()
         };
+        // The loops' scale, which Newton's floors are multiples of, tested once here rather
+        // than at each solution (see `prepared_scale`).
+        let as_given = match self.prepared_scale() {
+            Some(_) => quote!(#as_given && ::mechgen::__private::scale_within_range(scale)),
+            None => as_given,
+        };
+        // Unused where the declaration does not give the scale.
+        let scale = self.declared_scale().unwrap_or_else(|| quote!(T::nan()));
         let docs = doc(&format!(
             "A [`{newton}`] for this mechanism: [`Self::motion_near`] with the parameters \
              checked and the constants Newton's accuracy reads computed here, once, rather \
@@ -124,10 +132,12 @@ impl Generator<'_> {
             pub fn newton(&self) -> ::core::result::Result<#newton<T>, ::mechgen::Error<T>> {
                 ::mechgen::__private::check_all_finite([#(#values),*], &[#(#labels),*])?;
                 let size = #size;
+                let scale = #scale;
                 ::core::result::Result::Ok(#newton {
                     mechanism: *self,
                     constants: ::mechgen::__private::NewtonConstants {
                         size,
+                        scale,
                         aspect: ::mechgen::__private::KnownAspect::new(#aspect),
                         columns: ::mechgen::__private::KnownColumns::new(#columns),
                         as_given: #as_given,
@@ -135,6 +145,25 @@ impl Generator<'_> {
                 })
             }
         }
+    }
+
+    /// The loops' scale (`mechgen::__private::Linearisation::scale`, the sum of every
+    /// magnitude's size) over `self`, where the declaration gives every magnitude over the
+    /// parameters: Newton's evaluations take it from here, and a `{Name}Newton` computes it
+    /// once, by this same expression.
+    pub(super) fn declared_scale(&self) -> Option<TokenStream> {
+        let receiver = Ident::new("self", Span::call_site());
+        self.fixed_scale(&receiver)
+    }
+
+    /// [`Self::declared_scale`] where `newton()` tests it finite, and the prepared solve then
+    /// leaves out the test of the scale at each solution (`newton_common_at_finite_scale`):
+    /// `None` with a length input, whose size each call brings.
+    pub(super) fn prepared_scale(&self) -> Option<TokenStream> {
+        if self.has_length_input() {
+            return None;
+        }
+        self.declared_scale()
     }
 
     fn has_length_input(&self) -> bool {
@@ -164,7 +193,27 @@ impl Generator<'_> {
         } else {
             let FullMotionNear { common, .. } =
                 self.full_motion_near_with(&checked, Some(&constants));
-            let inputs = self.inputs();
+            // An angle input within `sin_cos`'s fast range, which that test establishes once
+            // for both (a NaN or infinite angle is beyond it); a length input finite.
+            let of_kind = |kind: Kind| {
+                self.model
+                    .inputs
+                    .iter()
+                    .filter(move |input| input.kind == kind)
+                    .map(|input| &input.name)
+            };
+            let (angles, lengths): (Vec<_>, Vec<_>) = (
+                of_kind(Kind::Angle).collect(),
+                of_kind(Kind::Length).collect(),
+            );
+            let mut inputs_taken = Vec::new();
+            if !lengths.is_empty() {
+                inputs_taken.push(quote!(::mechgen::__private::all_finite(&[#(#lengths),*])));
+            }
+            if !angles.is_empty() {
+                inputs_taken
+                    .push(quote!(::mechgen::__private::within_sin_cos_range(&[#(#angles),*])));
+            }
             let sizes = if self.has_length_input() {
                 self.as_given()
             } else {
@@ -173,7 +222,7 @@ impl Generator<'_> {
             quote! {
                 if #sizes
                     && ::mechgen::__private::rates_as_given(&[#dots], &[#ddots])
-                    && ::mechgen::__private::all_finite(&[#(#inputs),*])
+                    #(&& #inputs_taken)*
                 {
                     #common
                 } else {

@@ -247,6 +247,7 @@ impl Generator<'_> {
             &self.equations.magnitude_loops,
             &reduction.residual_loops,
             &scale_local,
+            None,
         );
         let (scale_before, weights_inside) = if fixed_scale {
             (scale_statements, TokenStream::new())

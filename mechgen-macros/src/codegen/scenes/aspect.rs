@@ -92,6 +92,29 @@ impl Generator<'_> {
         }
     }
 
+    /// `Σ |magnitude|` over every loop's vectors, over the parameters of `receiver`, if the
+    /// dimensions alone fix every magnitude.
+    pub(crate) fn fixed_scale(&self, receiver: &Ident) -> Option<TokenStream> {
+        let magnitudes = self
+            .model
+            .loops
+            .iter()
+            .flat_map(|sum| &sum.terms)
+            .map(|term| {
+                let magnitude = self.fixed_magnitude(&term.magnitude, receiver)?;
+                // A parameter alone needs no parentheses.
+                Some(
+                    if syn::parse2::<syn::ExprField>(magnitude.clone()).is_ok() {
+                        quote!(#magnitude.abs())
+                    } else {
+                        quote!((#magnitude).abs())
+                    },
+                )
+            })
+            .collect::<Option<Vec<_>>>()?;
+        (!magnitudes.is_empty()).then(|| quote!(#(#magnitudes)+*))
+    }
+
     /// `magnitude` over the parameters of `scaled` (and formulas of them), if it is made of
     /// them alone.
     fn fixed_magnitude(&self, magnitude: &Linear, scaled: &Ident) -> Option<TokenStream> {
