@@ -88,6 +88,36 @@ fn fails_with(args: &[&str], message: &str) {
     fails_with_code(args, 1, message);
 }
 
+/// Help and the version go to standard output with exit 0, and fail as any report does where
+/// standard output cannot take them (before, clap's printing ignored the full disk: exit 0).
+#[test]
+fn help_that_cannot_be_written_is_a_failure() {
+    for args in [&["--help"][..], &["--version"], &["sweep", "--help"]] {
+        let written = program().args(args).output().unwrap();
+        assert!(written.status.success(), "{args:?}");
+        assert!(!written.stdout.is_empty(), "{args:?}");
+        if std::path::Path::new("/dev/full").exists() {
+            let full = std::fs::OpenOptions::new()
+                .write(true)
+                .open("/dev/full")
+                .unwrap();
+            let output = std::process::Command::new(assert_cmd::cargo::cargo_bin("mechanisms"))
+                .args(args)
+                .stdout(full)
+                .output()
+                .unwrap();
+            assert_eq!(output.status.code(), Some(1), "{args:?}");
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            assert!(
+                stderr.contains("cannot write to standard output"),
+                "{args:?}: {stderr}"
+            );
+        }
+    }
+    // A usage error is still clap's, with its exit code.
+    fails_with_code(&["--bogus"], 2, "unexpected argument '--bogus'");
+}
+
 #[test]
 fn bad_input_is_a_clear_message_and_a_failure() {
     fails_with_code(

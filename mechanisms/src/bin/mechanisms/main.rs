@@ -235,7 +235,10 @@ fn main() -> ExitCode {
         output::tell!("error: {message}");
         return ExitCode::FAILURE;
     }
-    let cli = Cli::parse_from(given);
+    let cli = match Cli::try_parse_from(given) {
+        Ok(cli) => cli,
+        Err(error) => return stop_parsing(&error),
+    };
     let result = match cli.command {
         None => analyse::run(&analyse::Args::example_1()),
         Some(Command::Analyse(args)) => analyse::run(&args),
@@ -249,6 +252,27 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             output::tell!("error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// What clap does with `error` (a usage error on standard error, with its exit code; help or
+/// the version on standard output), except that help or a version that cannot be written (a
+/// full disk) fails, as every report that cannot be written does, rather than exit 0.
+fn stop_parsing(error: &clap::Error) -> ExitCode {
+    use std::io::Write;
+    let code = u8::try_from(error.exit_code()).unwrap_or(2);
+    if error.use_stderr() {
+        // Where standard error itself cannot be written, nothing can be told.
+        let _ = error.print();
+        return ExitCode::from(code);
+    }
+    let mut out = std::io::stdout().lock();
+    match write!(out, "{}", error.render()).and_then(|()| out.flush()) {
+        Ok(()) => ExitCode::from(code),
+        Err(cause) => {
+            output::tell!("error: cannot write to standard output: {cause}");
             ExitCode::FAILURE
         }
     }
