@@ -104,6 +104,33 @@ fn what_the_common_path_does_not_take_is_the_general_functions() {
     }
 }
 
+/// In f32 the inline `sin_cos` takes inputs up to 1e3 rad: beyond, the prepared solve leaves
+/// the input to the general one, which gives the same answer.
+#[test]
+fn f32_inputs_within_and_beyond_the_inline_sin_cos_give_the_general_bits() {
+    let linkage = common::example_1::<f32>();
+    let newton = linkage.newton().unwrap();
+    let options = NewtonOptions::default();
+    let turns = 2.0 * std::f32::consts::PI;
+    for t in [
+        0.3f32,
+        0.3 + 150.0 * turns,
+        0.3 + 170.0 * turns,
+        3e4,
+        f32::NAN,
+    ] {
+        let guess = linkage
+            .assemble(t, Branch::Open)
+            .unwrap_or(linkage.assemble(0.3, Branch::Open).unwrap());
+        same(
+            newton.motion_near(t, &guess, &options, 1.0, 0.0),
+            linkage.motion_near(t, &guess, &options, 1.0, 0.0),
+        );
+    }
+    let guess = linkage.assemble(0.3, Branch::Open).unwrap();
+    assert!(newton.motion_near(0.3, &guess, &options, 1.0, 0.0).is_ok());
+}
+
 #[test]
 fn a_mechanism_far_from_unit_size_gives_the_general_bits() {
     for scale in [1e-250, 1e250] {
