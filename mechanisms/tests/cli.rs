@@ -133,7 +133,7 @@ fn bad_input_is_a_clear_message_and_a_failure() {
         &[
             "analyse", "four-bar", "100", "120", "90", "80", "--at", "150",
         ],
-        "cannot be assembled at 150°: the crank reaches |θ2| from 0.00° to 100.81°",
+        "cannot be assembled at 150°: the crank reaches |θ2| up to 100.81° (toggles at ±100.81°)",
     );
     fails_with_code(
         &["analyse", "hexapod", "1", "2"],
@@ -518,6 +518,30 @@ fn change_points_are_crossed_on_the_branch_that_goes_on() {
         summary.contains("crossed change points at 360°"),
         "{summary}"
     );
+    // A change-point four-bar passes through 0°, its toggles at ±114.32°, at any size: at
+    // 1e308 mm rounding found a limit at 0°, and the sweep made two pieces, each said to end
+    // at toggles, 0° one of them (the rocker's pin, whose x overflows near 0°, is not
+    // computed there, which is so).
+    for lengths in [
+        ["10", "17", "8", "15"],
+        ["1e307", "1.7e307", "8e306", "1.5e307"],
+        ["1e308", "1.7e308", "8e307", "1.5e308"],
+    ] {
+        let scratch = Scratch::new("change-point-four-bar");
+        let size = lengths[0];
+        let (summary, _) = sweep_rows(&[&["four-bar"][..], &lengths].concat(), &scratch);
+        for words in [
+            "the crank reaches |θ2| up to 114.32° (toggles at ±114.32°)",
+            "in 1 piece",
+            "piece 1: -114.32° to 114.32° (toggles at the ends)",
+            "crossed change points at 0° onto the other branch",
+        ] {
+            assert!(
+                summary.contains(words),
+                "{size}: {words} missing from {summary}"
+            );
+        }
+    }
     // And a crank-rocker has none.
     let scratch = Scratch::new("crank-rocker");
     let (summary, _) = sweep_rows(&["four-bar", "180", "80", "200", "150"], &scratch);
@@ -2394,13 +2418,13 @@ fn an_input_just_past_a_limit_is_told_from_it() {
         &[
             "analyse", "four-bar", "100", "180", "80", "150", "--at", "106.96",
         ],
-        "cannot be assembled at 106.96°: the crank reaches |θ2| from 0.000° to 106.958°",
+        "cannot be assembled at 106.96°: the crank reaches |θ2| up to 106.958° (toggles at ±106.958°)",
     );
     fails_with(
         &[
             "analyse", "four-bar", "100", "180", "80", "150", "--at", "150",
         ],
-        "cannot be assembled at 150°: the crank reaches |θ2| from 0.00° to 106.96°",
+        "cannot be assembled at 150°: the crank reaches |θ2| up to 106.96° (toggles at ±106.96°)",
     );
 }
 

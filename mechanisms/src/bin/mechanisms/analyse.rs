@@ -488,12 +488,12 @@ pub fn four_bar_range(linkage: &FourBar<f64>) -> String {
 /// `outside` (radians), an input the crank cannot reach: at 106.96° against a limit of
 /// 106.9578°, two decimals said it reached 106.96°.
 fn four_bar_range_past(linkage: &FourBar<f64>, outside: Option<f64>) -> String {
-    let limits = linkage.limit_angles();
-    if limits.full_turn() {
+    let (folded, extended) = crate::sweep::four_bar_toggles(linkage);
+    if folded.is_none() && extended.is_none() {
         return "the crank turns fully".into();
     }
-    let from = limits.folded.map_or(0.0, f64::to_degrees);
-    let to = limits.extended.map_or(180.0, f64::to_degrees);
+    let from = folded.unwrap_or(0.0);
+    let to = extended.unwrap_or(180.0);
     // |θ2| within half a turn, as the limits are.
     let shown = outside.map(|input| input.sin().atan2(input.cos()).abs().to_degrees());
     let digits = (2..=12)
@@ -504,11 +504,17 @@ fn four_bar_range_past(linkage: &FourBar<f64>, outside: Option<f64>) -> String {
             })
         })
         .unwrap_or(12);
-    format!(
-        "the crank reaches |θ2| from {}° to {}° (toggles at the ends)",
-        fixed(from, digits),
-        fixed(to, digits)
-    )
+    let (from, to) = (fixed(from, digits), fixed(to, digits));
+    // The toggles, where the range in θ2 ends: |θ2| of 0° or 180° is inside it.
+    match (folded, extended) {
+        (Some(_), Some(_)) => {
+            format!("the crank reaches |θ2| from {from}° to {to}° (toggles at the ends)")
+        }
+        (None, _) => format!("the crank reaches |θ2| up to {to}° (toggles at ±{to}°)"),
+        (_, None) => {
+            format!("the crank reaches |θ2| from {from}° (toggles at ±{from}°) through 180°")
+        }
+    }
 }
 
 fn grashof_words(linkage: &FourBar<f64>) -> String {

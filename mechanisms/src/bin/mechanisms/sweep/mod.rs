@@ -28,6 +28,8 @@ mod drawings;
 mod linkages;
 mod outputs;
 mod pieces;
+
+pub(crate) use pieces::four_bar_toggles;
 mod six_bar_sweeps;
 
 use drawings::*;

@@ -53,21 +53,35 @@ impl Piece {
     }
 }
 
-/// A four-bar crank's reachable ranges from its closed-form limit angles: `|θ2|` between the
-/// folded limit (or 0) and the extended limit (or 180°), so one range through 0° or 180°, or
-/// two mirror-image ranges.
+/// A four-bar crank's reachable ranges from its toggles ([`four_bar_toggles`]): `|θ2|`
+/// between the folded toggle (or 0) and the extended toggle (or 180°), so one range through
+/// 0° or 180°, or two mirror-image ranges.
 pub(super) fn four_bar_pieces(linkage: &FourBar<f64>) -> Vec<Piece> {
-    let limits = linkage.limit_angles();
-    let pieces = match (
-        limits.folded.map(f64::to_degrees),
-        limits.extended.map(f64::to_degrees),
-    ) {
+    let (folded, extended) = four_bar_toggles(linkage);
+    let pieces = match (folded, extended) {
         (None, None) => vec![Piece::full_turn()],
         (Some(f), None) => vec![Piece::between(f, 360.0 - f)],
         (None, Some(e)) => vec![Piece::between(-e, e)],
         (Some(f), Some(e)) => vec![Piece::between(f, e), Piece::between(360.0 - e, 360.0 - f)],
     };
     pieces.into_iter().filter(|p| p.from < p.to).collect()
+}
+
+/// A four-bar crank's toggles, `|θ2|` in degrees: its closed-form limit angles, folded and
+/// extended, but for a limit at a change point (0° or 180°, where the linkage lies flat and
+/// goes on), which bounds no range: the crank passes through it. Whether the closed form
+/// finds a limit there is the rounding's to decide (equal chords), and was, at 1e308 mm,
+/// where a change-point four-bar came out as two ranges each said to end at toggles, 0° one
+/// of them.
+pub(crate) fn four_bar_toggles(linkage: &FourBar<f64>) -> (Option<f64>, Option<f64>) {
+    let limits = linkage.limit_angles();
+    let change_points = four_bar_change_points(linkage);
+    let toggle = |limit: Option<f64>, change_point: f64| {
+        limit
+            .filter(|_| !change_points.contains(&change_point))
+            .map(f64::to_degrees)
+    };
+    (toggle(limits.folded, 0.0), toggle(limits.extended, 180.0))
 }
 
 /// A slider-crank's reachable ranges: the rod reaches the slider's line where
