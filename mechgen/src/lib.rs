@@ -60,7 +60,7 @@ pub mod __private {
         Linearisation, NewtonConstants, Orientation, Started, Turning, Turnings, all_finite,
         angle_near, certified_start, check_all_finite, check_finite, closes_within_rounding,
         finite, guess_certified, loop_weight, newton, newton_common, newton_common_at_finite_scale,
-        root_elsewhere, same_sides, sin_cos, stagnated, within_sin_cos_range,
+        root_elsewhere, same_sides, sin_cos, stagnated, within_sin_cos_range, within_whole_turns,
     };
     pub use crate::rate_limits::{RateLimits, aspect};
     pub use core::result::Result::{Err, Ok};

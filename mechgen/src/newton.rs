@@ -1131,6 +1131,22 @@ const TURN_LIMIT: f64 = 1.0 / 1024.0;
 /// floor, or stops at an angle less accurate than the one stated.
 pub(crate) const WHOLE_TURNS_BEYOND: f64 = 16.0;
 
+/// `angle` where within [`WHOLE_TURNS_BEYOND`], else NaN (and NaN for NaN). The common
+/// path's evaluation reads through it each angle unknown whose own sine and cosine no
+/// [`Started`] keeps (one the loops turn only with an offset, `ψ + π/2`), so that a guess or
+/// an iterate beyond leaves the solve to [`newton`], which takes such an angle by whole turns
+/// as it does the others: [`Started`] gives NaN for the others beyond the same bound, and
+/// without this an offset angle's iterates ran on unchecked, to a solution thousands of
+/// radians out whose stated accuracy the float's spacing there did not hold.
+#[inline(always)]
+pub fn within_whole_turns<T: Real>(angle: T) -> T {
+    if angle.abs() <= T::constant(WHOLE_TURNS_BEYOND) {
+        angle
+    } else {
+        T::nan()
+    }
+}
+
 /// Whether some angle (`angles`) of the iterate `x` has turned through more than a whole
 /// turn from its value at `start` (the iterates are never taken by whole turns, so the
 /// difference counts them): the iterates have run away from the guess, as they do from one
@@ -1392,8 +1408,10 @@ fn fresh_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K]) {
 /// `guess`, as Newton on every unknown would continue it from there; `angle` itself where the
 /// guess is beyond ±16 rad, which [`newton`] takes by whole turns first (a
 /// guess that counts a thousand turns would hand them on to a solution it cannot hold to the
-/// accuracy stated). An offset under 3 rad from the guess (the common case) needs no whole
-/// turns taken off: `round` would give zero there.
+/// accuracy stated), and where the angle so moved would be beyond ±17 rad, where [`newton`]
+/// takes an iterate by whole turns (a guess of 15.99 rad took an angle to 18.2, where every
+/// angle of a solution is said to be within ±17). An offset under 3 rad from the guess (the
+/// common case) needs no whole turns taken off: `round` would give zero there.
 #[inline(always)]
 pub fn angle_near<T: Real>(angle: T, guess: T) -> T {
     let offset = angle - guess;
@@ -1403,7 +1421,10 @@ pub fn angle_near<T: Real>(angle: T, guess: T) -> T {
     // Not beyond (a NaN guess, refused before any closed form is solved, is beyond).
     if guess.abs() <= T::constant(WHOLE_TURNS_BEYOND) {
         let turn = T::constant(core::f64::consts::TAU);
-        return guess + (offset - (offset / turn).round() * turn);
+        let near = guess + (offset - (offset / turn).round() * turn);
+        if near.abs() <= T::constant(RETURNED_TURNS_BEYOND) {
+            return near;
+        }
     }
     angle
 }
@@ -1441,6 +1462,23 @@ fn platform_sin_cos<T: Real, const K: usize>(angles: [T; K]) -> ([T; K], [T; K])
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_angle_beyond_sixteen_radians_is_not_a_number_to_the_common_path() {
+        for within in [0.0, -16.0, 16.0, 15.99, -1e-300] {
+            assert_eq!(within_whole_turns(within), within);
+        }
+        for beyond in [
+            16.000_000_000_000_004,
+            -17.0,
+            1e300,
+            f64::INFINITY,
+            f64::NAN,
+        ] {
+            assert!(within_whole_turns(beyond).is_nan(), "{beyond:e}");
+        }
+        assert!(within_whole_turns(16.5f32).is_nan());
+    }
 
     #[test]
     fn angles_within_sin_cos_range_are_finite_and_within_its_limit() {
@@ -2122,6 +2160,12 @@ mod tests {
         assert_eq!(angle_near(-2.5, -16.5), -2.5);
         let within = angle_near(-2.5, -15.5);
         assert!((within - (-2.5 - 2.0 * TAU)).abs() < 1e-14, "{within}");
+        // Within 16 rad, but carried beyond 17: the closed form's own angle, as Newton takes
+        // an iterate beyond 17 rad by whole turns.
+        assert_eq!(angle_near(-0.363, 15.99), -0.363);
+        assert_eq!(angle_near(0.363, -15.99), 0.363);
+        let carried = angle_near(-0.363, 14.0);
+        assert!((carried - (-0.363 + 2.0 * TAU)).abs() < 1e-14, "{carried}");
     }
 
     /// A guess that counts turns (a linkage that has turned a thousand times, its angles

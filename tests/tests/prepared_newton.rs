@@ -29,6 +29,17 @@ mechanism! {
     }
 }
 
+mechanism! {
+    /// The four-bar with its rocker's angle measured from +y: `psi` is turned only with an
+    /// offset, so no `Started` keeps its own sine and cosine.
+    pub struct OffsetRocker {
+        params: pub l1, pub l2, pub l3, pub l4;
+        input: theta2: angle;
+        unknowns: theta3: angle, psi: angle;
+        loop: l2 @ theta2 + l3 @ theta3 - l4 @ (psi + pi / 2) - l1 @ 0;
+    }
+}
+
 /// Both solves of the same call, as printed (a NaN in an error is then the same NaN).
 fn same<T: std::fmt::Debug>(prepared: T, general: T) {
     assert_eq!(format!("{prepared:?}"), format!("{general:?}"));
@@ -211,4 +222,82 @@ fn a_scale_with_a_factor_gives_the_general_bits() {
         );
         assert_eq!(prepared.is_ok(), l1 < 1e-3, "l1 = {l1:e}: {prepared:?}");
     }
+}
+
+/// An angle turned only with an offset is bounded as the others are: a guess some turns out
+/// is taken by whole turns, and no solution is beyond ±17 rad. The common path let such an
+/// angle's iterates run unchecked: from a guess three turns out it returned ψ = 18.4, and
+/// from a thousand turns out ψ = 6284.0, 9.1e-13 rad off where the accuracy stated 2.9e-14,
+/// while a tolerance of −0 (left to the safeguarded solve) gave ψ = −0.45.
+#[test]
+fn an_angle_turned_only_with_an_offset_is_taken_by_whole_turns() {
+    let linkage = OffsetRocker {
+        l1: 180.0,
+        l2: 80.0,
+        l3: 200.0,
+        l4: 150.0,
+    };
+    let newton = linkage.newton().unwrap();
+    let (theta2, theta3, psi) = (0.52, 0.496_739_648_799_801_1, -0.450_065_911_624_844_2);
+    let turn = 2.0 * std::f64::consts::PI;
+    for turns in [0.0, 2.0, 3.0, 1000.0, 1e5, -3.0] {
+        let guess = OffsetRockerUnknowns {
+            theta3: theta3 + 1e-5,
+            psi: psi + 1e-5 + turns * turn,
+        };
+        let mut found = Vec::new();
+        for tolerance in [0.0, -0.0, 1e-9] {
+            let options = NewtonOptions::new(tolerance, 50);
+            let prepared = newton.motion_near(theta2, &guess, &options, 2.0, 1.0);
+            same(
+                prepared,
+                linkage.motion_near(theta2, &guess, &options, 2.0, 1.0),
+            );
+            let solved = prepared.unwrap().value.position;
+            assert!(
+                solved.psi.abs() <= 17.0,
+                "{turns} turns, {tolerance:e}: {solved:?}"
+            );
+            // The guess's turn where that is within 16 rad, else the angle within a turn.
+            let expected = if (psi + turns * turn).abs() <= 16.0 {
+                psi + turns * turn
+            } else {
+                psi
+            };
+            assert!(
+                (solved.psi - expected).abs() < 1e-12,
+                "{turns} turns, {tolerance:e}: {solved:?}"
+            );
+            found.push(solved.psi);
+        }
+        // A tolerance of zero, either sign, the same solve.
+        assert_eq!(found[0], found[1], "{turns} turns");
+    }
+}
+
+/// The Stephenson six-bar's reduced iteration carries a closed form's angle to the guess's
+/// turn only within ±17 rad: from a guess of 15.99 rad it returned θ5 = 18.2 (edge found by
+/// an adversarial review), where every angle of a solution is said to be within ±17.
+#[test]
+fn a_reduced_solve_keeps_its_angles_within_seventeen_radians() {
+    let (linkage, _) = stephenson_six_bar();
+    let newton = linkage.newton().unwrap();
+    let guess = mechanisms::StephensonSixBarUnknowns {
+        theta3: 1000.2,
+        theta4: 0.704_946_031_545_711,
+        theta5: 15.99,
+        theta6: 44.282_297_150_257_1,
+    };
+    let options = NewtonOptions::new(0.0, 10);
+    let t = 3.150_249_570_974_060_6;
+    let prepared = newton.motion_near(t, &guess, &options, 1.0, 0.0);
+    same(prepared, linkage.motion_near(t, &guess, &options, 1.0, 0.0));
+    let solved = prepared.unwrap().value.position.to_array();
+    assert!(solved.iter().all(|a| a.abs() <= 17.0), "{solved:?}");
+    let position = linkage
+        .position(t, &guess, &options)
+        .unwrap()
+        .value
+        .to_array();
+    assert!(position.iter().all(|a| a.abs() <= 17.0), "{position:?}");
 }

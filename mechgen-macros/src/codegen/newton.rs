@@ -12,7 +12,7 @@ use super::docs::doc;
 use super::emit::{Block, Emitted, local, reachable};
 use super::normalise::NewtonEntry;
 use super::{Bindings, Generator, arg, matrix};
-use crate::model::SymbolRef;
+use crate::model::{Kind, SymbolRef};
 use crate::symbolic::{ExprId, Node, Var};
 
 impl Generator<'_> {
@@ -736,7 +736,19 @@ impl Generator<'_> {
                 quote!(::mechgen::__private::Columns::FromMatrix),
             ),
         };
-        let evaluation = |turnings: &TokenStream, turns: &TokenStream| {
+        // The common path's bound on the angle unknowns no `Started` keeps (see
+        // `mechgen::__private::within_whole_turns`).
+        let unturned: Vec<&Ident> = self
+            .model
+            .unknowns
+            .iter()
+            .filter(|u| u.kind == Kind::Angle && !turned_names.contains(&&u.name))
+            .map(|u| &u.name)
+            .collect();
+        let common_bounds = quote! {
+            #(let #unturned = ::mechgen::__private::within_whole_turns(#unturned);)*
+        };
+        let evaluation = |turnings: &TokenStream, bounds: &TokenStream, turns: &TokenStream| {
             quote! {
                 {
                     #turnings
@@ -745,6 +757,7 @@ impl Generator<'_> {
                     #[inline(always)]
                     move |#x: &[T; #count]| {
                         let [#(#names),*] = *#x;
+                        #bounds
                         #turns
                         #(#per_iterate)*
                         #weights_inside
@@ -770,8 +783,8 @@ impl Generator<'_> {
             },
             // With its own turnings, so that it can be emitted more than once (for the common
             // path and the fallback of `fast_newton`); it copies the values it reads.
-            closure: evaluation(&turnings, &turns),
-            common_closure: evaluation(&common_turnings, &common_turns),
+            closure: evaluation(&turnings, &TokenStream::new(), &turns),
+            common_closure: evaluation(&common_turnings, &common_bounds, &common_turns),
             named,
             fixed_scale,
             used,
