@@ -1131,8 +1131,8 @@ const TURN_LIMIT: f64 = 1.0 / 1024.0;
 /// floor, or stops at an angle less accurate than the one stated.
 pub(crate) const WHOLE_TURNS_BEYOND: f64 = 16.0;
 
-/// `angle` where within [`WHOLE_TURNS_BEYOND`], else NaN (and NaN for NaN). The common
-/// path's evaluation reads through it each angle unknown whose own sine and cosine no
+/// `angle` where within 16 rad (`WHOLE_TURNS_BEYOND`), else NaN (and NaN for NaN). The
+/// common path's evaluation reads through it each angle unknown whose own sine and cosine no
 /// [`Started`] keeps (one the loops turn only with an offset, `ψ + π/2`), so that a guess or
 /// an iterate beyond leaves the solve to [`newton`], which takes such an angle by whole turns
 /// as it does the others: [`Started`] gives NaN for the others beyond the same bound, and

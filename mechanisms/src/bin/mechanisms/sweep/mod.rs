@@ -28,9 +28,9 @@ mod drawings;
 mod linkages;
 mod outputs;
 mod pieces;
+mod six_bar_sweeps;
 
 pub(crate) use pieces::four_bar_toggles;
-mod six_bar_sweeps;
 
 use drawings::*;
 use linkages::*;
