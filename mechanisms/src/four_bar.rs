@@ -164,6 +164,36 @@ impl<T: Real> LimitAngles<T> {
         };
         self.folded.is_none_or(|f| magnitude >= f) && self.extended.is_none_or(|e| magnitude <= e)
     }
+
+    /// Whether the crank can move through all of `angles` on one branch without the linkage
+    /// being taken apart: each is reached, and, where the crank stops both short of θ2 = 0
+    /// and short of π, all lie on the same side of the ground line. The crank then swings in
+    /// `[folded, extended]` or in its mirror image, two separate circuits, and the branches
+    /// change over at each end (coupler and rocker in line), so a linkage solved on one
+    /// branch at angles on both sides could reach them only by being reassembled.
+    ///
+    /// ```
+    /// use mechanisms::FourBar;
+    /// // A rocker-crank: the crank swings between 0.72 and 2.02 rad, or their negatives.
+    /// let limits = FourBar::new(180.0, 150.0, 200.0, 80.0)?.limit_angles();
+    /// assert!(limits.one_circuit(&[0.8, 1.4, 1.9]));
+    /// assert!(!limits.one_circuit(&[0.8, 1.4, -1.4]));
+    /// // A crank that turns fully reaches every angle on one circuit.
+    /// let crank = FourBar::new(180.0, 80.0, 200.0, 150.0)?.limit_angles();
+    /// assert!(crank.one_circuit(&[0.8, 1.4, -1.4]));
+    /// # Ok::<(), mechanisms::DimensionError<f64>>(())
+    /// ```
+    pub fn one_circuit(&self, angles: &[T]) -> bool {
+        if !angles.iter().all(|&angle| self.reaches(angle)) {
+            return false;
+        }
+        if self.folded.is_none() || self.extended.is_none() {
+            return true;
+        }
+        // Reached with both limits, each angle's sine is nonzero.
+        let above = |angle: T| angle.sin() > T::zero();
+        angles.iter().all(|&a| above(a)) || !angles.iter().any(|&a| above(a))
+    }
 }
 
 /// A position where the rocker stops while the crank turns on (crank and coupler in line),

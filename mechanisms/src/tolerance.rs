@@ -97,7 +97,7 @@ impl<T: Real> FourBar<T> {
     /// (outside the range of motion; `Singular` at a toggle, where the deviations are
     /// unbounded); a tolerance that is negative or not finite is
     /// [`mechgen::Error::NonFinite`] for a NaN or infinity and taken by its magnitude
-    /// otherwise.
+    /// otherwise; a deviation beyond the largest float is [`mechgen::Error::NonFinite`] too.
     ///
     /// ```
     /// use mechanisms::{FourBar, FourBarTolerances};
@@ -124,10 +124,20 @@ impl<T: Real> FourBar<T> {
         let p = self.point_sensitivities(theta2, &q)?;
         let output = per_parameter(&s).map(|u| u.theta4);
         let point = per_parameter(&p).map(|points| points.coupler_point);
-        Ok(FourBarDeviations {
+        let deviations = FourBarDeviations {
             output: angle_deviation(&output, &t),
             coupler_point: point_deviation(&point, &t),
-        })
+        };
+        // Tolerances of 1e10 on a linkage of 1e-300 (or of the largest float on any) move it
+        // by more than a float holds: said, not returned as an infinite deviation.
+        let figures = [deviations.output, deviations.coupler_point]
+            .map(|d| [d.worst_case, d.root_sum_square]);
+        if !figures.as_flattened().iter().all(|x| x.is_finite()) {
+            return Err(Error::NonFinite {
+                quantity: "first-order deviation",
+            });
+        }
+        Ok(deviations)
     }
 }
 
@@ -804,5 +814,31 @@ mod tests {
             linkage.corners(theta2, branch, &minus),
             linkage.corners(theta2, branch, &plus)
         );
+    }
+
+    /// Deviations beyond the largest float are refused, not returned infinite (found by an
+    /// adversarial review): the largest tolerances on Example 1, and tolerances of 1e10 on
+    /// Example 1 scaled to 1e-300.
+    #[test]
+    fn a_deviation_beyond_the_largest_float_is_refused() {
+        let overflowed = Err(Error::NonFinite {
+            quantity: "first-order deviation",
+        });
+        let example = FourBar::new(180.0, 80.0, 200.0, 150.0)
+            .and_then(|l| l.with_coupler_point(100.0, 0.5))
+            .unwrap();
+        let largest = FourBarTolerances::lengths(f64::MAX);
+        assert_eq!(example.tolerance(1.0, Branch::Open, &largest), overflowed);
+        let tiny = FourBar::new(1.8e-300, 0.8e-300, 2e-300, 1.5e-300).unwrap();
+        let huge = FourBarTolerances::lengths(1e10);
+        assert_eq!(tiny.tolerance(1.0, Branch::Open, &huge), overflowed);
+        // Scaled by 1e-302 with its tolerances, the angles' figures are Example 1's.
+        let own = FourBarTolerances::lengths(1e-303);
+        let got = tiny.tolerance(1.0, Branch::Open, &own).unwrap();
+        let unit = FourBar::new(180.0, 80.0, 200.0, 150.0).unwrap();
+        let want = unit
+            .tolerance(1.0, Branch::Open, &FourBarTolerances::lengths(0.1))
+            .unwrap();
+        assert!((got.output.worst_case - want.output.worst_case).abs() < 1e-12);
     }
 }

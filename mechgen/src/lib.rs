@@ -8,6 +8,7 @@ extern crate std;
 
 mod accuracy;
 mod advantage;
+mod angle_sum;
 mod branch;
 pub mod closed;
 mod design;
@@ -47,6 +48,7 @@ pub mod __private {
     pub use crate::accuracy::{
         KnownAspect, floor_position_accuracy, rates_accuracy, rates_accuracy_at_aspect,
     };
+    pub use crate::angle_sum::sin_cos_of_sum;
     pub use crate::kernel::{
         all_finite as finite_all, angle, as_given, at_input, blame, branch_root, inverse,
         inverse_determinant, lanes, length_scale, newton_at_scale, outputs_finite, rate_scale,

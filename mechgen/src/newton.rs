@@ -450,6 +450,15 @@ pub fn newton<T: Real, const N: usize, P: Copy>(
                 // evaluation can exceed its vectors' magnitudes), so converged.
                 within_turns_or_accept!(here, jacobian, x);
             }
+            if halvings == MAX_HALVINGS && beyond_turns(&x, angles) {
+                // An angle many turns out holds only to its float's spacing, and the loops'
+                // residual with it (once an angle given as a sum is taken of its exact sum, no
+                // rounding of that sum happens to land nearer): taken by whole turns, where
+                // the steps can close them.
+                (x, here, weighted) = taken_by_turns(&x, angles, &mut linearise);
+                previous_residual = T::infinity();
+                continue 'iterate;
+            }
             if halvings == MAX_HALVINGS {
                 // No step lowers the residual: a local minimum of |f| that is not a root.
                 // Where a closed form can say whether the loops close at this input, it
@@ -1121,7 +1130,7 @@ impl<T: Real> Default for Turning<T> {
 }
 
 /// The largest step, in radians, through which [`rotate`] turns a sine and cosine.
-const TURN_LIMIT: f64 = 1.0 / 1024.0;
+pub(crate) const TURN_LIMIT: f64 = 1.0 / 1024.0;
 
 /// The largest magnitude, in radians, of a guess's angle that Newton starts from as it is;
 /// beyond it, [`newton`] first takes the angle by whole turns to within `[−π, π]`. A float
@@ -1336,7 +1345,7 @@ fn turned<T: Real, const K: usize>(
 
 /// `(sin, cos)` of an angle rotated by `step`, `|step| ≤ 2⁻¹⁰`: [`Turning`]'s rotation.
 #[inline(always)]
-fn rotate<T: Real>(sin: T, cos: T, step: T) -> (T, T) {
+pub(crate) fn rotate<T: Real>(sin: T, cos: T, step: T) -> (T, T) {
     let squared = step * step;
     // sin δ = δ(1 − δ²/6·(1 − δ²/20)), cos δ = 1 − δ²/2·(1 − δ²/12): the next terms are
     // below 2⁻⁶⁹ relative for |δ| ≤ 2⁻¹⁰.
@@ -2214,6 +2223,56 @@ mod tests {
             within_a_turn([f64::NAN, f64::INFINITY], [true; 2])
                 .iter()
                 .all(|q| !q.is_finite())
+        );
+    }
+
+    /// An iterate thrown thousands of turns out by a step through a nearly vanishing column
+    /// (an inverted slider-crank whose slide passes the rocker's pivot, its slide's direction
+    /// `θ4 + γ` taken of the exact sum) stalls there above the floor, the angle held only to
+    /// its float's spacing: taken by whole turns, it solves (it was `NoConvergence`).
+    #[test]
+    fn an_iterate_stalled_many_turns_out_is_taken_by_whole_turns() {
+        let [l1, l2, c, gamma] = [
+            0.21710343491033884,
+            4.267721272431143,
+            -3.248335012819581e-5,
+            -0.677156358032005,
+        ];
+        let theta2 = 1.2103985349065578_f64;
+        let (s2, c2) = theta2.sin_cos();
+        let mut turning = Turning::new();
+        let slider = move |x: &[f64; 2]| {
+            let [theta4, b] = *x;
+            let (s4, c4) = turning.sin_cos(theta4);
+            let (s, co) = crate::angle_sum::sin_cos_of_sum([gamma, theta4]);
+            Linearisation {
+                residual: [l2 * c2 - b * co - c * c4 - l1, l2 * s2 - b * s - c * s4],
+                jacobian: [[b * s + c * s4, -co], [-(b * co + c * c4), -s]],
+                scale: l1 + l2 + c.abs() + b.abs(),
+                weights: [1.0; 2],
+                payload: (),
+                columns: Columns::FromMatrix,
+            }
+        };
+        let kept = Orientation::Kept {
+            angles: [true, false],
+        };
+        let guess = [16.07320220829527, 7.551825209634181];
+        let solved = newton(
+            theta2,
+            guess,
+            &NewtonOptions::default(),
+            kept,
+            || None,
+            slider,
+        )
+        .unwrap()
+        .solved;
+        let [theta4, b] = solved.value;
+        assert!(theta4.abs() <= core::f64::consts::PI, "{theta4}");
+        assert!(
+            solved.residual_norm <= 16.0 * f64::EPSILON * (l1 + l2 + b.abs()),
+            "{solved:?}"
         );
     }
 

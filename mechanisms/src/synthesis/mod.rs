@@ -16,8 +16,9 @@
 //! generation (Freudenstein's, [`freudenstein`] for three points and
 //! [`freudenstein_least_squares`] for more).
 //!
-//! The branch asked for is the one every target is solved on: a solution never switches
-//! assembly between targets.
+//! The branch asked for is the one every target is solved on, and the crank moves through
+//! every target on one circuit: a solution never switches assembly, nor is it taken apart,
+//! between targets.
 
 use std::vec;
 use std::vec::Vec;
@@ -632,6 +633,10 @@ fn best(solved: Vec<Option<Solved>>, options: &Options) -> Result<Synthesis, Syn
 /// Whether `linkage` meets the constraints of `options` at the crank angles `inputs`.
 fn meets(linkage: &FourBar<f64>, inputs: &[f64], options: &Options) -> bool {
     if !within_ratio(&linkage.lengths(), options.max_ratio) {
+        return false;
+    }
+    // Solved on one branch at every target, but perhaps on two circuits.
+    if !linkage.limit_angles().one_circuit(inputs) {
         return false;
     }
     if options.crank

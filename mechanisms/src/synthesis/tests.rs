@@ -1184,3 +1184,31 @@ fn options_no_linkage_could_meet_are_refused_as_options() {
     };
     assert!(function_generation(180.0, &phi, &psi, &unlimited).is_ok());
 }
+
+/// Targets on both of a rocker-crank's circuits: its crank swings between 0.72 and 2.02 rad
+/// or their negatives, so one branch reaches θ2 = 0.82, 1.37 and 1.92 and, separately,
+/// −1.37, and the linkage would have to be taken apart between them. The linkage that made
+/// the targets fitted them to 1.8e-15 and was returned (found by an adversarial review); now
+/// no linkage is returned whose crank cannot move through every target on one circuit.
+#[test]
+fn targets_on_two_circuits_are_not_met_by_one_linkage() {
+    use super::meets;
+    let rocker_crank = FourBar::new(180.0, 150.0, 200.0, 80.0).unwrap();
+    let phi = [0.8227, 1.3719, 1.9210, -1.3719];
+    let psi = phi.map(|p| rocker_crank.assemble(p, Branch::Open).unwrap().theta4);
+    let options = Options {
+        good_enough: Some(1e-9),
+        restarts: 8,
+        ..Options::default()
+    };
+    assert!(!meets(&rocker_crank, &phi, &options));
+    assert!(meets(&rocker_crank, &phi[..3], &options));
+    match function_generation(180.0, &phi, &psi, &options) {
+        Ok(found) => {
+            let limits = found.linkage.limit_angles();
+            assert!(limits.one_circuit(&phi), "{found:?}");
+            assert!(found.rms_error > 1e-6, "{found:?}");
+        }
+        Err(error) => assert!(matches!(error, SynthesisError::NothingFeasible { .. })),
+    }
+}
