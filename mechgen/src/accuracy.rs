@@ -263,6 +263,49 @@ pub fn floor_position_accuracy<T: Real>(condition: T, largest_loop: T, size: T) 
     }
 }
 
+/// How far off a position the caller gives may be, relative to `size` (the sum of the lengths
+/// the loops declare), from the loops' `residual` there. Where they close within `64·ε·size`
+/// (what a closed form or Newton's floor leaves, with room), `otherwise`: the position is
+/// judged as the caller's function says (`None` as a closed form's, `Some` as Newton's). Beyond,
+/// the error that residual makes, `κ·max|r|/size` (or `otherwise`'s, if larger): a position
+/// the loops do not close at (another input's, or one made up) is so known to be far off, and
+/// rates or sensitivities there are [`Error::Inaccurate`], not numbers for a mechanism that is
+/// not there (an adversarial review found them returned); a Newton position stopped by a loose
+/// tolerance has its rates judged as they are.
+///
+/// ```
+/// use mechgen::__private::given_position;
+/// let e = f64::EPSILON;
+/// // Closed within rounding: as the caller says.
+/// assert_eq!(given_position(10.0, &[1e-14, 0.0], 600.0, None), None);
+/// assert_eq!(given_position(10.0, &[1e-14, 0.0], 600.0, Some(1e-13)), Some(1e-13));
+/// // Open by 76.5 mm on a linkage of 610 mm, at condition 2: off by 0.25 of its size.
+/// assert_eq!(given_position(2.0, &[76.5, -5.4], 612.0, None), Some(0.25));
+/// assert!(given_position(2.0, &[f64::NAN, 0.0], 612.0, None).unwrap().is_nan());
+/// ```
+#[inline(always)]
+pub fn given_position<T: Real, const M: usize>(
+    condition: T,
+    residual: &[T; M],
+    size: T,
+    otherwise: Option<T>,
+) -> Option<T> {
+    let bound = T::constant(64.0) * T::epsilon() * size;
+    // Within (false for NaN).
+    if residual.iter().all(|r| r.abs() <= bound) {
+        return otherwise;
+    }
+    let largest = residual.iter().fold(T::zero(), |m, r| {
+        if r.abs() > m || r.is_nan() {
+            r.abs()
+        } else {
+            m
+        }
+    });
+    let error = condition.max(T::one()) * largest / size;
+    Some(otherwise.map_or(error, |given| given.max(error)))
+}
+
 /// The estimate for rates solved with `jacobian` (whose condition estimate is `condition`)
 /// at a position of a mechanism whose declared lengths sum to `size`, `angles[j]` telling
 /// whether unknown `j` is an angle; an error if the velocity's or (with `highest` the

@@ -46,7 +46,8 @@ pub use mechgen_macros::mechanism;
 #[doc(hidden)]
 pub mod __private {
     pub use crate::accuracy::{
-        KnownAspect, floor_position_accuracy, rates_accuracy, rates_accuracy_at_aspect,
+        KnownAspect, floor_position_accuracy, given_position, rates_accuracy,
+        rates_accuracy_at_aspect,
     };
     pub use crate::angle_sum::sin_cos_of_sum;
     pub use crate::kernel::{

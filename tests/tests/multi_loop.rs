@@ -81,7 +81,9 @@ fn six_bar_matches_circle_intersections_and_finite_differences() {
     let (omega, h) = (5.0, 1e-5);
     for degree in 0..360 {
         let theta2 = f64::from(degree).to_radians();
-        let slope = linkage().velocity(theta2, &q, 1.0).unwrap().to_array();
+        // The slope where `q` was solved, a degree back (at 0° for the first).
+        let solved_at = f64::from(degree.max(1) - 1).to_radians();
+        let slope = linkage().velocity(solved_at, &q, 1.0).unwrap().to_array();
         let predicted = q.to_array();
         let guess = SixBarUnknowns::from_array(std::array::from_fn(|i| {
             predicted[i] + slope[i] * 1f64.to_radians()

@@ -178,7 +178,9 @@ fn reduced_position_matches_newton_on_every_unknown<T: Real>() {
     let (mut reduced_iterations, mut full_iterations) = (0, 0);
     for degree in 0..=360 {
         let t = T::constant(f64::from(degree).to_radians());
-        let rates = linkage.velocity(t - step, &q, w).unwrap().to_array();
+        // Where `q` was solved: a degree back, or the start at 0°.
+        let solved_at = if degree == 0 { t } else { t - step };
+        let rates = linkage.velocity(solved_at, &q, w).unwrap().to_array();
         let guess: [T; 4] = std::array::from_fn(|i| q.to_array()[i] + rates[i] / w * step);
         let guess = if degree == 0 { q.to_array() } else { guess };
         let solved = linkage.position(t, &guess.into(), &options).unwrap();
@@ -573,8 +575,10 @@ macro_rules! check_sweep {
         let mut solved_steps = 0;
         for degree in 0..$degrees {
             let t = f64::from(degree) * step;
+            // Where `q` was solved: a degree back, or the start at 0°.
+            let solved_at = if degree == 0 { t } else { t - step };
             let rates = linkage
-                .velocity(t - step, &$unknowns::from_array(q), 1.0)
+                .velocity(solved_at, &$unknowns::from_array(q), 1.0)
                 .unwrap();
             let guess: [f64; $n] = std::array::from_fn(|i| q[i] + rates.to_array()[i] * step);
             let solved = linkage

@@ -609,3 +609,66 @@ fn sensitivities_of_a_point_formula_are_the_same_at_every_size() {
         }
     }
 }
+
+/// A position the loops do not close at (another crank angle's, or made up) is refused by
+/// everything that takes one, as known too poorly for its rates to meet their accuracy: an
+/// adversarial review found velocities, sensitivities and a mechanical advantage returned
+/// there. A position that closes to rounding still gives the closed form's answers, and a
+/// Newton position stopped short by a tolerance is judged by what its residual leaves.
+#[test]
+fn a_position_the_loops_do_not_close_at_is_refused() {
+    let linkage = linkage(DIMENSIONS);
+    let elsewhere = linkage.assemble(2.0, Branch::Open).unwrap();
+    let made_up = mechanisms::FourBarUnknowns {
+        theta3: 0.3,
+        theta4: 2.9,
+    };
+    for position in [elsewhere, made_up] {
+        assert!(matches!(
+            linkage.velocity(1.0, &position, 1.0),
+            Err(Error::Inaccurate { .. })
+        ));
+        assert!(matches!(
+            linkage.acceleration(1.0, &position, 1.0, &position, 0.0),
+            Err(Error::Inaccurate { .. })
+        ));
+        assert!(matches!(
+            linkage.motion_at(1.0, &position, 1.0, 0.0),
+            Err(Error::Inaccurate { .. })
+        ));
+        assert!(matches!(
+            linkage.sensitivities(1.0, &position),
+            Err(Error::Inaccurate { .. })
+        ));
+        assert!(matches!(
+            linkage.point_sensitivities(1.0, &position),
+            Err(Error::Inaccurate { .. })
+        ));
+        assert!(matches!(
+            linkage.mechanical_advantage(1.0, &position),
+            Err(Error::Inaccurate { .. })
+        ));
+    }
+    // Closed to rounding: as before.
+    let here = linkage.assemble(1.0, Branch::Open).unwrap();
+    assert!(linkage.velocity(1.0, &here, 1.0).is_ok());
+    assert!(linkage.sensitivities(1.0, &here).is_ok());
+    // Off by 1e-9 rad in θ4: the loops open by 1.5e-7 mm, and the rates, off by about as
+    // much relative, are within the velocity's required 6e-6.
+    let near = mechanisms::FourBarUnknowns {
+        theta4: here.theta4 + 1e-9,
+        ..here
+    };
+    let rates = linkage.velocity(1.0, &near, 1.0).unwrap();
+    let exact = linkage.velocity(1.0, &here, 1.0).unwrap();
+    assert!((rates.theta4 - exact.theta4).abs() < 1e-8);
+    // Off by 1e-4 rad: the rates cannot be known to 6e-6.
+    let far = mechanisms::FourBarUnknowns {
+        theta4: here.theta4 + 1e-4,
+        ..here
+    };
+    assert!(matches!(
+        linkage.velocity(1.0, &far, 1.0),
+        Err(Error::Inaccurate { .. })
+    ));
+}

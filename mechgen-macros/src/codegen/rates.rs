@@ -29,7 +29,9 @@ impl Generator<'_> {
              Errors: a non-finite argument; a singular Jacobian (a toggle, where the rates \
              are unbounded); rates less accurate than [`mechgen::Accuracy::required`] \
              ([`mechgen::Error::Inaccurate`]), judged as at a closed form's position (from \
-             `assemble`). A position from Newton is known less well, and its rates with it: \
+             `assemble`) where the loops close there to rounding, else as far off as their \
+             residual says (so another input's position, or one made up, is `Inaccurate`). A \
+             position from Newton is known less well, and its rates with it: \
              [`Self::motion_at`] and `motion_near` estimate them for it."
         );
         self.checked_function(
@@ -59,7 +61,7 @@ impl Generator<'_> {
              so centripetal, Coriolis and sliding terms are all in it.\n\n\
              Errors: a non-finite argument; a singular Jacobian; accelerations less accurate \
              than [`mechgen::Accuracy::required`] ([`mechgen::Error::Inaccurate`]), judged as \
-             at a closed form's position, as [`Self::velocity`]."
+             at a closed form's position where the loops close there, as [`Self::velocity`]."
         );
         self.checked_function(
             "acceleration",
@@ -95,6 +97,7 @@ impl Generator<'_> {
             .flatten()
             .chain(&eq.velocity_rhs)
             .chain(&eq.acceleration_rhs)
+            .chain(&eq.residual)
             .chain(moving_magnitudes)
             .copied()
             .collect();
@@ -109,11 +112,16 @@ impl Generator<'_> {
         ) = self.block_with(&entries, Bindings::Position, &[], &stage);
         statements.resize(2, Vec::new());
         let (outputs, magnitudes) = outputs.split_at(outputs.len() - moving_magnitudes.len());
-        let position_from = if magnitudes.is_empty() {
+        let (outputs, residual) = outputs.split_at(outputs.len() - eq.residual.len());
+        let floor = if magnitudes.is_empty() {
             PositionFrom::Caller
         } else {
             PositionFrom::CallerIn(largest_loop(magnitudes, &eq.magnitude_loops))
         };
+        let position_from = PositionFrom::Given(
+            residual.iter().map(|r| quote!(#r)).collect(),
+            Box::new(floor),
+        );
         let rate_solves = self.rate_solves(outputs, &statements[0], &statements[1], &position_from);
         let (rates, accelerations) = (local("rates"), local("accelerations"));
         let accuracy = local("accuracy");
@@ -124,7 +132,8 @@ impl Generator<'_> {
              `{input_ddot_text}`: what [`Self::velocity`] and [`Self::acceleration`] give, sharing \
              their work. The accuracy it returns holds for any position the solvers return, \
              Newton's included (`mechgen::Accuracy::estimate_at`): near a toggle it is less than \
-             a closed form's rates have, and the rates are refused sooner.\n\nErrors: as \
+             a closed form's rates have, and the rates are refused sooner. A position the loops \
+             do not close at to rounding is taken as far off as their residual says.\n\nErrors: as \
              [`Self::velocity`] and [`Self::acceleration`], judged by that accuracy."
         ));
         self.normalised_rates_function(
@@ -195,10 +204,16 @@ impl Generator<'_> {
             .iter()
             .flatten()
             .chain(rhs)
+            .chain(&self.equations.residual)
             .copied()
             .collect();
         let (prologue, outputs) = self.block(&entries);
-        let (jacobian, rhs) = outputs.split_at(count * count);
+        let (jacobian, rest) = outputs.split_at(count * count);
+        let (rhs, residual) = rest.split_at(rhs.len());
+        let position = PositionFrom::Given(
+            residual.iter().map(|r| quote!(#r)).collect(),
+            Box::new(PositionFrom::ClosedForm),
+        );
         let ty = &self.unknowns_type;
         let solution = arg("solution");
         let highest = if quantity == "velocity" {
@@ -206,12 +221,7 @@ impl Generator<'_> {
         } else {
             "Acceleration"
         };
-        let solve = self.solves(
-            jacobian,
-            &[(rhs, solution.clone())],
-            highest,
-            &PositionFrom::ClosedForm,
-        );
+        let solve = self.solves(jacobian, &[(rhs, solution.clone())], highest, &position);
         let accuracy = local("accuracy");
         quote! {
             #prologue
@@ -294,6 +304,10 @@ impl Generator<'_> {
         position: &PositionFrom,
         aspect: Option<TokenStream>,
     ) -> TokenStream {
+        // Computed once, where the position's error reads it too.
+        let condition_name = local("condition");
+        let bind_condition = quote!(let #condition_name = #condition;);
+        let condition = quote!(#condition_name);
         let position = position.tokens(&condition, &size);
         let highest = Ident::new(highest, proc_macro2::Span::call_site());
         let accuracy = local("accuracy");
@@ -315,6 +329,7 @@ impl Generator<'_> {
         };
         let moving = proc_macro2::Literal::f64_suffixed(self.moving_columns());
         quote! {
+            #bind_condition
             let #accuracy = ::mechgen::__private::#function(
                 #condition,
                 #aspect
@@ -585,7 +600,8 @@ pub(crate) enum PositionFrom {
     /// The caller, to `motion_at`, which states the accuracy it returns: any position
     /// within the contract, the closed form's or Newton's, so Newton's `32·ε·κ`.
     /// (`velocity`, `acceleration` and the sensitivities, which state none, judge a position
-    /// as a closed form's, as their documentation says.)
+    /// that closes to rounding as a closed form's, as their documentation says; each wraps
+    /// its variant in [`PositionFrom::Given`].)
     Caller,
     /// The caller, as [`PositionFrom::Caller`], where the loops' magnitudes depend on the
     /// position: Newton's `32·ε·κ` relative to the largest loop's magnitudes there (this
@@ -593,6 +609,10 @@ pub(crate) enum PositionFrom {
     CallerIn(TokenStream),
     /// Newton's solution: its error bound from the residual it stopped at, this expression.
     Newton(TokenStream),
+    /// A position the caller gives, with the loops' residual there (these expressions): as
+    /// the inner variant where they close within rounding, else known only as well as that
+    /// residual says (`mechgen::__private::given_position`).
+    Given(Vec<TokenStream>, Box<PositionFrom>),
 }
 
 impl PositionFrom {
@@ -606,6 +626,15 @@ impl PositionFrom {
                 ::mechgen::__private::floor_position_accuracy(#condition, #largest, #size)
             )),
             PositionFrom::Newton(error) => quote!(::core::option::Option::Some(#error)),
+            PositionFrom::Given(residual, otherwise) => {
+                let otherwise = otherwise.tokens(condition, size);
+                quote!(::mechgen::__private::given_position(
+                    #condition,
+                    &[#(#residual),*],
+                    #size,
+                    #otherwise,
+                ))
+            }
         }
     }
 }

@@ -99,7 +99,8 @@ impl Generator<'_> {
              point's) moves no unknown.\n\nErrors: a non-finite argument or result; a singular \
              Jacobian (at a toggle the sensitivities are unbounded), or one whose condition \
              leaves fewer digits than [`mechgen::Accuracy::required`] asks of a velocity \
-             ([`mechgen::Error::Inaccurate`]): the same solve, and the same estimate.";
+             ([`mechgen::Error::Inaccurate`]): the same solve, and the same estimate (a \
+             position the loops do not close at is so `Inaccurate`).";
         let output = quote!(#ty<#unknowns<T>>);
         if self.has_formulas() {
             let value = local("value");
@@ -270,9 +271,11 @@ impl Generator<'_> {
             .flatten()
             .chain(rhs.iter().flatten())
             .chain(extra)
+            .chain(&self.equations.residual)
             .copied()
             .collect();
         let (prologue, mut outputs) = self.block(&entries);
+        let residual = outputs.split_off(outputs.len() - self.equations.residual.len());
         let extra_outputs = outputs.split_off(n * n + n * rhs.len());
         let right_sides = outputs.split_off(n * n);
         let jacobian = outputs;
@@ -296,7 +299,10 @@ impl Generator<'_> {
             &jacobian,
             &right_sides,
             "Velocity",
-            &super::rates::PositionFrom::ClosedForm,
+            &super::rates::PositionFrom::Given(
+                residual.iter().map(|r| quote!(#r)).collect(),
+                Box::new(super::rates::PositionFrom::ClosedForm),
+            ),
         );
         let accuracy = local("accuracy");
         let count = proc_macro2::Literal::usize_unsuffixed(n);
