@@ -47,7 +47,8 @@ pub struct Options {
     /// The seed of the random starts: the same seed, the same result, on any number of
     /// cores.
     pub seed: u64,
-    /// Require a crank that turns fully (Grashof, with the crank or the ground shortest).
+    /// Require a crank that turns fully (class I Grashof, with the crank or the ground
+    /// shortest; not a change point, whose links line up where its branch cannot be kept).
     pub crank: bool,
     /// Require the transmission angle within these bounds (radians, within [0, π]) at every
     /// target; over the whole turn where `crank` is asked too.
@@ -639,11 +640,15 @@ fn meets(linkage: &FourBar<f64>, inputs: &[f64], options: &Options) -> bool {
     if !linkage.limit_angles().one_circuit(inputs) {
         return false;
     }
+    // Class I: a change point (class III) turns fully too, but its links line up, where the
+    // branch it is solved on cannot be kept.
+    let grashof = linkage.grashof();
     if options.crank
-        && !matches!(
-            linkage.grashof().inversion,
-            Inversion::CrankRocker | Inversion::DoubleCrank
-        )
+        && (grashof.class != Class::Grashof
+            || !matches!(
+                grashof.inversion,
+                Inversion::CrankRocker | Inversion::DoubleCrank
+            ))
     {
         return false;
     }

@@ -730,6 +730,15 @@ fn the_constraints_are_the_ratio_a_crank_and_the_transmission_angle() {
     let rocker = FourBar::new(100.0, 60.0, 50.0, 80.0).unwrap();
     assert!(meets(&rocker, &[0.5], &with(false, None, 50.0)));
     assert!(!meets(&rocker, &[0.5], &with(true, None, 50.0)));
+    // Nor is a change point's crank (class III): it turns fully, but where its links line up
+    // the branch cannot be kept (an adversarial review found one met as a crank).
+    let change_point = FourBar::new(4.0, 1.0, 3.0, 2.0).unwrap();
+    assert_eq!(
+        change_point.grashof().class,
+        mechgen::grashof::Class::ChangePoint
+    );
+    assert!(meets(&change_point, &[0.5], &with(false, None, 50.0)));
+    assert!(!meets(&change_point, &[0.5], &with(true, None, 50.0)));
 }
 
 #[test]
