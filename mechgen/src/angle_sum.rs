@@ -26,9 +26,12 @@ use crate::newton::{TURN_LIMIT, rotate, sin_cos};
 /// ```
 #[inline(always)]
 pub fn sin_cos_of_sum<T: Real, const N: usize>(terms: [T; N]) -> (T, T) {
-    let mut sum = T::zero();
+    let Some((&first, rest)) = terms.split_first() else {
+        return (T::zero(), T::one());
+    };
+    let mut sum = first;
     let mut error = T::zero();
-    for term in terms {
+    for &term in rest {
         let (rounded, lost) = two_sum(sum, term);
         sum = rounded;
         error = error + lost;
