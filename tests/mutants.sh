@@ -38,7 +38,7 @@ REPORT=docs/MUTANTS.md
 RECORD=tests/mutants-record.tsv
 
 # The files run, in order of importance: closed forms, the scene kernels' checked steps, the
-# branch-free maths and rate limits, the linear solves, Newton; the runtime's analyses; its
+# branch-free maths, the sines and cosines of angle sums and rate limits, the linear solves, Newton; the runtime's analyses; its
 # scalar type, accuracy estimates, branches, errors and vectors; the sweep; the wider
 # instructions' choice and nalgebra's conversions (with its feature); then the shipped
 # mechanisms' analyses.
@@ -46,6 +46,7 @@ FILES=(
     mechgen/src/closed.rs
     mechgen/src/kernel.rs
     mechgen/src/fast.rs
+    mechgen/src/angle_sum.rs
     mechgen/src/rate_limits.rs
     mechgen/src/linear.rs
     mechgen/src/newton.rs

@@ -575,6 +575,33 @@ mod tests {
     /// Each limit angle `limit_angles` returns is reached, and so is its negative (an
     /// adversarial review found 5% of them not: `atan2(|sin θ|, cos θ)` came back an ulp
     /// below the limit): the reviewer's f64 and f32 linkages, and an ulp beyond a limit is not.
+    /// A crank stopped on one side only swings through 0 or through π: one circuit, however
+    /// its angles lie about the ground line; stopped on both sides, only angles on one side
+    /// of it are.
+    #[test]
+    fn a_crank_stopped_on_one_side_only_swings_through_on_one_circuit() {
+        // Triple rockers: stopped short of π (through 0), and short of 0 (through π).
+        let through_zero = FourBar::new(100.0, 120.0, 90.0, 80.0)
+            .unwrap()
+            .limit_angles();
+        assert!(through_zero.folded.is_none() && through_zero.extended.is_some());
+        assert!(through_zero.one_circuit(&[0.5, -0.5, 0.0]));
+        let through_pi = FourBar::new(100.0, 40.0, 200.0, 100.0)
+            .unwrap()
+            .limit_angles();
+        assert!(through_pi.folded.is_some() && through_pi.extended.is_none());
+        assert!(through_pi.one_circuit(&[3.0, -3.0, PI]));
+        // A rocker-crank, stopped on both sides.
+        let both = FourBar::new(180.0, 150.0, 200.0, 80.0)
+            .unwrap()
+            .limit_angles();
+        assert!(both.one_circuit(&[-0.8, -1.4]));
+        assert!(!both.one_circuit(&[-0.8, 1.4]));
+        // An angle not reached is on no circuit; none at all are on one.
+        assert!(!both.one_circuit(&[0.0]));
+        assert!(both.one_circuit(&[]));
+    }
+
     #[test]
     fn every_limit_returned_is_reached() {
         let double = FourBar::new(
