@@ -281,6 +281,9 @@ pub fn floor_position_accuracy<T: Real>(condition: T, largest_loop: T, size: T) 
 /// assert_eq!(given_position(10.0, &[1e-14, 0.0], 600.0, Some(1e-13)), Some(1e-13));
 /// // Open by 76.5 mm on a linkage of 610 mm, at condition 2: off by 0.25 of its size.
 /// assert_eq!(given_position(2.0, &[76.5, -5.4], 612.0, None), Some(0.25));
+/// // Open by half a unit on a linkage of 4: an eighth, or the larger given.
+/// assert_eq!(given_position(1.0, &[0.5, 0.0], 4.0, None), Some(0.125));
+/// assert_eq!(given_position(1.0, &[0.5, 0.0], 4.0, Some(0.5)), Some(0.5));
 /// assert!(given_position(2.0, &[f64::NAN, 0.0], 612.0, None).unwrap().is_nan());
 /// ```
 #[inline(always)]
