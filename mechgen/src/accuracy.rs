@@ -266,30 +266,42 @@ pub fn floor_position_accuracy<T: Real>(condition: T, largest_loop: T, size: T) 
 /// How far off a position the caller gives may be, relative to `size` (the sum of the lengths
 /// the loops declare), from the loops' `residual` there. Where they close within `64·ε·size`
 /// (what a closed form or Newton's floor leaves, with room), `otherwise`: the position is
-/// judged as the caller's function says (`None` as a closed form's, `Some` as Newton's). Beyond,
-/// the error that residual makes, `κ·max|r|/size` (or `otherwise`'s, if larger): a position
-/// the loops do not close at (another input's, or one made up) is so known to be far off, and
-/// rates or sensitivities there are [`Error::Inaccurate`], not numbers for a mechanism that is
-/// not there (an adversarial review found them returned); a Newton position stopped by a loose
-/// tolerance has its rates judged as they are.
+/// judged as the caller's function says (`None` as a closed form's, `Some` as Newton's).
+/// Beyond, the step Newton would take from it, `J·Δq = r` with the loops' `jacobian` there,
+/// twice over (`Δq` is the error to first order), each unknown's part weighted by the sum of
+/// its column's magnitudes over the size, as [`Accuracy::estimate_at`] reads a position's
+/// error (or `otherwise`'s, if larger; `κ·max|r|/size` where the Jacobian does not factor).
+/// A position the loops do not close at (another input's, or one made up) is so known to be
+/// far off, and rates or sensitivities there are [`Error::Inaccurate`], not numbers for a
+/// mechanism that is not there (an adversarial review found them returned); a Newton position
+/// stopped by a loose tolerance has its rates judged as they are; and an angle many turns
+/// out, whose float holds it only to its spacing, is off by that spacing, not by the worst
+/// its residual could mean near a toggle (`κ·|r|` refused one 1000 turns out there).
 ///
 /// ```
 /// use mechgen::__private::given_position;
-/// let e = f64::EPSILON;
+/// let identity = [[1.0, 0.0], [0.0, 1.0]];
 /// // Closed within rounding: as the caller says.
-/// assert_eq!(given_position(10.0, &[1e-14, 0.0], 600.0, None), None);
-/// assert_eq!(given_position(10.0, &[1e-14, 0.0], 600.0, Some(1e-13)), Some(1e-13));
-/// // Open by 76.5 mm on a linkage of 610 mm, at condition 2: off by 0.25 of its size.
-/// assert_eq!(given_position(2.0, &[76.5, -5.4], 612.0, None), Some(0.25));
-/// // Open by half a unit on a linkage of 4: an eighth, or the larger given.
-/// assert_eq!(given_position(1.0, &[0.5, 0.0], 4.0, None), Some(0.125));
-/// assert_eq!(given_position(1.0, &[0.5, 0.0], 4.0, Some(0.5)), Some(0.5));
-/// assert!(given_position(2.0, &[f64::NAN, 0.0], 612.0, None).unwrap().is_nan());
+/// assert_eq!(given_position(10.0, &identity, &[1e-14, 0.0], 600.0, None), None);
+/// let given = given_position(10.0, &identity, &[1e-14, 0.0], 600.0, Some(1e-13));
+/// assert_eq!(given, Some(1e-13));
+/// // Open by half a unit on a linkage of 4 whose unknowns' columns are unit vectors: the step
+/// // is half a unit, an eighth of the size, twice over; or the larger given.
+/// assert_eq!(given_position(1.0, &identity, &[0.5, 0.0], 4.0, None), Some(0.25));
+/// assert_eq!(given_position(1.0, &identity, &[0.5, 0.0], 4.0, Some(0.5)), Some(0.5));
+/// // Columns of length 100 whose residual moves one unknown by 0.01: 1/4 of a size of 8.
+/// let long = [[100.0, 0.0], [0.0, 100.0]];
+/// assert_eq!(given_position(1.0, &long, &[1.0, 0.0], 8.0, None), Some(0.25));
+/// // A Jacobian that does not factor: the condition's bound, κ·max|r|/size.
+/// let flat = [[1.0, 1.0], [1.0, 1.0]];
+/// assert_eq!(given_position(3.0, &flat, &[0.5, 0.0], 4.0, None), Some(0.375));
+/// assert!(given_position(2.0, &identity, &[f64::NAN, 0.0], 612.0, None).unwrap().is_nan());
 /// ```
 #[inline(always)]
-pub fn given_position<T: Real, const M: usize>(
+pub fn given_position<T: Real, const N: usize>(
     condition: T,
-    residual: &[T; M],
+    jacobian: &[[T; N]; N],
+    residual: &[T; N],
     size: T,
     otherwise: Option<T>,
 ) -> Option<T> {
@@ -298,15 +310,36 @@ pub fn given_position<T: Real, const M: usize>(
     if residual.iter().all(|r| r.abs() <= bound) {
         return otherwise;
     }
-    let largest = residual.iter().fold(T::zero(), |m, r| {
-        if r.abs() > m || r.is_nan() {
-            r.abs()
-        } else {
-            m
-        }
-    });
-    let error = condition.max(T::one()) * largest / size;
+    let error = position_error(condition, *jacobian, *residual, size);
     Some(otherwise.map_or(error, |given| given.max(error)))
+}
+
+/// [`given_position`]'s error for a position the loops do not close at: rare, so out of line.
+#[cold]
+#[inline(never)]
+fn position_error<T: Real, const N: usize>(
+    condition: T,
+    jacobian: [[T; N]; N],
+    residual: [T; N],
+    size: T,
+) -> T {
+    if residual.iter().any(|r| r.is_nan()) {
+        return T::nan();
+    }
+    if let Ok((step, _)) = crate::linear::solve_lu(jacobian, residual)
+        && step.iter().all(|s| s.is_finite())
+    {
+        let mut largest = T::zero();
+        for (j, part) in step.iter().enumerate() {
+            let column = jacobian
+                .iter()
+                .fold(T::zero(), |sum, row| sum + row[j].abs());
+            largest = largest.max(part.abs() * column);
+        }
+        return T::constant(2.0) * largest / size;
+    }
+    let largest = residual.iter().fold(T::zero(), |m, r| m.max(r.abs()));
+    condition.max(T::one()) * largest / size
 }
 
 /// The estimate for rates solved with `jacobian` (whose condition estimate is `condition`)

@@ -12,8 +12,11 @@ use crate::newton::{TURN_LIMIT, rotate, sin_cos};
 
 /// `(sin, cos)` of the exact sum of `terms`: the sum is rounded as usual, its rounding error
 /// kept exactly (Knuth's two-sum, cascaded), and the rounded angle turned by that error, to
-/// first order where its square is below `ε/8`, by [`rotate`]'s series up to `2⁻¹⁰` rad, and by
-/// the angle-sum formulas beyond. A NaN or infinite term gives NaN.
+/// first order where its square is below `ε/8`, by Newton's rotation series (`rotate`) up to
+/// `2⁻¹⁰` rad, and by the angle-sum formulas beyond. Exact for two terms; for more, the parts each addition
+/// loses are themselves added rounded (Ogita, Rump and Oishi's Sum2, as if in twice the
+/// precision), so three terms of which two beyond 2⁵³ cancel can lose the third (an
+/// adversarial review's `[−1e300, f64::MAX, −1e16]`). A NaN or infinite term gives NaN.
 ///
 /// ```
 /// use mechgen::__private::sin_cos_of_sum;

@@ -432,6 +432,12 @@ mod tests {
         // is class III (it said a parallelogram).
         let flat = classify(1.0, 1e-20, 1.0, 2e-20);
         assert_eq!((flat.class, flat.special), (Class::Flat, None));
+        // Class III with ground = coupler but the cranks unequal (30 + 70 = 50 + 50): neither.
+        let one_pair = classify(50.0, 30.0, 50.0, 70.0);
+        assert_eq!(
+            (one_pair.class, one_pair.special),
+            (Class::ChangePoint, None)
+        );
     }
 
     #[test]

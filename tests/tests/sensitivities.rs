@@ -662,6 +662,23 @@ fn a_position_the_loops_do_not_close_at_is_refused() {
     let rates = linkage.velocity(1.0, &near, 1.0).unwrap();
     let exact = linkage.velocity(1.0, &here, 1.0).unwrap();
     assert!((rates.theta4 - exact.theta4).abs() < 1e-8);
+    // A position a thousand turns out near a toggle, whose angles hold only to their floats'
+    // spacing (4.5e-13 rad), so that the loops open by 2.3e-10 mm: off by that spacing, not
+    // by the worst such a residual could mean at a condition of 6.7e3 (which refused it, an
+    // adversarial review found). Its rates are the ones a turn in, to 1e-8.
+    let rocker_crank = FourBar::new(180.0, 150.0, 200.0, 80.0).unwrap();
+    let theta2 = 0.7227342578134156;
+    let turn = 2.0 * std::f64::consts::PI * 1000.0;
+    let q = rocker_crank.assemble(theta2, Branch::Open).unwrap();
+    let out = mechanisms::FourBarUnknowns {
+        theta3: q.theta3 + turn,
+        theta4: q.theta4 + turn,
+    };
+    let (got, want) = (
+        rocker_crank.velocity(theta2, &out, 1.0).unwrap(),
+        rocker_crank.velocity(theta2, &q, 1.0).unwrap(),
+    );
+    assert!((got.theta4 - want.theta4).abs() <= 1e-8 * want.theta4.abs());
     // Off by 1e-4 rad: the rates cannot be known to 6e-6.
     let far = mechanisms::FourBarUnknowns {
         theta4: here.theta4 + 1e-4,

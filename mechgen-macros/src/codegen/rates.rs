@@ -308,7 +308,7 @@ impl Generator<'_> {
         let condition_name = local("condition");
         let bind_condition = quote!(let #condition_name = #condition;);
         let condition = quote!(#condition_name);
-        let position = position.tokens(&condition, &size);
+        let position = position.tokens(&matrix, &condition, &size);
         let highest = Ident::new(highest, proc_macro2::Span::call_site());
         let accuracy = local("accuracy");
         let angles: Vec<bool> = self
@@ -616,9 +616,14 @@ pub(crate) enum PositionFrom {
 }
 
 impl PositionFrom {
-    /// The `Option<T>` that `rates_accuracy` takes, for a Jacobian of condition `condition`
-    /// in a mechanism of size `size`.
-    fn tokens(&self, condition: &TokenStream, size: &TokenStream) -> TokenStream {
+    /// The `Option<T>` that `rates_accuracy` takes, for a Jacobian `matrix` (an expression of
+    /// type `&[[T; N]; N]`) of condition `condition` in a mechanism of size `size`.
+    fn tokens(
+        &self,
+        matrix: &TokenStream,
+        condition: &TokenStream,
+        size: &TokenStream,
+    ) -> TokenStream {
         match self {
             PositionFrom::ClosedForm => quote!(::core::option::Option::None),
             PositionFrom::Caller => quote!(::core::option::Option::Some(T::zero())),
@@ -627,9 +632,10 @@ impl PositionFrom {
             )),
             PositionFrom::Newton(error) => quote!(::core::option::Option::Some(#error)),
             PositionFrom::Given(residual, otherwise) => {
-                let otherwise = otherwise.tokens(condition, size);
+                let otherwise = otherwise.tokens(matrix, condition, size);
                 quote!(::mechgen::__private::given_position(
                     #condition,
+                    #matrix,
                     &[#(#residual),*],
                     #size,
                     #otherwise,
