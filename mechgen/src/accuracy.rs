@@ -329,13 +329,17 @@ fn position_error<T: Real, const N: usize>(
     if let Ok((step, _)) = crate::linear::solve_lu(jacobian, residual)
         && step.iter().all(|s| s.is_finite())
     {
-        let mut largest = T::zero();
-        for (j, part) in step.iter().enumerate() {
-            let column = jacobian
-                .iter()
-                .fold(T::zero(), |sum, row| sum + row[j].abs());
-            largest = largest.max(part.abs() * column);
+        // Each column's magnitudes summed, without indexing (no bounds check to panic).
+        let mut columns = [T::zero(); N];
+        for row in &jacobian {
+            for (column, entry) in columns.iter_mut().zip(row) {
+                *column = *column + entry.abs();
+            }
         }
+        let largest = step
+            .iter()
+            .zip(&columns)
+            .fold(T::zero(), |m, (part, column)| m.max(part.abs() * *column));
         return T::constant(2.0) * largest / size;
     }
     let largest = residual.iter().fold(T::zero(), |m, r| m.max(r.abs()));
